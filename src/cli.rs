@@ -1,0 +1,127 @@
+//! Command-line definitions (clap derive). Doc comments are the help text. Values are parsed
+//! into validated library types here, so a bad value is a usage error (exit 2) naming the flag.
+
+use crate::clock::Fps;
+use crate::io::Format;
+use crate::io::num::{MAX_PRECISION, NumFormat};
+use crate::rotation::{AngleUnit, QuatOrder, Repr};
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+/// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
+/// matrices, axis-angle, rotation vectors) from CSV or JSON and writes every in-between frame.
+#[derive(Debug, Parser)]
+#[command(name = "inbetween", version, max_term_width = 100)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Change representation and/or format of keyframes, without interpolating.
+    ///
+    /// Examples:
+    ///   inbetween convert keys.csv --to euler:ZYX
+    ///   cat keys.json | inbetween convert --to matrix --output-format csv
+    ///   inbetween convert keys.csv --from euler:zxz --angles rad --to quat -o keys.json
+    #[command(verbatim_doc_comment)]
+    Convert(ConvertArgs),
+}
+
+/// Where the keys come from and how to read them.
+#[derive(Debug, Args)]
+pub struct InputArgs {
+    /// Keyframe file (CSV or JSON); `-` or nothing reads standard input.
+    #[arg(value_name = "INPUT")]
+    pub input: Option<PathBuf>,
+
+    /// Input representation when the data does not say: the Euler sequence of CSV e1,e2,e3
+    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec).
+    #[arg(long, value_name = "REPR", value_parser = parse_repr)]
+    pub from: Option<Repr>,
+
+    /// Unit of every angle written, and of angles read from CSV or JSON without "angles".
+    #[arg(long, value_name = "U", value_parser = parse_angles, default_value = "deg")]
+    pub angles: AngleUnit,
+
+    /// Component order of quaternions in JSON arrays (CSV columns are named).
+    #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
+    pub quat_order: QuatOrder,
+
+    /// Input format; by default from the file extension, and standard input is sniffed
+    /// (`{` or `[` first means JSON).
+    #[arg(long, value_name = "F", value_parser = parse_format)]
+    pub input_format: Option<Format>,
+}
+
+/// Where the output goes and how it is written.
+#[derive(Debug, Args)]
+pub struct OutputArgs {
+    /// Output representation: quat, euler:SEQ (scipy letters: ZYX intrinsic, zyx extrinsic),
+    /// matrix, axis-angle, rotvec.
+    #[arg(long, value_name = "REPR", value_parser = parse_repr, default_value = "quat")]
+    pub to: Repr,
+
+    /// Output format; by default the input's.
+    #[arg(long, value_name = "F", value_parser = parse_format)]
+    pub output_format: Option<Format>,
+
+    /// Output file, replaced atomically (nothing is written on error); default standard output.
+    #[arg(short = 'o', long = "output", value_name = "PATH")]
+    pub output: Option<PathBuf>,
+
+    /// Digits after the decimal point (as printf %.Nf); default: the shortest digits that read
+    /// back to the same number.
+    #[arg(long, value_name = "N", value_parser = parse_precision)]
+    pub precision: Option<usize>,
+}
+
+impl OutputArgs {
+    pub fn num_format(&self) -> NumFormat {
+        self.precision.map_or(NumFormat::Shortest, NumFormat::Fixed)
+    }
+}
+
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    #[command(flatten)]
+    pub output: OutputArgs,
+
+    /// Rate of `frame` values in documents that do not give one (JSON "fps" wins for its own
+    /// frames): 24, 29.97, 30000/1001, ...
+    #[arg(long, value_name = "RATE", value_parser = parse_fps)]
+    pub fps: Option<Fps>,
+}
+
+fn parse_repr(s: &str) -> Result<Repr, String> {
+    Repr::parse(s).map_err(|e| e.0)
+}
+
+fn parse_angles(s: &str) -> Result<AngleUnit, String> {
+    AngleUnit::parse(s).map_err(|e| e.0)
+}
+
+fn parse_quat_order(s: &str) -> Result<QuatOrder, String> {
+    QuatOrder::parse(s).map_err(|e| e.0)
+}
+
+fn parse_format(s: &str) -> Result<Format, String> {
+    Format::parse(s).map_err(|e| e.0)
+}
+
+pub(crate) fn parse_fps(s: &str) -> Result<Fps, String> {
+    Fps::parse(s).map_err(|e| e.0)
+}
+
+fn parse_precision(s: &str) -> Result<usize, String> {
+    match s.parse::<usize>() {
+        Ok(n) if n <= MAX_PRECISION => Ok(n),
+        _ => Err(format!(
+            "expected a whole number from 0 to {MAX_PRECISION}, found \"{s}\""
+        )),
+    }
+}

@@ -1,0 +1,300 @@
+//! CSV keyframes (SPEC §3): a header row, one key per row, columns found by name in any order.
+//!
+//! ```text
+//! track,time,w,x,y,z          track optional; time (seconds) or frame; rotation columns of one
+//! hip,0.0,1,0,0,0             representation (SPEC §2). Rows of several tracks may interleave;
+//! hip,0.5,0.7071,0,0.7071,0   each track keeps its row order.
+//! ```
+//! Accepted as a user would expect: a UTF-8 BOM, CRLF line ends, blank lines, spaces around
+//! fields and header names, quoted fields. Errors: an unknown or duplicated column, a missing
+//! rotation column, a row with a different number of fields than the header, a field that is
+//! not a finite number.
+
+use super::ReadOptions;
+use crate::error::InputResult;
+use crate::input_err;
+use crate::keys::{Document, Key, KeyTime, Loc, Track};
+use crate::rotation::{MAX_WIDTH, Repr};
+
+/// Column sets that name a representation, with their aliases.
+const QUAT_ALIASES: [&str; 4] = ["qw", "qx", "qy", "qz"];
+
+fn rotation_candidates() -> Vec<(Repr, Vec<&'static str>)> {
+    let seq = crate::rotation::EulerSeq::parse("XYZ").expect("valid");
+    vec![
+        (Repr::Quat, Repr::Quat.columns().to_vec()),
+        (Repr::Quat, QUAT_ALIASES.to_vec()),
+        (Repr::Euler(seq), Repr::Euler(seq).columns().to_vec()),
+        (Repr::Matrix, Repr::Matrix.columns().to_vec()),
+        (Repr::AxisAngle, Repr::AxisAngle.columns().to_vec()),
+        (Repr::RotVec, Repr::RotVec.columns().to_vec()),
+    ]
+}
+
+/// Reads a CSV keyframe document.
+pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Document> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if text.trim().is_empty() {
+        return Err(input_err!(
+            "{source}: expected a CSV header row, found an empty input"
+        ));
+    }
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut records = rdr.records();
+    let mut record = csv::StringRecord::new();
+    let header = match records.next() {
+        Some(Ok(h)) => h,
+        Some(Err(e)) => return Err(csv_error(source, &e)),
+        None => {
+            return Err(input_err!(
+                "{source}: expected a CSV header row, found none"
+            ));
+        }
+    };
+    let header_line = header.position().map_or(1, |p| p.line());
+    let names: Vec<&str> = header.iter().collect();
+    let hloc = format!("{source}:{header_line}");
+    for (i, n) in names.iter().enumerate() {
+        if names[..i].contains(n) {
+            return Err(input_err!("{hloc}: column \"{n}\" appears twice"));
+        }
+    }
+    let col = |n: &str| names.iter().position(|c| *c == n);
+    let (repr, rot_cols) = choose_rotation(&names, opts, &hloc)?;
+    let time_col = col("time");
+    let frame_col = col("frame");
+    let (when_col, is_frame) = match (time_col, frame_col) {
+        (Some(t), None) => (t, false),
+        (None, Some(f)) => (f, true),
+        (Some(_), Some(_)) => {
+            return Err(input_err!(
+                "{hloc}: expected a \"time\" or a \"frame\" column, found both"
+            ));
+        }
+        (None, None) => {
+            return Err(input_err!(
+                "{hloc}: expected a \"time\" or a \"frame\" column, found neither (columns: {})",
+                names.join(",")
+            ));
+        }
+    };
+    let track_col = col("track");
+    for n in &names {
+        let known = *n == "track" || *n == "time" || *n == "frame" || rot_cols.contains(n);
+        if !known {
+            return Err(input_err!(
+                "{hloc}: unknown column \"{n}\" (expected track, time or frame, and {})",
+                rot_cols.join(",")
+            ));
+        }
+    }
+    let rot_idx: Vec<usize> = rot_cols.iter().filter_map(|n| col(n)).collect();
+
+    let mut doc = Document {
+        source: source.to_string(),
+        fps: None,
+        rotation: Some(repr),
+        tracks: Vec::new(),
+        named_tracks: track_col.is_some(),
+        warnings: Vec::new(),
+    };
+    let mut values = [0.0; MAX_WIDTH];
+    loop {
+        match rdr.read_record(&mut record) {
+            Ok(false) => break,
+            Ok(true) => {}
+            Err(e) => return Err(csv_error(source, &e)),
+        }
+        let line = record.position().map_or(0, |p| p.line());
+        let loc = format!("{source}:{line}");
+        if record.len() != names.len() {
+            return Err(input_err!(
+                "{loc}: expected {} fields as in the header, found {}",
+                names.len(),
+                record.len()
+            ));
+        }
+        let number = |i: usize| -> InputResult<f64> {
+            let raw = &record[i];
+            match raw.parse::<f64>() {
+                Ok(x) if x.is_finite() => Ok(x),
+                Ok(_) => Err(input_err!(
+                    "{loc}: column \"{}\": expected a finite number, found \"{raw}\"",
+                    names[i]
+                )),
+                Err(_) => Err(input_err!(
+                    "{loc}: column \"{}\": expected a number, found \"{raw}\"",
+                    names[i]
+                )),
+            }
+        };
+        let t = number(when_col)?;
+        for (slot, &i) in values.iter_mut().zip(&rot_idx) {
+            *slot = number(i)?;
+        }
+        let (rot, warning) = repr
+            .to_quat(&values[..repr.width()], opts.angles)
+            .map_err(|e| e.at(format!("{loc}: columns {}", rot_cols.join(","))))?;
+        if let Some(w) = warning {
+            doc.warnings.push(format!("{loc}: {w}"));
+        }
+        let name = track_col.map(|i| record[i].to_string());
+        let track = match doc.tracks.iter().position(|t| t.name == name) {
+            Some(i) => &mut doc.tracks[i],
+            None => {
+                doc.tracks.push(Track {
+                    name,
+                    keys: Vec::new(),
+                    start_velocity: None,
+                    end_velocity: None,
+                });
+                doc.tracks.last_mut().expect("just pushed")
+            }
+        };
+        track.keys.push(Key {
+            when: if is_frame {
+                KeyTime::Frame(t)
+            } else {
+                KeyTime::Seconds(t)
+            },
+            rot,
+            loc: Loc::Line(line),
+        });
+    }
+    if doc.tracks.is_empty() {
+        return Err(input_err!(
+            "{source}: expected at least 2 keys, found only a header"
+        ));
+    }
+    Ok(doc)
+}
+
+fn csv_error(source: &str, e: &csv::Error) -> crate::error::InputError {
+    match e.position() {
+        Some(p) => input_err!("{source}:{}: {}", p.line(), e),
+        None => input_err!("{source}: {e}"),
+    }
+}
+
+/// The representation named by the header (or forced by `--from`), and its column names as they
+/// appear in the header.
+fn choose_rotation(
+    names: &[&str],
+    opts: &ReadOptions,
+    hloc: &str,
+) -> InputResult<(Repr, Vec<&'static str>)> {
+    let has = |c: &&str| names.contains(c);
+    let candidates = rotation_candidates();
+    if let Some(from) = opts.from {
+        let sets: Vec<_> = candidates
+            .iter()
+            .filter(|(r, _)| std::mem::discriminant(r) == std::mem::discriminant(&from))
+            .collect();
+        if let Some((_, cols)) = sets.iter().find(|(_, cols)| cols.iter().all(has)) {
+            return Ok((from, cols.clone()));
+        }
+        let cols = &sets[0].1;
+        let missing: Vec<_> = cols.iter().filter(|c| !has(c)).collect();
+        return Err(input_err!(
+            "{hloc}: --from {from} needs columns {}, missing \"{}\"",
+            cols.join(","),
+            missing[0]
+        ));
+    }
+    let full: Vec<_> = candidates
+        .iter()
+        .filter(|(_, cols)| cols.iter().all(has))
+        .collect();
+    match full.as_slice() {
+        [(Repr::Euler(_), _)] => Err(input_err!(
+            "{hloc}: columns e1,e2,e3 hold Euler angles but the sequence is unknown: pass \
+             --from euler:SEQ (e.g. --from euler:ZYX)"
+        )),
+        [(repr, cols)] => Ok((*repr, cols.clone())),
+        [] => {
+            // Name the first missing column of the best partial match.
+            let best = candidates
+                .iter()
+                .max_by_key(|(_, cols)| cols.iter().filter(|c| has(c)).count())
+                .expect("non-empty");
+            if best.1.iter().any(has) {
+                let missing = best.1.iter().find(|c| !has(c)).expect("partial");
+                Err(input_err!(
+                    "{hloc}: missing column \"{missing}\" (rotation columns {})",
+                    best.1.join(",")
+                ))
+            } else {
+                Err(input_err!(
+                    "{hloc}: expected rotation columns (w,x,y,z or e1,e2,e3 or m00..m22 or \
+                     ax,ay,az,angle or rx,ry,rz), found {}",
+                    names.join(",")
+                ))
+            }
+        }
+        several => Err(input_err!(
+            "{hloc}: found columns of several rotations ({}); keep one or pass --from",
+            several
+                .iter()
+                .map(|(r, _)| r.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rotation::AngleUnit;
+
+    fn opts() -> ReadOptions {
+        ReadOptions::default()
+    }
+
+    #[test]
+    fn reads_two_tracks_interleaved() {
+        let text = "track,time,w,x,y,z\na,0,1,0,0,0\nb,0,1,0,0,0\na,1,0,1,0,0\nb,2,0,0,1,0\n";
+        let doc = read(text, "k.csv", &opts()).unwrap();
+        assert_eq!(doc.tracks.len(), 2);
+        assert_eq!(doc.tracks[0].name.as_deref(), Some("a"));
+        assert_eq!(doc.tracks[1].keys[1].when, KeyTime::Seconds(2.0));
+        assert_eq!(doc.tracks[1].keys[1].loc, Loc::Line(5));
+    }
+
+    #[test]
+    fn bom_crlf_spaces_and_aliases() {
+        let text = "\u{feff} time , qw,qx ,qy,qz\r\n0, 1,0,0,0\r\n\r\n1,0,0,0,1\r\n";
+        let doc = read(text, "k.csv", &opts()).unwrap();
+        assert_eq!(doc.tracks[0].keys.len(), 2);
+        assert!(!doc.named_tracks);
+    }
+
+    #[test]
+    fn euler_needs_a_sequence() {
+        let text = "time,e1,e2,e3\n0,0,0,0\n1,90,0,0\n";
+        let err = read(text, "k.csv", &opts()).unwrap_err();
+        assert!(err.0.contains("--from euler:SEQ"), "{err}");
+        let o = ReadOptions {
+            from: Some(Repr::parse("euler:ZYX").unwrap()),
+            angles: AngleUnit::Deg,
+            ..opts()
+        };
+        let doc = read(text, "k.csv", &o).unwrap();
+        let q = doc.tracks[0].keys[1].rot;
+        assert!((q.z - (std::f64::consts::FRAC_PI_4).sin()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let text = "time,w,x,y,z\n0,1,0,0,0\n1,abc,0,0,0\n";
+        let err = read(text, "k.csv", &opts()).unwrap_err();
+        assert_eq!(
+            err.0,
+            "k.csv:3: column \"w\": expected a number, found \"abc\""
+        );
+    }
+}

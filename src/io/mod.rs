@@ -1,0 +1,76 @@
+//! Wire formats: reading keyframe documents (CSV, JSON), writing keys and frames, and where the
+//! bytes go (stdout, or a file replaced atomically).
+
+pub mod csv;
+pub mod json;
+pub mod num;
+pub mod output;
+pub mod write;
+
+use crate::error::InputResult;
+use crate::input_err;
+use crate::keys::Document;
+use crate::rotation::{AngleUnit, QuatOrder, Repr};
+use std::path::Path;
+
+/// File format of a keyframe document or of the output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    Csv,
+    Json,
+}
+
+impl Format {
+    pub fn parse(s: &str) -> InputResult<Format> {
+        match s {
+            "csv" => Ok(Format::Csv),
+            "json" => Ok(Format::Json),
+            _ => Err(input_err!("expected \"csv\" or \"json\", found \"{s}\"")),
+        }
+    }
+
+    /// From a file extension (`.csv`, `.json`, case-insensitive).
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "csv" => Some(Format::Csv),
+            "json" => Some(Format::Json),
+            _ => None,
+        }
+    }
+
+    /// Sniffs content: the first non-blank character `{` or `[` means JSON, anything else CSV.
+    pub fn sniff(text: &str) -> Format {
+        let t = text.strip_prefix('\u{feff}').unwrap_or(text).trim_start();
+        if t.starts_with('{') || t.starts_with('[') {
+            Format::Json
+        } else {
+            Format::Csv
+        }
+    }
+}
+
+/// How to interpret input values the data does not describe itself.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadOptions {
+    /// `--from`: the representation when the data does not say (the Euler sequence of CSV
+    /// `e1,e2,e3` columns and of JSON `euler` keys).
+    pub from: Option<Repr>,
+    /// `--angles`: unit of angles in CSV and in JSON without `angles`.
+    pub angles: AngleUnit,
+    /// `--quat-order`: component order of JSON quaternion arrays.
+    pub quat_order: QuatOrder,
+}
+
+/// Parses a document in the given format.
+pub fn read_document(
+    text: &str,
+    source: &str,
+    format: Format,
+    opts: &ReadOptions,
+) -> InputResult<Document> {
+    match format {
+        Format::Csv => csv::read(text, source, opts),
+        Format::Json => json::read(text, source, opts),
+    }
+}

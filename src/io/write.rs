@@ -1,0 +1,388 @@
+//! Writers: frames (from `interp`) and keys (from `convert`) as CSV or JSON bytes.
+//!
+//! Writers only turn values into bytes on a [`Write`]; they stream (a frame is formatted and
+//! handed on as it comes, through a small buffer) and never look at the file system.
+//!
+//! ```text
+//! CSV frames:  [track,]frame,time,<rotation columns>
+//! JSON frames: {"fps": 30, "rotation": "quat", "tracks": [
+//!              {"name": "hip", "frames": [
+//!              {"frame": 0, "time": 0.0, "quat": [1.0, 0.0, 0.0, 0.0]},
+//!              ...]}]}
+//! ```
+//! One frame per line in JSON too, so that outputs diff well. `"angles"` is written when the
+//! representation has angles; `"name"` when the track has one.
+
+use super::Format;
+use super::num::{NumFormat, NumWriter};
+use crate::clock::Fps;
+use crate::keys::{Document, KeyTime};
+use crate::rotation::{AngleUnit, MAX_WIDTH, QuatOrder, Repr};
+use glam::DQuat;
+use std::io::{self, Write};
+
+/// How rotations and numbers are written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Style {
+    pub repr: Repr,
+    pub angles: AngleUnit,
+    pub quat_order: QuatOrder,
+    pub num: NumFormat,
+}
+
+/// Formats one rotation's values (CSV: comma-separated; JSON: an array) into `out`.
+struct RotationFormatter {
+    style: Style,
+    nums: NumWriter,
+    vals: [f64; MAX_WIDTH],
+}
+
+impl RotationFormatter {
+    fn new(style: Style) -> Self {
+        RotationFormatter {
+            style,
+            nums: NumWriter::new(style.num),
+            vals: [0.0; MAX_WIDTH],
+        }
+    }
+
+    #[inline]
+    fn values(&mut self, q: DQuat) -> &[f64] {
+        let repr = self.style.repr;
+        repr.from_quat(q, self.style.angles, &mut self.vals);
+        let w = repr.width();
+        if repr == Repr::Quat {
+            let o = self.style.quat_order.from_wxyz([
+                self.vals[0],
+                self.vals[1],
+                self.vals[2],
+                self.vals[3],
+            ]);
+            self.vals[..4].copy_from_slice(&o);
+        }
+        &self.vals[..w]
+    }
+
+    #[inline]
+    fn csv(&mut self, out: &mut Vec<u8>, q: DQuat) {
+        // CSV columns are named, so quaternions are always w,x,y,z.
+        let repr = self.style.repr;
+        repr.from_quat(q, self.style.angles, &mut self.vals);
+        for i in 0..repr.width() {
+            out.push(b',');
+            self.nums.float(out, self.vals[i]);
+        }
+    }
+
+    fn json(&mut self, out: &mut Vec<u8>, q: DQuat) {
+        let key = self.style.repr.json_key();
+        let mut vals = [0.0; MAX_WIDTH];
+        let n = {
+            let v = self.values(q);
+            vals[..v.len()].copy_from_slice(v);
+            v.len()
+        };
+        out.extend_from_slice(b"\"");
+        out.extend_from_slice(key.as_bytes());
+        out.extend_from_slice(b"\": [");
+        if self.style.repr == Repr::Matrix {
+            for r in 0..3 {
+                out.extend_from_slice(if r == 0 { b"[" } else { b", [" });
+                for c in 0..3 {
+                    if c > 0 {
+                        out.extend_from_slice(b", ");
+                    }
+                    self.nums.float(out, vals[3 * r + c]);
+                }
+                out.push(b']');
+            }
+        } else {
+            for (i, v) in vals[..n].iter().enumerate() {
+                if i > 0 {
+                    out.extend_from_slice(b", ");
+                }
+                self.nums.float(out, *v);
+            }
+        }
+        out.push(b']');
+    }
+}
+
+fn json_string(s: &str) -> String {
+    serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
+}
+
+/// Document-level JSON header fields shared by frames and keys output.
+fn json_head(out: &mut Vec<u8>, fps: Option<Fps>, style: &Style) {
+    out.push(b'{');
+    if let Some(fps) = fps {
+        if fps.den() == 1 {
+            out.extend_from_slice(format!("\"fps\": {}, ", fps.num()).as_bytes());
+        } else {
+            out.extend_from_slice(format!("\"fps\": \"{fps}\", ").as_bytes());
+        }
+    }
+    out.extend_from_slice(format!("\"rotation\": \"{}\"", style.repr).as_bytes());
+    if style.repr.has_angles() {
+        out.extend_from_slice(format!(", \"angles\": \"{}\"", style.angles.as_str()).as_bytes());
+    }
+}
+
+const FLUSH_AT: usize = 1 << 15;
+
+/// Receives the frames of `interp`, track by track.
+pub trait FrameSink {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()>;
+    fn frame(&mut self, k: i64, time: f64, q: DQuat) -> io::Result<()>;
+    fn end_track(&mut self) -> io::Result<()>;
+    /// Writes what closes the document and flushes the buffer to the writer.
+    fn finish(&mut self) -> io::Result<()>;
+}
+
+/// Writes frames as CSV or JSON.
+pub struct FrameWriter<W: Write> {
+    w: W,
+    buf: Vec<u8>,
+    format: Format,
+    rot: RotationFormatter,
+    nums: NumWriter,
+    track_column: bool,
+    track: Vec<u8>,
+    tracks_written: usize,
+    frames_in_track: usize,
+}
+
+impl<W: Write> FrameWriter<W> {
+    /// `track_column`: write the CSV `track` column (several tracks, or the input named them).
+    pub fn new(w: W, format: Format, style: Style, fps: Fps, track_column: bool) -> Self {
+        let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
+        match format {
+            Format::Csv => {
+                if track_column {
+                    buf.extend_from_slice(b"track,");
+                }
+                buf.extend_from_slice(b"frame,time");
+                for c in style.repr.columns() {
+                    buf.push(b',');
+                    buf.extend_from_slice(c.as_bytes());
+                }
+                buf.push(b'\n');
+            }
+            Format::Json => {
+                json_head(&mut buf, Some(fps), &style);
+                buf.extend_from_slice(b", \"tracks\": [\n");
+            }
+        }
+        FrameWriter {
+            w,
+            buf,
+            format,
+            rot: RotationFormatter::new(style),
+            nums: NumWriter::new(style.num),
+            track_column,
+            track: Vec::new(),
+            tracks_written: 0,
+            frames_in_track: 0,
+        }
+    }
+
+    #[inline]
+    fn maybe_flush(&mut self) -> io::Result<()> {
+        if self.buf.len() >= FLUSH_AT {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    /// The writer, after [`FrameSink::finish`].
+    pub fn into_inner(self) -> W {
+        self.w
+    }
+}
+
+/// CSV field quoting for track names (RFC 4180: quote when needed, double inner quotes).
+fn csv_field(s: &str) -> Vec<u8> {
+    if s.contains([',', '"', '\n', '\r']) || s.trim() != s {
+        format!("\"{}\"", s.replace('"', "\"\"")).into_bytes()
+    } else {
+        s.as_bytes().to_vec()
+    }
+}
+
+impl<W: Write> FrameSink for FrameWriter<W> {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
+        self.frames_in_track = 0;
+        match self.format {
+            Format::Csv => {
+                self.track = csv_field(name.unwrap_or(""));
+                self.track.push(b',');
+            }
+            Format::Json => {
+                if self.tracks_written > 0 {
+                    self.buf.extend_from_slice(b",\n");
+                }
+                self.buf.push(b'{');
+                if let Some(n) = name {
+                    self.buf
+                        .extend_from_slice(format!("\"name\": {}, ", json_string(n)).as_bytes());
+                }
+                self.buf.extend_from_slice(b"\"frames\": [");
+            }
+        }
+        self.tracks_written += 1;
+        Ok(())
+    }
+
+    #[inline]
+    fn frame(&mut self, k: i64, time: f64, q: DQuat) -> io::Result<()> {
+        match self.format {
+            Format::Csv => {
+                if self.track_column {
+                    self.buf.extend_from_slice(&self.track);
+                }
+                self.nums.int(&mut self.buf, k);
+                self.buf.push(b',');
+                self.nums.float(&mut self.buf, time);
+                self.rot.csv(&mut self.buf, q);
+                self.buf.push(b'\n');
+            }
+            Format::Json => {
+                self.buf.extend_from_slice(if self.frames_in_track == 0 {
+                    b"\n{\"frame\": "
+                } else {
+                    b",\n{\"frame\": "
+                });
+                self.nums.int(&mut self.buf, k);
+                self.buf.extend_from_slice(b", \"time\": ");
+                self.nums.float(&mut self.buf, time);
+                self.buf.extend_from_slice(b", ");
+                self.rot.json(&mut self.buf, q);
+                self.buf.push(b'}');
+            }
+        }
+        self.frames_in_track += 1;
+        self.maybe_flush()
+    }
+
+    fn end_track(&mut self) -> io::Result<()> {
+        if self.format == Format::Json {
+            self.buf.extend_from_slice(b"\n]}");
+        }
+        self.maybe_flush()
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        if self.format == Format::Json {
+            self.buf.extend_from_slice(b"\n]}\n");
+        }
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        self.w.flush()
+    }
+}
+
+/// Writes a document's keys (for `convert`) in the input shape of SPEC §3, so that the output is
+/// valid input: CSV `[track,]time|frame,<columns>`; JSON `keys` or `tracks`, with `fps` when
+/// keys are frames, `rotation`, `angles` and the tracks' end velocities.
+///
+/// Keys are written with `frame` when every key of the document has one, otherwise with `time`
+/// (frames converted at `frame_fps`).
+pub fn write_keys<W: Write>(
+    mut w: W,
+    doc: &Document,
+    format: Format,
+    style: Style,
+    frame_fps: Fps,
+) -> io::Result<()> {
+    let all_frames = doc
+        .tracks
+        .iter()
+        .flat_map(|t| &t.keys)
+        .all(|k| matches!(k.when, KeyTime::Frame(_)));
+    let when = |t: KeyTime| match t {
+        KeyTime::Frame(f) if all_frames => f,
+        KeyTime::Frame(f) => frame_fps.frame_to_time(f),
+        KeyTime::Seconds(s) => s,
+    };
+    let when_name = if all_frames { "frame" } else { "time" };
+    let mut rot = RotationFormatter::new(style);
+    let mut nums = NumWriter::new(style.num);
+    let mut buf = Vec::new();
+    let named = doc.named_tracks || doc.tracks.len() > 1;
+    match format {
+        Format::Csv => {
+            if named {
+                buf.extend_from_slice(b"track,");
+            }
+            buf.extend_from_slice(when_name.as_bytes());
+            for c in style.repr.columns() {
+                buf.push(b',');
+                buf.extend_from_slice(c.as_bytes());
+            }
+            buf.push(b'\n');
+            for track in &doc.tracks {
+                for key in &track.keys {
+                    if named {
+                        buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
+                        buf.push(b',');
+                    }
+                    nums.float(&mut buf, when(key.when));
+                    rot.csv(&mut buf, key.rot);
+                    buf.push(b'\n');
+                }
+            }
+        }
+        Format::Json => {
+            json_head(&mut buf, all_frames.then_some(frame_fps), &style);
+            let vel = |buf: &mut Vec<u8>, nums: &mut NumWriter, name: &str, v: glam::DVec3| {
+                buf.extend_from_slice(format!(", \"{name}\": [").as_bytes());
+                for (i, x) in v.to_array().iter().enumerate() {
+                    if i > 0 {
+                        buf.extend_from_slice(b", ");
+                    }
+                    nums.float(buf, style.angles.from_rad(*x));
+                }
+                buf.push(b']');
+            };
+            buf.extend_from_slice(if named {
+                b", \"tracks\": [\n".as_slice()
+            } else {
+                b"".as_slice()
+            });
+            for (ti, track) in doc.tracks.iter().enumerate() {
+                if named {
+                    if ti > 0 {
+                        buf.extend_from_slice(b",\n");
+                    }
+                    buf.push(b'{');
+                    let name = track.name.clone().unwrap_or_else(|| format!("track{ti}"));
+                    buf.extend_from_slice(format!("\"name\": {}", json_string(&name)).as_bytes());
+                }
+                if let Some(v) = track.start_velocity {
+                    vel(&mut buf, &mut nums, "start_velocity", v);
+                }
+                if let Some(v) = track.end_velocity {
+                    vel(&mut buf, &mut nums, "end_velocity", v);
+                }
+                buf.extend_from_slice(b", \"keys\": [");
+                for (i, key) in track.keys.iter().enumerate() {
+                    buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
+                    buf.extend_from_slice(when_name.as_bytes());
+                    buf.extend_from_slice(b"\": ");
+                    nums.float(&mut buf, when(key.when));
+                    buf.extend_from_slice(b", ");
+                    rot.json(&mut buf, key.rot);
+                    buf.push(b'}');
+                }
+                buf.extend_from_slice(b"\n]");
+                if named {
+                    buf.push(b'}');
+                }
+            }
+            buf.extend_from_slice(if named { b"\n]}\n".as_slice() } else { b"}\n" });
+        }
+    }
+    w.write_all(&buf)?;
+    w.flush()
+}

@@ -1,0 +1,147 @@
+//! Euler sequences in scipy's notation, mapped onto glam's 24 [`EulerRot`] variants.
+//!
+//! ```text
+//! SEQ  = three letters from xyzXYZ, all upper or all lower case, no letter twice in a row
+//! "XYZ" (upper case)  intrinsic, rotating axes:  R = Rx(a) · Ry(b) · Rz(c)
+//! "xyz" (lower case)  extrinsic, fixed axes:     R = Rz(c) · Ry(b) · Rx(a)
+//! ```
+//! (a, b, c) are the angles in the order the letters are written; `R` rotates column vectors.
+//! This is scipy's `Rotation.from_euler(seq, [a, b, c])`, and glam's `EulerRot::XYZ` (intrinsic)
+//! and `EulerRot::XYZEx` (extrinsic) with the same angle order.
+
+use crate::error::InputResult;
+use crate::input_err;
+use glam::{DQuat, EulerRot};
+
+/// A validated Euler sequence.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct EulerSeq {
+    /// The three letters as the user writes them (case carries intrinsic/extrinsic).
+    letters: [u8; 3],
+    rot: EulerRot,
+}
+
+impl EulerSeq {
+    /// Parses a scipy-style sequence such as `ZYX` (intrinsic) or `zxz` (extrinsic).
+    pub fn parse(s: &str) -> InputResult<EulerSeq> {
+        let b = s.as_bytes();
+        let valid_letters = b.len() == 3 && b.iter().all(|c| b"xyzXYZ".contains(c));
+        let same_case = valid_letters
+            && (b.iter().all(u8::is_ascii_uppercase) || b.iter().all(u8::is_ascii_lowercase));
+        if !same_case || b[0].eq_ignore_ascii_case(&b[1]) || b[1].eq_ignore_ascii_case(&b[2]) {
+            return Err(input_err!(
+                "expected an Euler sequence of three letters from xyz (extrinsic) or XYZ \
+                 (intrinsic) with no axis twice in a row, such as ZYX or zxz, found \"{s}\""
+            ));
+        }
+        let intrinsic = b[0].is_ascii_uppercase();
+        let up = [
+            b[0].to_ascii_uppercase(),
+            b[1].to_ascii_uppercase(),
+            b[2].to_ascii_uppercase(),
+        ];
+        use EulerRot::*;
+        let rot = match (&up, intrinsic) {
+            (b"XYZ", true) => XYZ,
+            (b"XZY", true) => XZY,
+            (b"YXZ", true) => YXZ,
+            (b"YZX", true) => YZX,
+            (b"ZXY", true) => ZXY,
+            (b"ZYX", true) => ZYX,
+            (b"XYX", true) => XYX,
+            (b"XZX", true) => XZX,
+            (b"YXY", true) => YXY,
+            (b"YZY", true) => YZY,
+            (b"ZXZ", true) => ZXZ,
+            (b"ZYZ", true) => ZYZ,
+            (b"XYZ", false) => XYZEx,
+            (b"XZY", false) => XZYEx,
+            (b"YXZ", false) => YXZEx,
+            (b"YZX", false) => YZXEx,
+            (b"ZXY", false) => ZXYEx,
+            (b"ZYX", false) => ZYXEx,
+            (b"XYX", false) => XYXEx,
+            (b"XZX", false) => XZXEx,
+            (b"YXY", false) => YXYEx,
+            (b"YZY", false) => YZYEx,
+            (b"ZXZ", false) => ZXZEx,
+            (b"ZYZ", false) => ZYZEx,
+            _ => unreachable!("validated above: 3 axis letters, no repeats in a row"),
+        };
+        Ok(EulerSeq {
+            letters: [b[0], b[1], b[2]],
+            rot,
+        })
+    }
+
+    /// All 24 sequences: 12 intrinsic then 12 extrinsic.
+    pub fn all() -> Vec<EulerSeq> {
+        let names = [
+            "XYZ", "XZY", "YXZ", "YZX", "ZXY", "ZYX", "XYX", "XZX", "YXY", "YZY", "ZXZ", "ZYZ",
+        ];
+        let upper = names.iter().map(|n| n.to_string());
+        let lower = names.iter().map(|n| n.to_ascii_lowercase());
+        upper
+            .chain(lower)
+            .map(|n| EulerSeq::parse(&n).expect("the 24 names are valid"))
+            .collect()
+    }
+
+    /// The sequence as written, e.g. `ZYX`.
+    pub fn as_str(&self) -> &str {
+        std::str::from_utf8(&self.letters).unwrap_or("???")
+    }
+
+    /// The glam variant this sequence maps to.
+    pub fn euler_rot(&self) -> EulerRot {
+        self.rot
+    }
+
+    /// The rotation for angles (radians) in the order of the letters.
+    pub fn to_quat(&self, angles: [f64; 3]) -> DQuat {
+        DQuat::from_euler(self.rot, angles[0], angles[1], angles[2])
+    }
+
+    /// Angles (radians) in the order of the letters. Ranges as scipy: first and third in
+    /// [−π, π]; the middle in [−π/2, π/2] (Tait–Bryan) or [0, π] (proper Euler). At gimbal lock
+    /// any triple that rebuilds the rotation.
+    pub fn from_quat(&self, q: DQuat) -> [f64; 3] {
+        let (a, b, c) = q.to_euler(self.rot);
+        [a, b, c]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DMat3;
+
+    #[test]
+    fn intrinsic_and_extrinsic_matrix_products() {
+        let (a, b, c) = (0.3, -0.7, 1.1);
+        let rx = DMat3::from_rotation_x(a);
+        let ry = DMat3::from_rotation_y(b);
+        let rz = DMat3::from_rotation_z(c);
+        let intrinsic = DMat3::from_quat(EulerSeq::parse("XYZ").unwrap().to_quat([a, b, c]));
+        assert!(intrinsic.abs_diff_eq(rx * ry * rz, 1e-14));
+        let extrinsic = DMat3::from_quat(EulerSeq::parse("xyz").unwrap().to_quat([a, b, c]));
+        assert!(extrinsic.abs_diff_eq(rz * ry * rx, 1e-14));
+    }
+
+    #[test]
+    fn rejects_bad_sequences() {
+        for s in ["XXY", "xYz", "XY", "ABC", "XYZX", "zzx"] {
+            assert!(EulerSeq::parse(s).is_err(), "{s}");
+        }
+    }
+
+    #[test]
+    fn all_has_24_distinct() {
+        let all = EulerSeq::all();
+        assert_eq!(all.len(), 24);
+        let mut rots: Vec<_> = all.iter().map(|s| format!("{:?}", s.euler_rot())).collect();
+        rots.sort();
+        rots.dedup();
+        assert_eq!(rots.len(), 24);
+    }
+}

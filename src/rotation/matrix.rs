@@ -1,0 +1,109 @@
+//! Rotation matrices: validation and projection onto SO(3).
+//!
+//! ```text
+//! row-major on the wire:  [[m00, m01, m02],      v' = M v  (column vectors)
+//!                          [m10, m11, m12],      glam's DMat3 is column-major:
+//!                          [m20, m21, m22]]      m{r}{c} = mat.col(c)[r]
+//! ```
+
+use crate::error::InputResult;
+use crate::input_err;
+use glam::{DMat3, DQuat, DVec3};
+
+/// Largest accepted Frobenius norm of `RᵀR − I` before projection (SPEC §2).
+pub const ORTHONORMAL_TOL: f64 = 1e-3;
+
+/// Builds the matrix from row-major entries.
+pub fn from_rows(m: [[f64; 3]; 3]) -> DMat3 {
+    DMat3::from_cols(
+        DVec3::new(m[0][0], m[1][0], m[2][0]),
+        DVec3::new(m[0][1], m[1][1], m[2][1]),
+        DVec3::new(m[0][2], m[1][2], m[2][2]),
+    )
+}
+
+/// Row-major entries of a matrix.
+pub fn to_rows(m: &DMat3) -> [[f64; 3]; 3] {
+    let t = m.transpose();
+    [
+        t.x_axis.to_array(),
+        t.y_axis.to_array(),
+        t.z_axis.to_array(),
+    ]
+}
+
+/// Validates a (row-major) matrix and returns the rotation nearest to it, as a quaternion with
+/// `w ≥ 0`. Errors: det < 0 (a reflection), `‖RᵀR − I‖_F > 1e-3` (not a rotation).
+///
+/// The projection is the orthogonal polar factor `U Vᵀ` of the SVD, computed by Newton's
+/// iteration `R ← (R + R⁻ᵀ)/2`, which converges quadratically from a nearly orthonormal start.
+pub fn to_quat(rows: [[f64; 3]; 3]) -> InputResult<DQuat> {
+    let m = from_rows(rows);
+    let det = m.determinant();
+    if det < 0.0 {
+        return Err(input_err!(
+            "expected a rotation matrix, found a reflection (determinant {det})"
+        ));
+    }
+    let err = orthonormality_error(&m);
+    if err.is_nan() || err > ORTHONORMAL_TOL {
+        return Err(input_err!(
+            "expected an orthonormal rotation matrix (‖RᵀR − I‖ ≤ 1e-3), found ‖RᵀR − I‖ = {err:.3e}"
+        ));
+    }
+    let r = project(m);
+    Ok(crate::rotation::quat::canonical(
+        DQuat::from_mat3(&r).normalize(),
+    ))
+}
+
+/// Frobenius norm of `RᵀR − I`.
+pub fn orthonormality_error(m: &DMat3) -> f64 {
+    let e = m.transpose() * *m - DMat3::IDENTITY;
+    (e.x_axis.length_squared() + e.y_axis.length_squared() + e.z_axis.length_squared()).sqrt()
+}
+
+/// Nearest rotation (polar factor) of a nearly orthonormal matrix with positive determinant.
+fn project(mut r: DMat3) -> DMat3 {
+    for _ in 0..8 {
+        let next = (r + r.inverse().transpose()) * 0.5;
+        let step = next - r;
+        r = next;
+        let d = step.x_axis.length_squared()
+            + step.y_axis.length_squared()
+            + step.z_axis.length_squared();
+        if d < 1e-32 {
+            break;
+        }
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_rotation_is_kept() {
+        let q = DQuat::from_euler(glam::EulerRot::ZYX, 0.4, -0.3, 2.0);
+        let rows = to_rows(&DMat3::from_quat(q));
+        let back = to_quat(rows).unwrap();
+        assert!((back - q).length() < 1e-15 || (back + q).length() < 1e-15);
+    }
+
+    #[test]
+    fn slightly_scaled_matrix_is_projected() {
+        let q = DQuat::from_rotation_y(0.9);
+        let rows = to_rows(&(DMat3::from_quat(q) * 1.0002));
+        let back = to_quat(rows).unwrap();
+        assert!((back - q).length() < 1e-14);
+    }
+
+    #[test]
+    fn reflection_and_shear_rejected() {
+        let refl = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
+        assert!(to_quat(refl).unwrap_err().0.contains("reflection"));
+        let shear = [[1.0, 0.1, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(to_quat(shear).unwrap_err().0.contains("orthonormal"));
+    }
+}

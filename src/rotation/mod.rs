@@ -1,0 +1,344 @@
+//! Rotation representations (SPEC §2) and their conversions to and from unit quaternions.
+//!
+//! Every representation converts to a unit [`DQuat`]; only quaternion input keeps its sign
+//! (which `--path as-given` honours), the others give `w ≥ 0`. On output, quaternions are written
+//! as they are; every other representation describes the rotation, so the sign does not matter.
+
+pub mod euler;
+pub mod matrix;
+pub mod quat;
+
+use crate::error::InputResult;
+use crate::input_err;
+pub use euler::EulerSeq;
+use glam::{DMat3, DQuat, DVec3};
+use std::fmt;
+
+/// A rotation representation, as named by `--from`/`--to`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Repr {
+    Quat,
+    Euler(EulerSeq),
+    Matrix,
+    AxisAngle,
+    RotVec,
+}
+
+/// Unit of every angle read or written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum AngleUnit {
+    #[default]
+    Deg,
+    Rad,
+}
+
+impl AngleUnit {
+    pub fn parse(s: &str) -> InputResult<AngleUnit> {
+        match s {
+            "deg" => Ok(AngleUnit::Deg),
+            "rad" => Ok(AngleUnit::Rad),
+            _ => Err(input_err!("expected \"deg\" or \"rad\", found \"{s}\"")),
+        }
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            AngleUnit::Deg => "deg",
+            AngleUnit::Rad => "rad",
+        }
+    }
+
+    /// An angle in this unit, in radians.
+    pub fn to_rad(self, a: f64) -> f64 {
+        match self {
+            AngleUnit::Deg => a.to_radians(),
+            AngleUnit::Rad => a,
+        }
+    }
+
+    /// An angle in radians, in this unit.
+    pub fn from_rad(self, a: f64) -> f64 {
+        match self {
+            AngleUnit::Deg => a.to_degrees(),
+            AngleUnit::Rad => a,
+        }
+    }
+}
+
+/// Component order of quaternions written as JSON arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum QuatOrder {
+    #[default]
+    Wxyz,
+    Xyzw,
+}
+
+impl QuatOrder {
+    pub fn parse(s: &str) -> InputResult<QuatOrder> {
+        match s {
+            "wxyz" => Ok(QuatOrder::Wxyz),
+            "xyzw" => Ok(QuatOrder::Xyzw),
+            _ => Err(input_err!("expected \"wxyz\" or \"xyzw\", found \"{s}\"")),
+        }
+    }
+
+    /// `[w, x, y, z]` from an array in this order.
+    pub fn to_wxyz(self, a: [f64; 4]) -> [f64; 4] {
+        match self {
+            QuatOrder::Wxyz => a,
+            QuatOrder::Xyzw => [a[3], a[0], a[1], a[2]],
+        }
+    }
+
+    /// An array in this order from `[w, x, y, z]`.
+    pub fn from_wxyz(self, a: [f64; 4]) -> [f64; 4] {
+        match self {
+            QuatOrder::Wxyz => a,
+            QuatOrder::Xyzw => [a[1], a[2], a[3], a[0]],
+        }
+    }
+}
+
+/// Smallest accepted quaternion norm.
+pub const MIN_QUAT_NORM: f64 = 1e-6;
+/// Norm deviation from 1 above which a quaternion draws a warning.
+pub const QUAT_NORM_WARN: f64 = 1e-3;
+
+/// Largest number of values any representation has (a matrix).
+pub const MAX_WIDTH: usize = 9;
+
+impl Repr {
+    /// Parses `quat`, `euler:SEQ`, `matrix`, `axis-angle`, `rotvec`.
+    pub fn parse(s: &str) -> InputResult<Repr> {
+        match s {
+            "quat" => Ok(Repr::Quat),
+            "matrix" => Ok(Repr::Matrix),
+            "axis-angle" => Ok(Repr::AxisAngle),
+            "rotvec" => Ok(Repr::RotVec),
+            _ => match s.strip_prefix("euler:") {
+                Some(seq) => Ok(Repr::Euler(EulerSeq::parse(seq)?)),
+                None => Err(input_err!(
+                    "expected one of quat, euler:SEQ (e.g. euler:ZYX), matrix, axis-angle, \
+                     rotvec, found \"{s}\""
+                )),
+            },
+        }
+    }
+
+    /// CSV column names, in order.
+    pub fn columns(&self) -> &'static [&'static str] {
+        match self {
+            Repr::Quat => &["w", "x", "y", "z"],
+            Repr::Euler(_) => &["e1", "e2", "e3"],
+            Repr::Matrix => &[
+                "m00", "m01", "m02", "m10", "m11", "m12", "m20", "m21", "m22",
+            ],
+            Repr::AxisAngle => &["ax", "ay", "az", "angle"],
+            Repr::RotVec => &["rx", "ry", "rz"],
+        }
+    }
+
+    /// Number of values.
+    pub fn width(&self) -> usize {
+        self.columns().len()
+    }
+
+    /// JSON key of a keyframe or frame.
+    pub fn json_key(&self) -> &'static str {
+        match self {
+            Repr::Quat => "quat",
+            Repr::Euler(_) => "euler",
+            Repr::Matrix => "matrix",
+            Repr::AxisAngle => "axis_angle",
+            Repr::RotVec => "rotvec",
+        }
+    }
+
+    /// True when the values contain angles (so `--angles` applies).
+    pub fn has_angles(&self) -> bool {
+        matches!(self, Repr::Euler(_) | Repr::AxisAngle | Repr::RotVec)
+    }
+
+    /// Converts values (quaternions as `[w, x, y, z]`, matrices row-major) to a unit quaternion.
+    /// Returns a warning when a quaternion's norm is off 1 by more than 1e-3.
+    pub fn to_quat(&self, v: &[f64], unit: AngleUnit) -> InputResult<(DQuat, Option<String>)> {
+        debug_assert_eq!(v.len(), self.width());
+        if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
+            return Err(input_err!("expected a finite number, found {bad}"));
+        }
+        let q = match *self {
+            Repr::Quat => {
+                let q = DQuat::from_xyzw(v[1], v[2], v[3], v[0]);
+                let n = q.length();
+                if n < MIN_QUAT_NORM {
+                    return Err(input_err!(
+                        "expected a quaternion of non-zero length, found norm {n:e}"
+                    ));
+                }
+                let warning = ((n - 1.0).abs() > QUAT_NORM_WARN)
+                    .then(|| format!("quaternion norm {n} is off 1 by more than 1e-3; normalized"));
+                return Ok((q / n, warning));
+            }
+            Repr::Euler(seq) => {
+                seq.to_quat([unit.to_rad(v[0]), unit.to_rad(v[1]), unit.to_rad(v[2])])
+            }
+            Repr::Matrix => {
+                let rows = [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]];
+                matrix::to_quat(rows)?
+            }
+            Repr::AxisAngle => {
+                let axis = DVec3::new(v[0], v[1], v[2]);
+                let angle = unit.to_rad(v[3]);
+                let n = axis.length();
+                if n == 0.0 {
+                    if angle != 0.0 {
+                        return Err(input_err!(
+                            "expected a non-zero axis for a non-zero angle, found axis (0, 0, 0)"
+                        ));
+                    }
+                    DQuat::IDENTITY
+                } else {
+                    quat::exp(axis * (angle / (2.0 * n)))
+                }
+            }
+            Repr::RotVec => {
+                let r = DVec3::new(unit.to_rad(v[0]), unit.to_rad(v[1]), unit.to_rad(v[2]));
+                quat::exp(r * 0.5)
+            }
+        };
+        Ok((quat::canonical(q.normalize()), None))
+    }
+
+    /// Writes the values of `q` into `out[..width]` (quaternion `[w, x, y, z]` with its sign,
+    /// matrix row-major, angles in `unit`).
+    pub fn from_quat(&self, q: DQuat, unit: AngleUnit, out: &mut [f64; MAX_WIDTH]) {
+        match *self {
+            Repr::Quat => out[..4].copy_from_slice(&[q.w, q.x, q.y, q.z]),
+            Repr::Euler(seq) => {
+                let a = seq.from_quat(q);
+                out[..3].copy_from_slice(&a.map(|x| unit.from_rad(x)));
+            }
+            Repr::Matrix => {
+                let rows = matrix::to_rows(&DMat3::from_quat(q));
+                for (r, row) in rows.iter().enumerate() {
+                    out[3 * r..3 * r + 3].copy_from_slice(row);
+                }
+            }
+            Repr::AxisAngle => {
+                let l = quat::log(quat::canonical(q));
+                let half = l.length();
+                let axis = if half > 0.0 { l / half } else { DVec3::X };
+                out[..4].copy_from_slice(&[axis.x, axis.y, axis.z, unit.from_rad(2.0 * half)]);
+            }
+            Repr::RotVec => {
+                let r = quat::log(quat::canonical(q)) * 2.0;
+                out[..3].copy_from_slice(&r.to_array().map(|x| unit.from_rad(x)));
+            }
+        }
+    }
+}
+
+impl fmt::Display for Repr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Repr::Quat => f.write_str("quat"),
+            Repr::Euler(seq) => write!(f, "euler:{}", seq.as_str()),
+            Repr::Matrix => f.write_str("matrix"),
+            Repr::AxisAngle => f.write_str("axis-angle"),
+            Repr::RotVec => f.write_str("rotvec"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn round_trip(repr: Repr, q: DQuat, unit: AngleUnit) -> DQuat {
+        let mut buf = [0.0; MAX_WIDTH];
+        repr.from_quat(q, unit, &mut buf);
+        repr.to_quat(&buf[..repr.width()], unit).unwrap().0
+    }
+
+    #[test]
+    fn every_repr_round_trips() {
+        let q = DQuat::from_euler(glam::EulerRot::ZYX, 0.3, 1.2, -2.5);
+        let reprs = [
+            Repr::Quat,
+            Repr::Matrix,
+            Repr::AxisAngle,
+            Repr::RotVec,
+            Repr::parse("euler:zxz").unwrap(),
+        ];
+        for repr in reprs {
+            for unit in [AngleUnit::Deg, AngleUnit::Rad] {
+                let back = round_trip(repr, q, unit);
+                assert!(quat::rotation_angle_between(q, back) < 1e-12, "{repr}");
+            }
+        }
+    }
+
+    #[test]
+    fn quaternion_input_keeps_sign_others_canonical() {
+        let v = [-0.5, 0.5, 0.5, 0.5];
+        let (q, w) = Repr::Quat.to_quat(&v, AngleUnit::Deg).unwrap();
+        assert_eq!(q.w, -0.5);
+        assert!(w.is_none());
+        let (q, _) = Repr::RotVec
+            .to_quat(&[0.0, 0.0, 350.0], AngleUnit::Deg)
+            .unwrap();
+        assert!(q.w >= 0.0);
+    }
+
+    #[test]
+    fn quaternion_validation() {
+        assert!(Repr::Quat.to_quat(&[0.0; 4], AngleUnit::Deg).is_err());
+        assert!(
+            Repr::Quat
+                .to_quat(&[f64::NAN, 0.0, 0.0, 0.0], AngleUnit::Deg)
+                .is_err()
+        );
+        let (_, w) = Repr::Quat
+            .to_quat(&[1.01, 0.0, 0.0, 0.0], AngleUnit::Deg)
+            .unwrap();
+        assert!(w.unwrap().contains("norm"));
+    }
+
+    #[test]
+    fn zero_axis() {
+        assert!(
+            Repr::AxisAngle
+                .to_quat(&[0.0, 0.0, 0.0, 10.0], AngleUnit::Deg)
+                .is_err()
+        );
+        let (q, _) = Repr::AxisAngle
+            .to_quat(&[0.0, 0.0, 0.0, 0.0], AngleUnit::Deg)
+            .unwrap();
+        assert_eq!(q, DQuat::IDENTITY);
+    }
+
+    #[test]
+    fn axis_angle_output_is_in_0_pi() {
+        let q = -DQuat::from_rotation_x(0.4);
+        let mut buf = [0.0; MAX_WIDTH];
+        Repr::AxisAngle.from_quat(q, AngleUnit::Rad, &mut buf);
+        assert!((buf[3] - 0.4).abs() < 1e-15);
+        assert!((buf[0] - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn repr_names_round_trip() {
+        for s in [
+            "quat",
+            "matrix",
+            "axis-angle",
+            "rotvec",
+            "euler:ZYX",
+            "euler:xyx",
+        ] {
+            assert_eq!(Repr::parse(s).unwrap().to_string(), s);
+        }
+        assert!(Repr::parse("euler").is_err());
+        assert!(Repr::parse("quaternion").is_err());
+    }
+}

@@ -1,0 +1,146 @@
+//! Quaternion helpers that glam does not have: the half-angle `log`/`exp` of the papers, and the
+//! geodesic blend on S³ without hemisphere flipping.
+//!
+//! Convention (SPEC §2, §4): `q = w + xi + yj + zk`, Hamilton product, `v' = q v q*`. A unit
+//! quaternion `q = (cos θ, sin θ·a)` rotates by `2θ` about `a`; `log q = θ·a` is returned as a
+//! [`DVec3`] (the pure quaternion's vector part) and `exp` is its inverse. So a rotation vector
+//! (axis × angle) is `2·log(q)`, and a world-frame angular velocity ω corresponds to the tangent
+//! `½ ω q` at `q`.
+
+use glam::{DQuat, DVec3};
+
+/// Half-angle logarithm of a unit quaternion: `log(cos θ + sin θ·a) = θ·a`, `θ ∈ [0, π]`.
+///
+/// Exact for tiny angles (uses `atan2(|v|, w)/|v|`, no small-angle series needed). For `q = −1`
+/// (θ = π, the axis is undefined) it returns `π·x̂`: the world x axis, a documented choice.
+pub fn log(q: DQuat) -> DVec3 {
+    let v = DVec3::new(q.x, q.y, q.z);
+    let s = v.length();
+    if s == 0.0 {
+        if q.w < 0.0 {
+            return DVec3::new(std::f64::consts::PI, 0.0, 0.0);
+        }
+        return DVec3::ZERO;
+    }
+    v * (s.atan2(q.w) / s)
+}
+
+/// Exponential of a pure quaternion `θ·a` (given as its vector part): `cos θ + sin θ·a`.
+pub fn exp(v: DVec3) -> DQuat {
+    let theta = v.length();
+    if theta == 0.0 {
+        return DQuat::IDENTITY;
+    }
+    let (s, c) = theta.sin_cos();
+    let k = s / theta;
+    DQuat::from_xyzw(v.x * k, v.y * k, v.z * k, c)
+}
+
+/// Pure quaternion (vector part) times a quaternion: `(0, v) · q`.
+pub fn pure_mul(v: DVec3, q: DQuat) -> DQuat {
+    DQuat::from_xyzw(v.x, v.y, v.z, 0.0) * q
+}
+
+/// Vector part of `V q⁻¹` for a tangent `V` at unit `q` (so that `V = w q`).
+pub fn tangent_to_pure(tangent: DQuat, q: DQuat) -> DVec3 {
+    let p = tangent * q.conjugate();
+    DVec3::new(p.x, p.y, p.z)
+}
+
+/// The point `f` of the way along the great arc of S³ from unit `a` to unit `b`:
+/// `exp(f · log(b a⁻¹)) a`, computed in R⁴ as `cos(fΩ) a + sin(fΩ) ê` with `Ω = ∠(a, b)` and `ê`
+/// the unit direction of `b − (a·b) a`. No hemisphere flip: when `a·b < 0` the arc is longer
+/// than 90° on S³ (the long way round in SO(3)), as SPEC §4.3 requires.
+///
+/// When `a` and `b` are antipodal the arc is undefined; this returns the arc through the
+/// direction [`log`] chooses for `−1`, and [`near_antipode`] lets callers warn.
+#[inline]
+pub fn geodesic(a: DQuat, b: DQuat, f: f64) -> DQuat {
+    let d = a.dot(b);
+    let perp = b - a * d;
+    let s = perp.length();
+    if s < 1e-300 {
+        if d >= 0.0 {
+            return a;
+        }
+        // Antipodal: rotate about the world x axis (same choice as `log(−1)`).
+        let e = DQuat::from_xyzw(1.0, 0.0, 0.0, 0.0) * a;
+        let (sn, cs) = (f * std::f64::consts::PI).sin_cos();
+        return a * cs + e * sn;
+    }
+    let omega = s.atan2(d);
+    let (sn, cs) = (f * omega).sin_cos();
+    a * cs + perp * (sn / s)
+}
+
+/// True when `a` and `b` are within `tol` of antipodal (`‖a + b‖ < tol`), where the geodesic
+/// between them is ill-defined.
+#[inline]
+pub fn near_antipode(a: DQuat, b: DQuat, tol: f64) -> bool {
+    (a + b).length() < tol
+}
+
+/// Angle in radians between two rotations (in SO(3), so `q` and `−q` are the same rotation).
+pub fn rotation_angle_between(a: DQuat, b: DQuat) -> f64 {
+    let r = b * a.conjugate();
+    let r = if r.w < 0.0 { -r } else { r };
+    2.0 * log(r).length()
+}
+
+/// `q` with `w ≥ 0` (the same rotation).
+pub fn canonical(q: DQuat) -> DQuat {
+    if q.w < 0.0 { -q } else { q }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    const TOL: f64 = 1e-14;
+
+    #[test]
+    fn log_exp_round_trip() {
+        for v in [
+            DVec3::new(0.3, -0.2, 0.9),
+            DVec3::new(1e-12, 0.0, 0.0),
+            DVec3::new(0.0, 3.0, 0.0),
+            DVec3::ZERO,
+        ] {
+            let back = log(exp(v));
+            assert!((back - v).length() < TOL, "{v} -> {back}");
+        }
+    }
+
+    #[test]
+    fn log_of_minus_one_is_pi_about_x() {
+        assert_eq!(log(-DQuat::IDENTITY), DVec3::new(PI, 0.0, 0.0));
+    }
+
+    #[test]
+    fn log_matches_axis_angle_closed_form() {
+        let q = DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 1.2);
+        let l = log(q);
+        assert!((l - DVec3::new(0.0, 0.6, 0.8) * 0.6).length() < TOL);
+    }
+
+    #[test]
+    fn geodesic_ends_and_midpoint() {
+        let a = DQuat::from_rotation_z(0.2);
+        let b = DQuat::from_rotation_z(1.4);
+        assert!((geodesic(a, b, 0.0) - a).length() < TOL);
+        assert!((geodesic(a, b, 1.0) - b).length() < TOL);
+        assert!((geodesic(a, b, 0.5) - DQuat::from_rotation_z(0.8)).length() < TOL);
+    }
+
+    #[test]
+    fn geodesic_does_not_flip_hemisphere() {
+        let a = DQuat::IDENTITY;
+        let b = -DQuat::from_rotation_z(0.5); // same rotation class as a small step, but far on S³
+        let mid = geodesic(a, b, 0.5);
+        // The long way: the midpoint is near 90° from both on S³.
+        assert!(mid.dot(a).abs() < 0.3, "{mid}");
+        let direct = exp(log(b * a.conjugate()) * 0.5) * a;
+        assert!((mid - direct).length() < TOL);
+    }
+}
