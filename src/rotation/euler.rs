@@ -103,11 +103,71 @@ impl EulerSeq {
     }
 
     /// Angles (radians) in the order of the letters. Ranges as scipy: first and third in
-    /// [−π, π]; the middle in [−π/2, π/2] (Tait–Bryan) or [0, π] (proper Euler). At gimbal lock
-    /// any triple that rebuilds the rotation.
+    /// [−π, π); the middle in [−π/2, π/2] (Tait–Bryan) or [0, π] (proper Euler).
+    ///
+    /// Computed directly from the quaternion by the method of Bernardes & Viollet (2022,
+    /// "Quaternion to Euler angles conversion: a direct, general and computationally efficient
+    /// method", PLOS ONE 17(11)), as scipy's `as_euler` does. glam's `to_euler` goes through the
+    /// matrix and loses up to 2e-5 rad near gimbal lock (measured: the round-trip test in
+    /// `tests/cli/conventions.rs` fails with it); this stays within 1e-12 rad everywhere.
+    ///
+    /// At gimbal lock scipy sets the third angle to zero once the middle angle is within 1e-7 of
+    /// its singular value, which moves the rebuilt rotation by up to ~1e-7 rad. We do that only
+    /// at an exact singularity; near it the regular formula is still exact for the rotation
+    /// (only the split between first and third angle is ill-conditioned), so every triple
+    /// rebuilds the rotation to 1e-12.
     pub fn from_quat(&self, q: DQuat) -> [f64; 3] {
-        let (a, b, c) = q.to_euler(self.rot);
-        [a, b, c]
+        use std::f64::consts::{FRAC_PI_2, PI, TAU};
+        let quat = [q.x, q.y, q.z, q.w];
+        let extrinsic = self.letters[0].is_ascii_lowercase();
+        let idx = |c: u8| (c.to_ascii_lowercase() - b'x') as usize;
+        let mut axes = [idx(self.letters[0]), idx(self.letters[1]), idx(self.letters[2])];
+        if !extrinsic {
+            axes.reverse();
+        }
+        let [i, j, mut k] = axes;
+        let symmetric = i == k;
+        if symmetric {
+            k = 3 - i - j;
+        }
+        let sign = ((i as i64 - j as i64) * (j as i64 - k as i64) * (k as i64 - i as i64) / 2)
+            as f64;
+        let (a, b, c, d) = if symmetric {
+            (quat[3], quat[i], quat[j], quat[k] * sign)
+        } else {
+            (
+                quat[3] - quat[j],
+                quat[i] + quat[k] * sign,
+                quat[j] + quat[3],
+                quat[k] * sign - quat[i],
+            )
+        };
+        let half_sum = b.atan2(a);
+        let half_diff = d.atan2(c);
+        let cd = c.hypot(d);
+        let ab = a.hypot(b);
+        let mut angles = [0.0; 3];
+        angles[1] = 2.0 * cd.atan2(ab);
+        let (first, third) = if extrinsic { (0, 2) } else { (2, 0) };
+        let tb_sign = if symmetric { 1.0 } else { sign };
+        if cd == 0.0 || ab == 0.0 {
+            // Exact gimbal lock: scipy's choice, the angle goes to index 0 and the other is 0.
+            angles[0] = if cd == 0.0 {
+                2.0 * half_sum
+            } else {
+                2.0 * half_diff * if extrinsic { -1.0 } else { 1.0 }
+            };
+            if third == 0 {
+                angles[0] *= tb_sign;
+            }
+        } else {
+            angles[first] = half_sum - half_diff;
+            angles[third] = (half_sum + half_diff) * tb_sign;
+        }
+        if !symmetric {
+            angles[1] -= FRAC_PI_2;
+        }
+        angles.map(|x| (x + PI).rem_euclid(TAU) - PI)
     }
 }
 

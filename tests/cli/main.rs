@@ -1,0 +1,5 @@
+//! One integration target: conventions against scipy tables, the binary's golden files, error
+//! messages, and property tests.
+
+mod conventions;
+mod support;
