@@ -282,6 +282,15 @@ impl<W: Write> FrameSink for FrameWriter<W> {
     }
 }
 
+/// Writes a key's time, or its frame number (as an integer when it is whole).
+fn when_value(nums: &mut NumWriter, buf: &mut Vec<u8>, x: f64, frame: bool) {
+    if frame && x.fract() == 0.0 && x.abs() < 9.007_199_254_740_992e15 {
+        nums.int(buf, x as i64);
+    } else {
+        nums.float(buf, x);
+    }
+}
+
 /// Writes a document's keys (for `convert`) in the input shape of SPEC §3, so that the output is
 /// valid input: CSV `[track,]time|frame,<columns>`; JSON `keys` or `tracks`, with `fps` when
 /// keys are frames, `rotation`, `angles` and the tracks' end velocities.
@@ -327,7 +336,7 @@ pub fn write_keys<W: Write>(
                         buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
                         buf.push(b',');
                     }
-                    nums.float(&mut buf, when(key.when));
+                    when_value(&mut nums, &mut buf, when(key.when), all_frames);
                     rot.csv(&mut buf, key.rot);
                     buf.push(b'\n');
                 }
@@ -370,7 +379,7 @@ pub fn write_keys<W: Write>(
                     buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
                     buf.extend_from_slice(when_name.as_bytes());
                     buf.extend_from_slice(b"\": ");
-                    nums.float(&mut buf, when(key.when));
+                    when_value(&mut nums, &mut buf, when(key.when), all_frames);
                     buf.extend_from_slice(b", ");
                     rot.json(&mut buf, key.rot);
                     buf.push(b'}');

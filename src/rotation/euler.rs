@@ -121,7 +121,11 @@ impl EulerSeq {
         let quat = [q.x, q.y, q.z, q.w];
         let extrinsic = self.letters[0].is_ascii_lowercase();
         let idx = |c: u8| (c.to_ascii_lowercase() - b'x') as usize;
-        let mut axes = [idx(self.letters[0]), idx(self.letters[1]), idx(self.letters[2])];
+        let mut axes = [
+            idx(self.letters[0]),
+            idx(self.letters[1]),
+            idx(self.letters[2]),
+        ];
         if !extrinsic {
             axes.reverse();
         }
@@ -130,8 +134,8 @@ impl EulerSeq {
         if symmetric {
             k = 3 - i - j;
         }
-        let sign = ((i as i64 - j as i64) * (j as i64 - k as i64) * (k as i64 - i as i64) / 2)
-            as f64;
+        let sign =
+            ((i as i64 - j as i64) * (j as i64 - k as i64) * (k as i64 - i as i64) / 2) as f64;
         let (a, b, c, d) = if symmetric {
             (quat[3], quat[i], quat[j], quat[k] * sign)
         } else {

@@ -2,4 +2,7 @@
 //! messages, and property tests.
 
 mod conventions;
+mod errors;
+mod golden;
+mod roundtrip;
 mod support;
