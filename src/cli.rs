@@ -19,6 +19,16 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Interpolate keyframes: write every frame between the first and last key.
+    ///
+    /// Examples:
+    ///   inbetween interp keys.json --fps 30
+    ///   cat keys.csv | inbetween interp - --fps 24 --to euler:ZYX
+    ///   inbetween interp keys.csv --fps 29.97 --scheme squad --ends rest -o frames.csv
+    ///   inbetween interp keys.json --start-velocity 0,0,90 --path as-given --precision 9
+    #[command(verbatim_doc_comment)]
+    Interp(InterpArgs),
+
     /// Change representation and/or format of keyframes, without interpolating.
     ///
     /// Examples:
@@ -95,6 +105,89 @@ pub struct ConvertArgs {
     /// frames): 24, 29.97, 30000/1001, ...
     #[arg(long, value_name = "RATE", value_parser = parse_fps)]
     pub fps: Option<Fps>,
+}
+
+#[derive(Debug, Args)]
+pub struct InterpArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    #[command(flatten)]
+    pub output: OutputArgs,
+
+    /// Output frame rate: 24, 25, 30, 60, 23.976, 29.97, 59.94 (the exact /1001 ratios),
+    /// 30000/1001, any positive number or ratio. Default: the document's "fps", else 30.
+    #[arg(long, value_name = "RATE", value_parser = parse_fps)]
+    pub fps: Option<Fps>,
+
+    /// Interpolation scheme.
+    #[arg(long, value_enum, default_value = "hermite")]
+    pub scheme: SchemeArg,
+
+    /// Hermite blending function: cubic (3u²−2u³) or quadratic (2u², then 1−2(1−u)²).
+    #[arg(long, value_enum, default_value = "cubic")]
+    pub blend: BlendArg,
+
+    /// End condition without a given velocity: chord (along the first/last chord) or rest
+    /// (zero velocity).
+    #[arg(long, value_enum, default_value = "chord")]
+    pub ends: EndsArg,
+
+    /// World-frame angular velocity at the first key, X,Y,Z in --angles units per second
+    /// (overrides the document's start_velocity).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub start_velocity: Option<[f64; 3]>,
+
+    /// World-frame angular velocity at the last key, X,Y,Z in --angles units per second.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub end_velocity: Option<[f64; 3]>,
+
+    /// shortest: flip each key into the hemisphere of the previous one (every step ≤ 180°);
+    /// as-given: keep quaternion signs (a flipped key is reached the long way round).
+    #[arg(long, value_enum, default_value = "shortest")]
+    pub path: PathArg,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SchemeArg {
+    Hermite,
+    Squad,
+    Bezier,
+    Slerp,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum BlendArg {
+    Cubic,
+    Quadratic,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EndsArg {
+    Chord,
+    Rest,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum PathArg {
+    Shortest,
+    AsGiven,
+}
+
+fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let bad = || format!("expected three finite numbers X,Y,Z such as 0,0,90, found \"{s}\"");
+    if parts.len() != 3 {
+        return Err(bad());
+    }
+    let mut v = [0.0; 3];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = p.parse::<f64>().map_err(|_| bad())?;
+        if !slot.is_finite() {
+            return Err(bad());
+        }
+    }
+    Ok(v)
 }
 
 fn parse_repr(s: &str) -> Result<Repr, String> {

@@ -118,25 +118,42 @@ impl Fps {
         frame * self.den as f64 / self.num as f64
     }
 
+    /// Largest frame number the grid supports: frame times stay exact below 2⁵³.
+    pub const MAX_FRAME: i64 = 1 << 53;
+
+    /// Whether time `t` (seconds) is within the frame numbers the grid supports.
+    pub fn in_range(&self, t: f64) -> bool {
+        (t * self.as_f64()).abs() < (Self::MAX_FRAME - 2) as f64
+    }
+
+    /// The smallest `k` with `k/fps ≥ t − 1e-9`. `t` must be [`Fps::in_range`].
+    pub fn first_frame_from(&self, t: f64) -> i64 {
+        let mut k = ((t - TIME_TOL) * self.as_f64()).ceil() as i64;
+        while self.time_of(k - 1) >= t - TIME_TOL {
+            k -= 1;
+        }
+        while self.time_of(k) < t - TIME_TOL {
+            k += 1;
+        }
+        k
+    }
+
+    /// The largest `k` with `k/fps ≤ t + 1e-9`. `t` must be [`Fps::in_range`].
+    pub fn last_frame_until(&self, t: f64) -> i64 {
+        let mut k = ((t + TIME_TOL) * self.as_f64()).floor() as i64;
+        while self.time_of(k + 1) <= t + TIME_TOL {
+            k += 1;
+        }
+        while self.time_of(k) > t + TIME_TOL {
+            k -= 1;
+        }
+        k
+    }
+
     /// The frames `k` with `t0 − 1e-9 ≤ k/fps ≤ t1 + 1e-9`, as an inclusive range (empty when
     /// `first > last`).
     pub fn frames_between(&self, t0: f64, t1: f64) -> (i64, i64) {
-        let f = self.as_f64();
-        let mut first = ((t0 - TIME_TOL) * f).ceil() as i64;
-        while self.time_of(first - 1) >= t0 - TIME_TOL {
-            first -= 1;
-        }
-        while self.time_of(first) < t0 - TIME_TOL {
-            first += 1;
-        }
-        let mut last = ((t1 + TIME_TOL) * f).floor() as i64;
-        while self.time_of(last + 1) <= t1 + TIME_TOL {
-            last += 1;
-        }
-        while self.time_of(last) > t1 + TIME_TOL {
-            last -= 1;
-        }
-        (first, last)
+        (self.first_frame_from(t0), self.last_frame_until(t1))
     }
 }
 

@@ -19,3 +19,6 @@ pub mod keys;
 pub mod rotation;
 
 pub use error::InputError;
+pub mod curve;
+pub mod interp;
+pub mod tangent;

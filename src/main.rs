@@ -12,6 +12,7 @@ fn main() -> ExitCode {
     let mut warn = |msg: &str| eprintln!("inbetween: warning: {msg}");
     let result = match &cli.command {
         Command::Convert(args) => inbetween::cmd::convert::run(args, &mut stdin, &mut warn),
+        Command::Interp(args) => inbetween::cmd::interp::run(args, &mut stdin, &mut warn),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,7 @@
 //! One module per subcommand: validated settings from the parsed arguments, then the library.
 
 pub mod convert;
+pub mod interp;
 
 use crate::cli::InputArgs;
 use crate::error::InputError;

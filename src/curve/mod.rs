@@ -1,0 +1,199 @@
+//! Interpolating curves on S³, one module per scheme behind the small [`Segment`] trait.
+//!
+//! A segment joins keys `s` and `s+1` over the local parameter `u = (t − t_s)/Δ_s ∈ [0, 1]`. It
+//! can be evaluated directly at any `u` ([`Segment::eval`], for tests and off-grid samples) and
+//! can generate its in-betweens at equally spaced `u` ([`Segment::frames`]), where the fixed great
+//! arcs of the segment advance by forward differences ([`arc`]) and only the blends are evaluated
+//! per frame.
+//!
+//! Every blend is the geodesic of S³ between its two points, never hemisphere-flipped, so the
+//! curve is continuous in S³ (SPEC §4.3); [`antipode_gap`] finds where a blend's two points come
+//! close to antipodal and the geodesic between them stops being well defined.
+
+pub mod arc;
+pub mod bezier;
+pub mod hermite;
+pub mod slerp;
+pub mod squad;
+
+use crate::tangent::Keys;
+use glam::DQuat;
+
+/// A scheme's segment (see the module documentation).
+pub trait Segment: Sized {
+    /// In-betweens at equally spaced `u`; an endless iterator (take what is needed).
+    type Frames: Iterator<Item = DQuat>;
+
+    /// The segment from key `s` to key `s + 1`.
+    fn new(keys: &Keys, s: usize, blend: Blend) -> Self;
+
+    /// Direct evaluation at `u`.
+    fn eval(&self, u: f64) -> DQuat;
+
+    /// The points at `u₀, u₀ + δ, u₀ + 2δ, …` by forward differences.
+    fn frames(&self, u0: f64, du: f64) -> Self::Frames;
+
+    /// An upper bound of the S³ angle between the two points of any blend of the segment; below
+    /// π their geodesic is well defined everywhere. Zero for a scheme without blends.
+    fn blend_bound(&self) -> f64;
+
+    /// The smallest `‖a + b‖` over the segment's blends at `u` (0 means antipodal).
+    fn blend_gap(&self, u: f64) -> f64;
+}
+
+/// Interpolation scheme (`--scheme`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Scheme {
+    #[default]
+    Hermite,
+    Squad,
+    Bezier,
+    Slerp,
+}
+
+impl Scheme {
+    pub fn name(self) -> &'static str {
+        match self {
+            Scheme::Hermite => "hermite",
+            Scheme::Squad => "squad",
+            Scheme::Bezier => "bezier",
+            Scheme::Slerp => "slerp",
+        }
+    }
+}
+
+/// Hermite blending function `f(u)` (`--blend`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Blend {
+    /// `3u² − 2u³`.
+    #[default]
+    Cubic,
+    /// `2u²` for `u < ½`, `1 − 2(1 − u)²` after.
+    Quadratic,
+}
+
+impl Blend {
+    #[inline]
+    pub fn f(self, u: f64) -> f64 {
+        match self {
+            Blend::Cubic => u * u * (3.0 - 2.0 * u),
+            Blend::Quadratic => {
+                if u < 0.5 {
+                    2.0 * u * u
+                } else {
+                    let v = 1.0 - u;
+                    1.0 - 2.0 * v * v
+                }
+            }
+        }
+    }
+}
+
+/// Angle between two unit quaternions as points of S³ (not as rotations).
+pub fn s3_angle(a: DQuat, b: DQuat) -> f64 {
+    (a - b).length().atan2((a + b).length()) * 2.0
+}
+
+/// Where the blends of `seg` come closest to antipodal: the smallest `‖a + b‖` over `u ∈ [0, 1]`
+/// and the `u` where it is, or `None` when [`Segment::blend_bound`] shows they cannot come within
+/// 1e-6 rad of it. Samples 256 points, then refines the smallest by golden-section search.
+pub fn antipode_gap<S: Segment>(seg: &S) -> Option<(f64, f64)> {
+    if seg.blend_bound() < std::f64::consts::PI - 1e-6 {
+        return None;
+    }
+    const N: usize = 256;
+    let (mut best_i, mut best) = (0, f64::INFINITY);
+    for i in 0..=N {
+        let g = seg.blend_gap(i as f64 / N as f64);
+        if g < best {
+            (best_i, best) = (i, g);
+        }
+    }
+    let (mut lo, mut hi) = (
+        best_i.saturating_sub(1) as f64 / N as f64,
+        (best_i + 1).min(N) as f64 / N as f64,
+    );
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..80 {
+        let a = hi - r * (hi - lo);
+        let b = lo + r * (hi - lo);
+        if seg.blend_gap(a) < seg.blend_gap(b) {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    let u = 0.5 * (lo + hi);
+    let g = seg.blend_gap(u);
+    Some(if g < best {
+        (g, u)
+    } else {
+        (best, best_i as f64 / N as f64)
+    })
+}
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    //! Shared checks for every scheme's unit tests.
+
+    use super::*;
+    use crate::keys::TimedTrack;
+    use crate::tangent::{EndConditions, PathMode};
+    use glam::DVec3;
+
+    pub fn keys(times: &[f64], quats: &[DQuat], ends: EndConditions) -> Keys {
+        let track = TimedTrack {
+            name: None,
+            times: times.to_vec(),
+            quats: quats.to_vec(),
+            start_velocity: None,
+            end_velocity: None,
+        };
+        Keys::new(&track, PathMode::Shortest, ends)
+    }
+
+    pub fn sample_keys() -> Keys {
+        let q = [
+            DQuat::IDENTITY,
+            DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 1.1),
+            DQuat::from_euler(glam::EulerRot::ZYX, 0.9, -0.4, 1.3),
+            DQuat::from_rotation_x(2.6),
+        ];
+        keys(&[0.0, 0.5, 1.25, 2.0], &q, EndConditions::default())
+    }
+
+    /// Keys hit, forward differences agree with direct evaluation, unit norm.
+    pub fn check_segment<S: Segment>(k: &Keys, blend: Blend) {
+        for s in 0..k.segments() {
+            let seg = S::new(k, s, blend);
+            assert!(
+                (seg.eval(0.0) - k.quats[s]).length() < 1e-14,
+                "segment {s} start"
+            );
+            assert!(
+                (seg.eval(1.0) - k.quats[s + 1]).length() < 1e-14,
+                "segment {s} end"
+            );
+            let n = 997;
+            let du = 1.0 / n as f64;
+            let u0 = 0.25 * du;
+            for (j, q) in seg.frames(u0, du).take(n).enumerate() {
+                let direct = seg.eval(u0 + j as f64 * du);
+                assert!((q - direct).length() < 1e-13, "segment {s} frame {j}");
+                assert!((q.length() - 1.0).abs() < 1e-13);
+            }
+        }
+    }
+
+    /// `dQ/du` at `u` by central differences (one-sided at the ends).
+    pub fn deriv<S: Segment>(seg: &S, u: f64) -> DQuat {
+        let h = 1e-6;
+        if u <= 0.0 {
+            (seg.eval(u + h) * 4.0 - seg.eval(u + 2.0 * h) - seg.eval(u) * 3.0) / (2.0 * h)
+        } else if u >= 1.0 {
+            (seg.eval(u) * 3.0 - seg.eval(u - h) * 4.0 + seg.eval(u - 2.0 * h)) / (2.0 * h)
+        } else {
+            (seg.eval(u + h) - seg.eval(u - h)) / (2.0 * h)
+        }
+    }
+}

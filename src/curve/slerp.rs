@@ -1,0 +1,68 @@
+//! `slerp` (Shoemake 1985; Szeliski's note in `../shared/papers/`): the great arc between
+//! consecutive keys, `Q(u) = exp(u · log(q_{i+1} q_i⁻¹)) q_i`.
+//!
+//! - Interpolation: every key. Tangency: none imposed; the velocity is the chord's.
+//! - Continuity: C⁰ at keys (the angular velocity jumps there), C^∞ inside.
+//! - Parametrisation: constant angular speed within a segment.
+//! - Cost: one forward-difference step per frame (4 multiply-adds per component).
+//! - Use it for constant-speed moves and as the baseline the smooth schemes are compared to.
+
+use super::arc::{Arc, ArcSteps};
+use super::{Blend, Segment};
+use crate::tangent::Keys;
+use glam::DQuat;
+
+/// One slerp segment.
+#[derive(Debug, Clone, Copy)]
+pub struct Slerp {
+    arc: Arc,
+}
+
+impl Segment for Slerp {
+    type Frames = ArcSteps;
+
+    fn new(keys: &Keys, s: usize, _blend: Blend) -> Self {
+        Slerp {
+            arc: Arc::between(keys.quats[s], keys.quats[s + 1]),
+        }
+    }
+
+    fn eval(&self, u: f64) -> DQuat {
+        self.arc.eval(u)
+    }
+
+    fn frames(&self, u0: f64, du: f64) -> ArcSteps {
+        self.arc.steps(u0, du)
+    }
+
+    fn blend_bound(&self) -> f64 {
+        0.0
+    }
+
+    fn blend_gap(&self, _u: f64) -> f64 {
+        2.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::test_support::*;
+    use crate::rotation::quat;
+
+    #[test]
+    fn keys_and_forward_differences() {
+        check_segment::<Slerp>(&sample_keys(), Blend::Cubic);
+    }
+
+    #[test]
+    fn matches_the_log_exp_formula() {
+        let k = sample_keys();
+        let seg = Slerp::new(&k, 1, Blend::Cubic);
+        let l = quat::log(k.quats[2] * k.quats[1].conjugate());
+        for u in [0.1, 0.5, 0.9] {
+            let want = quat::exp(l * u) * k.quats[1];
+            assert!((seg.eval(u) - want).length() < 1e-15);
+        }
+    }
+}

@@ -1,0 +1,133 @@
+//! The in-betweening loop: for each track, every frame of the output grid (SPEC §3), segment by
+//! segment, streamed to a [`FrameSink`].
+//!
+//! Frame `k` is at `k/fps` (exact rational, from the index). A track's frames are those with
+//! `t_1 − 1e-9 ≤ k/fps ≤ t_n + 1e-9`. Segment `s` takes the frames with
+//! `t_s − 1e-9 ≤ k/fps < t_{s+1} − 1e-9` (the last segment up to `t_n + 1e-9`); a frame within
+//! 1e-9 s of a key is that key exactly (`u = 0`, or `u = 1` at the last key), the others run the
+//! scheme's forward differences from the segment's first frame with step `δ = 1/(fps·Δ_s)`.
+
+use crate::clock::{Fps, TIME_TOL};
+use crate::curve::bezier::Bezier;
+use crate::curve::hermite::Hermite;
+use crate::curve::slerp::Slerp;
+use crate::curve::squad::Squad;
+use crate::curve::{Blend, Scheme, Segment, antipode_gap};
+use crate::io::write::FrameSink;
+use crate::keys::TimedTrack;
+use crate::tangent::{EndConditions, Keys, PathMode};
+use std::io;
+
+/// Everything `interp` needs besides the tracks.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settings {
+    pub fps: Fps,
+    pub scheme: Scheme,
+    pub blend: Blend,
+    pub path: PathMode,
+    pub ends: EndConditions,
+}
+
+/// Tolerance for "a blend comes within 1e-9 of an antipode" (SPEC §4.3).
+pub const ANTIPODE_TOL: f64 = 1e-9;
+
+/// Interpolates every track into `sink`. Warnings (antipodal blends) go to `warn`.
+pub fn run(
+    tracks: &[TimedTrack],
+    settings: &Settings,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    for track in tracks {
+        let keys = Keys::new(track, settings.path, settings.ends);
+        sink.begin_track(track.name.as_deref())?;
+        match settings.scheme {
+            Scheme::Slerp => track_frames::<Slerp>(&keys, track, settings, sink, warn)?,
+            Scheme::Hermite => track_frames::<Hermite>(&keys, track, settings, sink, warn)?,
+            Scheme::Squad => track_frames::<Squad>(&keys, track, settings, sink, warn)?,
+            Scheme::Bezier => track_frames::<Bezier>(&keys, track, settings, sink, warn)?,
+        }
+        sink.end_track()?;
+    }
+    sink.finish()
+}
+
+fn track_frames<S: Segment>(
+    keys: &Keys,
+    track: &TimedTrack,
+    settings: &Settings,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    let fps = settings.fps;
+    let times = &keys.times;
+    let n = times.len();
+    let (first, last) = fps.frames_between(times[0], times[n - 1]);
+    let mut k = first;
+    let period = fps.den() as f64 / fps.num() as f64;
+    for s in 0..n - 1 {
+        let (t0, t1) = (times[s], times[s + 1]);
+        let last_segment = s == n - 2;
+        let k_end = if last_segment {
+            last + 1
+        } else {
+            fps.first_frame_from(t1).min(last + 1)
+        };
+        if k >= k_end {
+            continue;
+        }
+        let seg = S::new(keys, s, settings.blend);
+        if let Some((gap, u)) = antipode_gap(&seg)
+            && gap < ANTIPODE_TOL
+        {
+            let name = track
+                .name
+                .as_deref()
+                .map_or(String::new(), |n| format!("track \"{n}\", "));
+            warn(&format!(
+                "{name}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
+                 {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
+                 use --scheme minaccel",
+                settings.scheme.name()
+            ));
+        }
+        if (fps.time_of(k) - t0).abs() <= TIME_TOL {
+            sink.frame(k, fps.time_of(k), keys.quats[s])?;
+            k += 1;
+        }
+        let end_snap = last_segment && k < k_end && (fps.time_of(k_end - 1) - t1).abs() <= TIME_TOL;
+        let stop = if end_snap { k_end - 1 } else { k_end };
+        if stop > k {
+            let delta = t1 - t0;
+            let u0 = (fps.time_of(k) - t0) / delta;
+            let du = period / delta;
+            for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
+                let kj = k + j as i64;
+                sink.frame(kj, fps.time_of(kj), q)?;
+            }
+            k = stop;
+        }
+        if end_snap {
+            sink.frame(k, fps.time_of(k), keys.quats[n - 1])?;
+            k += 1;
+        }
+    }
+    Ok(())
+}
+
+/// Direct evaluation of a track's curve at time `t` (clamped to the keys' span), for tests and
+/// samples off the frame grid.
+pub fn eval_at(keys: &Keys, scheme: Scheme, blend: Blend, t: f64) -> glam::DQuat {
+    let times = &keys.times;
+    let s = match times.iter().rposition(|&tk| tk <= t) {
+        None => 0,
+        Some(i) => i.min(times.len() - 2),
+    };
+    let u = ((t - times[s]) / keys.delta(s)).clamp(0.0, 1.0);
+    match scheme {
+        Scheme::Slerp => Slerp::new(keys, s, blend).eval(u),
+        Scheme::Hermite => Hermite::new(keys, s, blend).eval(u),
+        Scheme::Squad => Squad::new(keys, s, blend).eval(u),
+        Scheme::Bezier => Bezier::new(keys, s, blend).eval(u),
+    }
+}

@@ -1,0 +1,206 @@
+//! Keyframe preprocessing and tangents (SPEC §4.1–§4.3).
+//!
+//! Tangents are kept as world-frame "half angular velocities" `w_i` (a pure quaternion, as a
+//! [`DVec3`], per second): the curve's velocity at key `i` is `v_i = w_i·q_i`, and the angular
+//! velocity is `ω_i = 2·w_i`. In segment `s` (from key `s` to `s+1`, length `Δ_s`) the
+//! segment-scaled tangents are `V = (w·Δ_s)·q`.
+//!
+//! - Interior keys: `w_i = log(q_{i+1} q_{i−1}⁻¹) / (t_{i+1} − t_{i−1})` (Nam & Kim's estimate for
+//!   unit spacing), or `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` with `L⁻ = log(q_i q_{i−1}⁻¹)`,
+//!   `L⁺ = log(q_{i+1} q_i⁻¹)` when `‖L⁻‖ + ‖L⁺‖ > π`, where the direct log would alias to the
+//!   other way round (possible only with `--path as-given`).
+//! - Ends: `chord` `w_1 = log(q_2 q_1⁻¹)/Δ_1`, `w_n = log(q_n q_{n−1}⁻¹)/Δ_{n−1}`; `rest` `w = 0`;
+//!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
+
+use crate::keys::TimedTrack;
+use crate::rotation::quat::log;
+use glam::{DQuat, DVec3};
+
+/// How signs of consecutive keys are treated (SPEC §4.3).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PathMode {
+    /// Flip each key into the hemisphere of the previous one: every step is at most 180°.
+    #[default]
+    Shortest,
+    /// Keep the input signs: a key whose sign is flipped against its predecessor is reached the
+    /// long way round (360° − φ).
+    AsGiven,
+}
+
+/// End condition when no velocity is given (SPEC §4.2).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Ends {
+    /// The end tangent points along the first/last chord (squad's classical `a_1 = q_1`).
+    #[default]
+    Chord,
+    /// Zero velocity at both ends.
+    Rest,
+}
+
+/// End conditions of a track: the default rule and optional given angular velocities (rad/s,
+/// world frame).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EndConditions {
+    pub ends: Ends,
+    pub start: Option<DVec3>,
+    pub end: Option<DVec3>,
+}
+
+/// Keys ready for a scheme: hemisphere-processed quaternions, times, and tangents.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Keys {
+    pub times: Vec<f64>,
+    pub quats: Vec<DQuat>,
+    /// Per-second half angular velocities: `v_i = w[i]·q_i`.
+    pub w: Vec<DVec3>,
+    /// Whether the end tangents were given (a velocity or `rest`) rather than `chord`.
+    pub start_given: bool,
+    pub end_given: bool,
+}
+
+/// Applies `--path` to a sequence of quaternions.
+pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
+    if mode == PathMode::Shortest {
+        for i in 1..quats.len() {
+            if quats[i - 1].dot(quats[i]) < 0.0 {
+                quats[i] = -quats[i];
+            }
+        }
+    }
+}
+
+/// `log(b a⁻¹)`: the half-angle step from `a` to `b` in the world frame.
+#[inline]
+pub fn step(a: DQuat, b: DQuat) -> DVec3 {
+    log(b * a.conjugate())
+}
+
+impl Keys {
+    /// Prepares a track: path mode, then tangents. Velocities in `ends` override the track's.
+    pub fn new(track: &TimedTrack, path: PathMode, ends: EndConditions) -> Keys {
+        let mut quats = track.quats.clone();
+        apply_path(&mut quats, path);
+        let t = &track.times;
+        let n = quats.len();
+        debug_assert!(n >= 2);
+        let mut w = vec![DVec3::ZERO; n];
+        for i in 1..n - 1 {
+            let lm = step(quats[i - 1], quats[i]);
+            let lp = step(quats[i], quats[i + 1]);
+            let span = t[i + 1] - t[i - 1];
+            w[i] = if lm.length() + lp.length() > std::f64::consts::PI {
+                (lm + lp) / span
+            } else {
+                step(quats[i - 1], quats[i + 1]) / span
+            };
+        }
+        let start = ends.start.or(track.start_velocity);
+        let end = ends.end.or(track.end_velocity);
+        w[0] = match (start, ends.ends) {
+            (Some(omega), _) => omega * 0.5,
+            (None, Ends::Rest) => DVec3::ZERO,
+            (None, Ends::Chord) => step(quats[0], quats[1]) / (t[1] - t[0]),
+        };
+        w[n - 1] = match (end, ends.ends) {
+            (Some(omega), _) => omega * 0.5,
+            (None, Ends::Rest) => DVec3::ZERO,
+            (None, Ends::Chord) => step(quats[n - 2], quats[n - 1]) / (t[n - 1] - t[n - 2]),
+        };
+        Keys {
+            times: track.times.clone(),
+            quats,
+            w,
+            start_given: start.is_some() || ends.ends == Ends::Rest,
+            end_given: end.is_some() || ends.ends == Ends::Rest,
+        }
+    }
+
+    /// Number of segments.
+    pub fn segments(&self) -> usize {
+        self.quats.len() - 1
+    }
+
+    /// Length in seconds of segment `s`.
+    pub fn delta(&self, s: usize) -> f64 {
+        self.times[s + 1] - self.times[s]
+    }
+
+    /// Segment-scaled tangent `V = (w_i·Δ_s)·q_i` of key `i` in segment `s`.
+    pub fn tangent(&self, i: usize, s: usize) -> DQuat {
+        crate::rotation::quat::pure_mul(self.w[i] * self.delta(s), self.quats[i])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn track(times: &[f64], quats: &[DQuat]) -> TimedTrack {
+        TimedTrack {
+            name: None,
+            times: times.to_vec(),
+            quats: quats.to_vec(),
+            start_velocity: None,
+            end_velocity: None,
+        }
+    }
+
+    #[test]
+    fn shortest_flips_into_the_previous_hemisphere() {
+        let mut q = [
+            DQuat::IDENTITY,
+            -DQuat::from_rotation_z(0.5),
+            DQuat::from_rotation_z(1.0),
+        ];
+        apply_path(&mut q, PathMode::Shortest);
+        assert!(q[1].w > 0.0 && q[2].w > 0.0);
+    }
+
+    #[test]
+    fn nam_kim_estimate_for_unit_spacing() {
+        let q: Vec<_> = [0.0, 0.4, 1.0]
+            .iter()
+            .map(|a| DQuat::from_rotation_y(*a))
+            .collect();
+        let k = Keys::new(
+            &track(&[0.0, 1.0, 2.0], &q),
+            PathMode::Shortest,
+            EndConditions::default(),
+        );
+        // ½ log(q2 q0⁻¹): half of the half-angle step 0.5 about y.
+        assert!((k.w[1] - DVec3::new(0.0, 0.25, 0.0)).length() < 1e-15);
+        // Chord ends.
+        assert!((k.w[0] - DVec3::new(0.0, 0.2, 0.0)).length() < 1e-15);
+        assert!((k.w[2] - DVec3::new(0.0, 0.3, 0.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn given_velocity_and_rest() {
+        let q = [DQuat::IDENTITY, DQuat::from_rotation_x(1.0)];
+        let ends = EndConditions {
+            ends: Ends::Rest,
+            start: Some(DVec3::new(0.0, 0.0, 2.0)),
+            end: None,
+        };
+        let k = Keys::new(&track(&[0.0, 1.0], &q), PathMode::Shortest, ends);
+        assert_eq!(k.w[0], DVec3::new(0.0, 0.0, 1.0));
+        assert_eq!(k.w[1], DVec3::ZERO);
+    }
+
+    #[test]
+    fn more_than_a_turn_uses_the_sum_of_steps() {
+        // Each step 170° (half-angle 85°) with as-given signs: 340° in two steps.
+        let a = 85f64.to_radians();
+        let q = [
+            DQuat::IDENTITY,
+            DQuat::from_xyzw(0.0, 0.0, a.sin(), a.cos()),
+            DQuat::from_xyzw(0.0, 0.0, (2.0 * a).sin(), (2.0 * a).cos()),
+        ];
+        let k = Keys::new(
+            &track(&[0.0, 1.0, 2.0], &q),
+            PathMode::AsGiven,
+            EndConditions::default(),
+        );
+        assert!((k.w[1].z - a).abs() < 1e-14, "{}", k.w[1]);
+    }
+}
