@@ -4,5 +4,6 @@
 mod conventions;
 mod errors;
 mod golden;
+mod properties;
 mod roundtrip;
 mod support;
