@@ -77,17 +77,23 @@ fn track_frames<S: Segment>(
             continue;
         }
         let seg = S::new(keys, s, settings.blend);
+        let name = || {
+            track
+                .name
+                .as_deref()
+                .map_or(String::new(), |n| format!("track \"{n}\", "))
+        };
+        if let Some(note) = seg.limitation() {
+            warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));
+        }
         if let Some((gap, u)) = antipode_gap(&seg)
             && gap < ANTIPODE_TOL
         {
-            let name = track
-                .name
-                .as_deref()
-                .map_or(String::new(), |n| format!("track \"{n}\", "));
             warn(&format!(
-                "{name}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
+                "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
                  {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
                  use --scheme minaccel",
+                name(),
                 settings.scheme.name()
             ));
         }

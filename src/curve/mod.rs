@@ -39,6 +39,11 @@ pub trait Segment: Sized {
 
     /// The smallest `‖a + b‖` over the segment's blends at `u` (0 means antipodal).
     fn blend_gap(&self, u: f64) -> f64;
+
+    /// A limitation of the scheme that this segment runs into, to be reported on stderr.
+    fn limitation(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// Interpolation scheme (`--scheme`).

@@ -15,12 +15,16 @@
 //!   both sides; at the ends it is the given `V`.
 //! - Continuity: C¹ at keys (also for non-uniform spacing), C^∞ inside.
 //! - Cost per frame: two forward-difference steps and one geodesic blend.
+//! - Limitations: an inner point is `exp(X)·q` with `X` from the formulas above; the blend sees it
+//!   only through `log(exp(X)) = X`, true for `‖X‖ < π`. Beyond (end velocities of more than
+//!   about a turn per segment, or a reversal next to a much shorter segment) the tangent is lost
+//!   and the curve is not C¹ there; the tool says so on stderr.
 
 use super::arc::{Arc, ArcSteps};
 use super::{Blend, Segment};
 use crate::rotation::quat::{exp, geodesic};
 use crate::tangent::{Keys, step};
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 
 /// One squad segment.
 #[derive(Debug, Clone, Copy)]
@@ -28,33 +32,44 @@ pub struct Squad {
     outer: Arc,
     inner: Arc,
     gap: f64,
+    aliased: bool,
 }
 
-/// The inner control point `a_i` (leaving key `i`).
-fn a_point(k: &Keys, i: usize) -> DQuat {
+/// The exponent `X` of the inner control point `a_i = exp(X)·q_i` (leaving key `i`).
+fn a_exponent(k: &Keys, i: usize) -> DVec3 {
     let q = k.quats[i];
     let p = step(q, k.quats[i + 1]);
     if i == 0 {
         let w = k.w[0] * k.delta(0);
-        return exp((w - p) * 0.5) * q;
+        return (w - p) * 0.5;
     }
     let m = step(q, k.quats[i - 1]);
     let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
-    exp((mid * k.delta(i) - p) * 0.5) * q
+    (mid * k.delta(i) - p) * 0.5
 }
 
-/// The inner control point `b_i` (arriving at key `i`).
-fn b_point(k: &Keys, i: usize) -> DQuat {
+/// The exponent `X` of the inner control point `b_i = exp(X)·q_i` (arriving at key `i`).
+fn b_exponent(k: &Keys, i: usize) -> DVec3 {
     let q = k.quats[i];
     let m = step(q, k.quats[i - 1]);
     let n = k.quats.len();
     if i == n - 1 {
         let w = k.w[i] * k.delta(i - 1);
-        return exp((-m - w) * 0.5) * q;
+        return (-m - w) * 0.5;
     }
     let p = step(q, k.quats[i + 1]);
     let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
-    exp((-m - mid * k.delta(i - 1)) * 0.5) * q
+    (-m - mid * k.delta(i - 1)) * 0.5
+}
+
+#[cfg(test)]
+fn a_point(k: &Keys, i: usize) -> DQuat {
+    exp(a_exponent(k, i)) * k.quats[i]
+}
+
+#[cfg(test)]
+fn b_point(k: &Keys, i: usize) -> DQuat {
+    exp(b_exponent(k, i)) * k.quats[i]
 }
 
 /// Squad in-betweens: both arcs by forward differences, the blend per frame.
@@ -85,13 +100,15 @@ impl Segment for Squad {
 
     fn new(keys: &Keys, s: usize, _blend: Blend) -> Self {
         let (q0, q1) = (keys.quats[s], keys.quats[s + 1]);
-        let (a, b) = (a_point(keys, s), b_point(keys, s + 1));
+        let (xa, xb) = (a_exponent(keys, s), b_exponent(keys, s + 1));
+        let (a, b) = (exp(xa) * q0, exp(xb) * q1);
         let outer = Arc::between(q0, q1);
         let inner = Arc::between(a, b);
         Squad {
             outer,
             inner,
             gap: super::s3_angle(q0, a) + outer.span() + inner.span(),
+            aliased: xa.length().max(xb.length()) >= std::f64::consts::PI,
         }
     }
 
@@ -115,6 +132,14 @@ impl Segment for Squad {
 
     fn blend_gap(&self, u: f64) -> f64 {
         (self.outer.eval(u) + self.inner.eval(u)).length()
+    }
+
+    fn limitation(&self) -> Option<&'static str> {
+        self.aliased.then_some(
+            "an inner control point of squad is half a turn or more from its key (an end \
+             velocity or a change of spacing too large for squad), so the curve misses the \
+             tangent there; use --scheme hermite or add keys",
+        )
     }
 }
 

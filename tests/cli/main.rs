@@ -4,6 +4,7 @@
 mod conventions;
 mod errors;
 mod golden;
+mod hard_cases;
 mod properties;
 mod roundtrip;
 mod support;
