@@ -146,6 +146,11 @@ pub struct InterpArgs {
     /// as-given: keep quaternion signs (a flipped key is reached the long way round).
     #[arg(long, value_enum, default_value = "shortest")]
     pub path: PathArg,
+
+    /// Report on stderr what the minaccel solver did for each track (points, iterations, energy,
+    /// projected gradient).
+    #[arg(short, long)]
+    pub verbose: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -154,6 +159,7 @@ pub enum SchemeArg {
     Squad,
     Bezier,
     Slerp,
+    Minaccel,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

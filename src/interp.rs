@@ -10,11 +10,13 @@
 use crate::clock::{Fps, TIME_TOL};
 use crate::curve::bezier::Bezier;
 use crate::curve::hermite::Hermite;
+use crate::curve::minaccel::{self, Report};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Blend, Scheme, Segment, antipode_gap};
 use crate::io::write::FrameSink;
 use crate::keys::TimedTrack;
+use crate::rotation::quat::geodesic;
 use crate::tangent::{EndConditions, Keys, PathMode};
 use std::io;
 
@@ -31,13 +33,16 @@ pub struct Settings {
 /// Tolerance for "a blend comes within 1e-9 of an antipode" (SPEC §4.3).
 pub const ANTIPODE_TOL: f64 = 1e-9;
 
-/// Interpolates every track into `sink`. Warnings (antipodal blends) go to `warn`.
+/// Interpolates every track into `sink`. Warnings (antipodal blends, a solver that did not
+/// converge) go to `warn`. Returns the minaccel solver's report of each track (empty for the
+/// other schemes).
 pub fn run(
     tracks: &[TimedTrack],
     settings: &Settings,
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&str),
-) -> io::Result<()> {
+) -> io::Result<Vec<Report>> {
+    let mut reports = Vec::new();
     for track in tracks {
         let keys = Keys::new(track, settings.path, settings.ends);
         sink.begin_track(track.name.as_deref())?;
@@ -46,10 +51,60 @@ pub fn run(
             Scheme::Hermite => track_frames::<Hermite>(&keys, track, settings, sink, warn)?,
             Scheme::Squad => track_frames::<Squad>(&keys, track, settings, sink, warn)?,
             Scheme::Bezier => track_frames::<Bezier>(&keys, track, settings, sink, warn)?,
+            Scheme::MinAccel => {
+                reports.push(minaccel_frames(&keys, track, settings.fps, sink, warn)?);
+            }
         }
         sink.end_track()?;
     }
-    sink.finish()
+    sink.finish()?;
+    Ok(reports)
+}
+
+/// `minaccel`: solve on the grid, then every frame by slerp of its neighbouring grid points (a
+/// frame within 1e-9 s of a grid point is that point, so keys are exact).
+fn minaccel_frames(
+    keys: &Keys,
+    track: &TimedTrack,
+    fps: Fps,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<Report> {
+    let sol = minaccel::solve(keys, fps.as_f64());
+    let r = sol.report;
+    if !r.converged {
+        let name = track
+            .name
+            .as_deref()
+            .map_or(String::new(), |n| format!("track \"{n}\": "));
+        warn(&format!(
+            "{name}minaccel did not converge in {} iterations (projected gradient {:.1e}, {:.1e} \
+             of its start); the frames are the best curve found",
+            r.iterations,
+            r.gradient,
+            r.gradient / r.gradient_start
+        ));
+    }
+    let (times, pts) = (&sol.times, &sol.points);
+    let n = times.len();
+    let (first, last) = fps.frames_between(times[0], times[n - 1]);
+    let mut j = 0;
+    for k in first..=last {
+        let t = fps.time_of(k);
+        while j + 2 < n && t >= times[j + 1] - TIME_TOL {
+            j += 1;
+        }
+        let q = if (t - times[j]).abs() <= TIME_TOL {
+            pts[j]
+        } else if (t - times[j + 1]).abs() <= TIME_TOL {
+            pts[j + 1]
+        } else {
+            let u = ((t - times[j]) / (times[j + 1] - times[j])).clamp(0.0, 1.0);
+            geodesic(pts[j], pts[j + 1], u)
+        };
+        sink.frame(k, t, q)?;
+    }
+    Ok(r)
 }
 
 fn track_frames<S: Segment>(
@@ -122,18 +177,20 @@ fn track_frames<S: Segment>(
 }
 
 /// Direct evaluation of a track's curve at time `t` (clamped to the keys' span), for tests and
-/// samples off the frame grid.
-pub fn eval_at(keys: &Keys, scheme: Scheme, blend: Blend, t: f64) -> glam::DQuat {
+/// samples off the frame grid. `None` for `minaccel`, which has no closed form (solve it with
+/// [`minaccel::solve`]).
+pub fn eval_at(keys: &Keys, scheme: Scheme, blend: Blend, t: f64) -> Option<glam::DQuat> {
     let times = &keys.times;
     let s = match times.iter().rposition(|&tk| tk <= t) {
         None => 0,
         Some(i) => i.min(times.len() - 2),
     };
     let u = ((t - times[s]) / keys.delta(s)).clamp(0.0, 1.0);
-    match scheme {
+    Some(match scheme {
         Scheme::Slerp => Slerp::new(keys, s, blend).eval(u),
         Scheme::Hermite => Hermite::new(keys, s, blend).eval(u),
         Scheme::Squad => Squad::new(keys, s, blend).eval(u),
         Scheme::Bezier => Bezier::new(keys, s, blend).eval(u),
-    }
+        Scheme::MinAccel => return None,
+    })
 }

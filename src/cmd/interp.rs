@@ -42,6 +42,7 @@ pub fn run(
             SchemeArg::Squad => Scheme::Squad,
             SchemeArg::Bezier => Scheme::Bezier,
             SchemeArg::Slerp => Scheme::Slerp,
+            SchemeArg::Minaccel => Scheme::MinAccel,
         },
         blend: match args.blend {
             BlendArg::Cubic => Blend::Cubic,
@@ -70,7 +71,23 @@ pub fn run(
     let track_column = doc.named_tracks || tracks.len() > 1;
     let out = Output::open(args.output.output.as_deref())?;
     let mut writer = FrameWriter::new(out, format, style, fps, track_column);
-    interpolate(&tracks, &settings, &mut writer, warn)?;
+    let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
     writer.into_inner().commit()?;
+    if args.verbose {
+        for (track, r) in tracks.iter().zip(&reports) {
+            let name = track.name.as_deref().unwrap_or("-");
+            eprintln!(
+                "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
+                 projected gradient {:.3e} -> {:.3e} ({}converged)",
+                r.points,
+                r.iterations,
+                r.energy_start,
+                r.energy,
+                r.gradient_start,
+                r.gradient,
+                if r.converged { "" } else { "not " }
+            );
+        }
+    }
     Ok(())
 }

@@ -11,8 +11,10 @@
 //! close to antipodal and the geodesic between them stops being well defined.
 
 pub mod arc;
+pub mod banded;
 pub mod bezier;
 pub mod hermite;
+pub mod minaccel;
 pub mod slerp;
 pub mod squad;
 
@@ -54,6 +56,8 @@ pub enum Scheme {
     Squad,
     Bezier,
     Slerp,
+    /// Barr et al.'s minimal tangential acceleration on a grid ([`minaccel`]); not per segment.
+    MinAccel,
 }
 
 impl Scheme {
@@ -63,6 +67,7 @@ impl Scheme {
             Scheme::Squad => "squad",
             Scheme::Bezier => "bezier",
             Scheme::Slerp => "slerp",
+            Scheme::MinAccel => "minaccel",
         }
     }
 }

@@ -5,6 +5,7 @@ mod conventions;
 mod errors;
 mod golden;
 mod hard_cases;
+mod minaccel;
 mod properties;
 mod roundtrip;
 mod support;

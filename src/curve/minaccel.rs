@@ -1,0 +1,552 @@
+//! `minaccel`: the minimal-tangential-acceleration spline of Barr, Currin, Gabriel & Hughes
+//! (SIGGRAPH '92, §4.2–§4.4; `../shared/papers/barr-currin-gabriel-hughes-smooth-interpolation.txt`),
+//! solved by Newton's method on the product of spheres with a banded linear solve.
+//!
+//! ## The problem
+//! On a grid `t_0 < … < t_N` that contains every key (segment `i` split into
+//! `N_i = max(1, ⌈Δ_i·fps⌉)` equal steps), find unit quaternions `q_p` equal to the keys at key
+//! points that minimise the discrete tangential acceleration
+//!
+//! ```text
+//! E = Σ_p w_p |q_p'' ∖ q_p|²,   a ∖ b = a − (a·b)/(b·b)·b
+//! q_p'' = 2[(q_{p+1} − q_p)/h₊ − (q_p − q_{p−1})/h₋]/(h₋ + h₊),   w_p = (h₋ + h₊)/2
+//! ```
+//! (the paper's `h Σ |(q_{p+1} − 2q_p + q_{p−1})/h² ∖ q_p|²` for equal steps). The sum runs over
+//! points with two neighbours. A given end velocity ω (or `--ends rest`, ω = 0) adds the paper's
+//! phantom point `Q⁰ = exp(−h_first·ω/2)·Q¹` before the first key (and `Q^{K+1} =
+//! exp(h_last·ω/2)·Q^K` after the last), fixed, so the first key gets a term too; otherwise the
+//! ends are free (natural).
+//!
+//! ## The solver
+//! Each free point moves in its tangent space: `q ← exp(δ)·q`, `δ ∈ R³` (a pure quaternion), so
+//! the unknowns are 3 per point and every iterate is exactly unit. Each term
+//! `E_p = w_p(|A_p|² − (A_p·q_p)²)`, `A_p = α q_{p−1} + β q_p + γ q_{p+1}`, touches three
+//! neighbouring points, so the exact Hessian is block-pentadiagonal (3×3 blocks, half-bandwidth
+//! 8): Newton's method, assembled and factorised in O(n) per iteration with [`super::banded`]
+//! (a multiple of the identity is added only while the Hessian is not positive definite). A
+//! backtracking line search on `E` keeps every step a descent; once the predicted decrease is
+//! below what `E` resolves in f64, full steps are taken while the gradient keeps shrinking. The
+//! start is the `hermite` curve on the grid. It stops when the projected gradient `‖Jᵀr‖` is ≤ 1e-9 of its value at the
+//! start (or ≤ 1e-14), and reports when it does not within [`MAX_ITERATIONS`].
+//!
+//! The grid is refined where neighbouring points of the start curve would be more than 45° apart
+//! on S³ (the paper's §5 keeps them within 90° against aliasing), and so that a phantom point
+//! is within 45° of its key.
+//!
+//! Frames between grid points are the slerp of the neighbouring grid points; a frame on a grid
+//! point is that point.
+
+use super::banded::Banded;
+use super::hermite::Hermite;
+use super::{Blend, Segment};
+use crate::rotation::quat::exp;
+use crate::tangent::Keys;
+use glam::{DQuat, DVec3, DVec4};
+use std::f64::consts::FRAC_PI_4;
+
+/// Iteration budget of the Newton solver.
+pub const MAX_ITERATIONS: usize = 100;
+/// Relative projected-gradient tolerance (SPEC §4.4). A gradient at the f64 rounding floor of
+/// its own computation also counts as converged (e.g. when the start is already the optimum).
+pub const REL_TOL: f64 = 1e-9;
+/// Absolute projected-gradient tolerance (SPEC §4.4).
+pub const ABS_TOL: f64 = 1e-14;
+
+/// What the solver did.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Report {
+    pub points: usize,
+    pub iterations: usize,
+    pub energy_start: f64,
+    pub energy: f64,
+    pub gradient_start: f64,
+    pub gradient: f64,
+    pub converged: bool,
+}
+
+/// The solved curve of one track: grid times and points.
+#[derive(Debug, Clone)]
+pub struct Solution {
+    pub times: Vec<f64>,
+    pub points: Vec<DQuat>,
+    pub report: Report,
+}
+
+/// The grid and its fixed points: `ext` holds the optional phantom points around the grid.
+#[derive(Debug, Clone)]
+pub struct Problem {
+    /// Times of the extended sequence (phantoms at `t_0 − h_first`, `t_N + h_last`).
+    times: Vec<f64>,
+    /// Points of the extended sequence.
+    pts: Vec<DQuat>,
+    fixed: Vec<bool>,
+    /// Index of the first grid point in the extended sequence (1 with a start phantom).
+    first: usize,
+    /// Number of grid points.
+    grid_len: usize,
+}
+
+/// Steps per segment: `max(1, ⌈Δ·fps⌉)` (1e-6 slack so that keys on the frame grid give the frame
+/// grid itself).
+fn base_steps(keys: &Keys, fps: f64) -> Vec<usize> {
+    (0..keys.segments())
+        .map(|i| ((keys.delta(i) * fps - 1e-6).ceil().max(1.0)) as usize)
+        .collect()
+}
+
+/// S³ angle between unit quaternions.
+fn s3_angle(a: DQuat, b: DQuat) -> f64 {
+    super::s3_angle(a, b)
+}
+
+impl Problem {
+    /// The grid for `keys` at `fps` frames per second, started on the hermite curve.
+    pub fn new(keys: &Keys, fps: f64) -> Problem {
+        let mut steps = base_steps(keys, fps);
+        let n = keys.quats.len();
+        // Phantoms keep within 45° of their keys (S³ angle h·|ω|/2).
+        if keys.start_given {
+            let need = (keys.delta(0) * keys.w[0].length() / FRAC_PI_4).ceil() as usize;
+            steps[0] = steps[0].max(need);
+        }
+        if keys.end_given {
+            let s = n - 2;
+            let need = (keys.delta(s) * keys.w[n - 1].length() / FRAC_PI_4).ceil() as usize;
+            steps[s] = steps[s].max(need);
+        }
+        // Refine until neighbouring start points are within 45° on S³.
+        let (times, pts, is_key) = loop {
+            let (times, pts, is_key) = sample_hermite(keys, &steps);
+            let mut refined = false;
+            let mut seg = 0;
+            for p in 0..pts.len() - 1 {
+                if is_key[p] && p > 0 {
+                    seg += 1;
+                }
+                let angle = s3_angle(pts[p], pts[p + 1]);
+                if angle > FRAC_PI_4 {
+                    let factor = (angle / FRAC_PI_4).ceil() as usize;
+                    steps[seg] = steps[seg].saturating_mul(factor.max(2));
+                    refined = true;
+                }
+            }
+            if !refined {
+                break (times, pts, is_key);
+            }
+        };
+        let mut ext_t = Vec::with_capacity(times.len() + 2);
+        let mut ext_q = Vec::with_capacity(times.len() + 2);
+        let mut fixed = Vec::with_capacity(times.len() + 2);
+        let mut first = 0;
+        if keys.start_given {
+            let h = times[1] - times[0];
+            ext_t.push(times[0] - h);
+            ext_q.push(exp(-keys.w[0] * h) * keys.quats[0]);
+            fixed.push(true);
+            first = 1;
+        }
+        ext_t.extend_from_slice(&times);
+        ext_q.extend_from_slice(&pts);
+        fixed.extend_from_slice(&is_key);
+        if keys.end_given {
+            let m = times.len();
+            let h = times[m - 1] - times[m - 2];
+            ext_t.push(times[m - 1] + h);
+            ext_q.push(exp(keys.w[n - 1] * h) * keys.quats[n - 1]);
+            fixed.push(true);
+        }
+        Problem {
+            times: ext_t,
+            pts: ext_q,
+            fixed,
+            first,
+            grid_len: times.len(),
+        }
+    }
+
+    /// Grid times (without phantoms).
+    pub fn grid_times(&self) -> &[f64] {
+        &self.times[self.first..self.first + self.grid_len]
+    }
+
+    /// Grid points (without phantoms).
+    pub fn grid_points(&self) -> &[DQuat] {
+        &self.pts[self.first..self.first + self.grid_len]
+    }
+
+    /// `E` of other points on the same grid (with the same phantoms): for comparing schemes.
+    pub fn energy_of(&self, grid_points: &[DQuat]) -> f64 {
+        let mut pts = self.pts.clone();
+        pts[self.first..self.first + self.grid_len].copy_from_slice(grid_points);
+        energy(&self.times, &pts)
+    }
+
+    /// Solves in place and returns the solution.
+    pub fn solve(mut self) -> Solution {
+        let report = newton(&self.times, &mut self.pts, &self.fixed);
+        Solution {
+            times: self.grid_times().to_vec(),
+            points: self.grid_points().to_vec(),
+            report,
+        }
+    }
+}
+
+/// The hermite curve sampled on a grid of `steps[i]` equal steps per segment: times, points,
+/// and which points are keys.
+fn sample_hermite(keys: &Keys, steps: &[usize]) -> (Vec<f64>, Vec<DQuat>, Vec<bool>) {
+    let total: usize = steps.iter().sum::<usize>() + 1;
+    let mut times = Vec::with_capacity(total);
+    let mut pts = Vec::with_capacity(total);
+    let mut is_key = Vec::with_capacity(total);
+    for (s, &ns) in steps.iter().enumerate() {
+        let seg = Hermite::new(keys, s, Blend::Cubic);
+        let (t0, d) = (keys.times[s], keys.delta(s));
+        times.push(t0);
+        pts.push(keys.quats[s]);
+        is_key.push(true);
+        if ns > 1 {
+            let du = 1.0 / ns as f64;
+            for (j, q) in seg.frames(du, du).take(ns - 1).enumerate() {
+                times.push(t0 + d * (j + 1) as f64 * du);
+                pts.push(q.normalize());
+                is_key.push(false);
+            }
+        }
+    }
+    times.push(*keys.times.last().expect("two keys"));
+    pts.push(*keys.quats.last().expect("two keys"));
+    is_key.push(true);
+    (times, pts, is_key)
+}
+
+/// Three-point coefficients `(α, β, γ)` of `q''` and the weight `w` for steps `hm`, `hp`.
+#[inline]
+fn stencil(hm: f64, hp: f64) -> (f64, f64, f64, f64) {
+    let s = hm + hp;
+    let a = 2.0 / (hm * s);
+    let c = 2.0 / (hp * s);
+    (a, -(a + c), c, 0.5 * s)
+}
+
+#[inline]
+fn v4(q: DQuat) -> DVec4 {
+    DVec4::new(q.x, q.y, q.z, q.w)
+}
+
+/// `E` of an extended sequence.
+pub fn energy(times: &[f64], pts: &[DQuat]) -> f64 {
+    let mut e = 0.0;
+    for p in 1..pts.len().saturating_sub(1) {
+        let (a, b, c, w) = stencil(times[p] - times[p - 1], times[p + 1] - times[p]);
+        let acc = v4(pts[p - 1]) * a + v4(pts[p]) * b + v4(pts[p + 1]) * c;
+        let q = v4(pts[p]);
+        let tang = acc - q * (acc.dot(q) / q.dot(q));
+        e += w * tang.length_squared();
+    }
+    e
+}
+
+/// Tangent basis at `q`: `i·q`, `j·q`, `k·q` (orthonormal, orthogonal to `q`).
+#[inline]
+fn basis(q: DQuat) -> [DVec4; 3] {
+    [
+        v4(DQuat::from_xyzw(1.0, 0.0, 0.0, 0.0) * q),
+        v4(DQuat::from_xyzw(0.0, 1.0, 0.0, 0.0) * q),
+        v4(DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0) * q),
+    ]
+}
+
+/// One neighbour's part of a term: unknown index, `M_a` columns, `v_a`, diagonal shift.
+type Block = (usize, [DVec4; 3], DVec3, f64);
+
+/// Assembles the exact Hessian `H` (banded) and gradient `g` of `E` in the tangent coordinates
+/// of the free points; returns `E` and the rounding-noise floor of `‖g‖`.
+///
+/// For unit `q_p`, `E_p = w(|A|² − s²)` with `A = α q_{p−1} + β q_p + γ q_{p+1}`, `s = A·q_p`.
+/// With `q_a ← exp(δ_a)·q_a = q_a + T_a δ_a − ½|δ_a|² q_a + …` (`T_a = [i q_a, j q_a, k q_a]`),
+/// `M_a = k_a T_a`, `v_a = M_aᵀ q_p` (plus `T_pᵀ A` for `a = p`), `N_a = T_p` for `a = p` else 0:
+///
+/// ```text
+/// g_a  = 2w (M_aᵀ A − s v_a)
+/// H_ab = 2w (M_aᵀ M_b − v_a v_bᵀ − s (M_aᵀ N_b + N_aᵀ M_b))
+///      + 2w (−k_a A·q_a + s k_a q_a·q_p + [a = p] s²) I   on diagonal blocks
+/// ```
+/// The noise floor: each term is a sum of parts as large as `w·(|α|+|β|+|γ|)²`, so rounding
+/// leaves about ε times that in each gradient entry.
+fn assemble(
+    times: &[f64],
+    pts: &[DQuat],
+    unknown: &[Option<usize>],
+    h: &mut Banded,
+    g: &mut [f64],
+) -> (f64, f64) {
+    h.clear();
+    g.fill(0.0);
+    let mut e = 0.0;
+    let mut floor2 = 0.0;
+    for p in 1..pts.len() - 1 {
+        let (a, b, c, w) = stencil(times[p] - times[p - 1], times[p + 1] - times[p]);
+        let q = v4(pts[p]);
+        let qs = [v4(pts[p - 1]), q, v4(pts[p + 1])];
+        let ks = [a, b, c];
+        let acc = qs[0] * a + q * b + qs[2] * c;
+        let s = acc.dot(q);
+        let tang = acc - q * s;
+        e += w * tang.length_squared();
+        let scale = w * (a.abs() + b.abs() + c.abs()).powi(2) * f64::EPSILON;
+        floor2 += scale * scale;
+        let two_w = 2.0 * w;
+        let tp = basis(pts[p]);
+        // Per neighbour: unknown index, M_a columns, v_a, diagonal shift.
+        let mut blocks: [Option<Block>; 3] = [None; 3];
+        for (slot, off) in blocks.iter_mut().zip(0..3) {
+            let Some(u) = unknown[p + off - 1] else {
+                continue;
+            };
+            let t = if off == 1 {
+                tp
+            } else {
+                basis(pts[p + off - 1])
+            };
+            let m = t.map(|col| col * ks[off]);
+            let mut v = DVec3::new(m[0].dot(q), m[1].dot(q), m[2].dot(q));
+            let mut shift = -ks[off] * acc.dot(qs[off]) + s * ks[off] * qs[off].dot(q);
+            if off == 1 {
+                v += DVec3::new(tp[0].dot(acc), tp[1].dot(acc), tp[2].dot(acc));
+                shift += s * s;
+            }
+            for i in 0..3 {
+                g[3 * u + i] += two_w * (m[i].dot(acc) - s * v[i]);
+            }
+            *slot = Some((u, m, v, shift));
+        }
+        for (ia, ba) in blocks.iter().enumerate() {
+            let Some((ua, ma, va, shift)) = ba else {
+                continue;
+            };
+            for (ib, bb) in blocks.iter().enumerate() {
+                let Some((ub, mb, vb, _)) = bb else {
+                    continue;
+                };
+                if ub > ua {
+                    continue;
+                }
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let (ri, cj) = (3 * ua + i, 3 * ub + j);
+                        if cj > ri {
+                            continue;
+                        }
+                        let mut x = ma[i].dot(mb[j]) - va[i] * vb[j];
+                        if ib == 1 {
+                            x -= s * ma[i].dot(tp[j]);
+                        }
+                        if ia == 1 {
+                            x -= s * tp[i].dot(mb[j]);
+                        }
+                        if ia == ib && i == j {
+                            x += shift;
+                        }
+                        h.add(ri, cj, two_w * x);
+                    }
+                }
+            }
+        }
+    }
+    (e, 16.0 * floor2.sqrt())
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Newton's method with a banded solve and backtracking line search (see the module docs).
+fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
+    let mut unknown = vec![None; pts.len()];
+    let mut m = 0;
+    for (p, f) in fixed.iter().enumerate() {
+        if !f {
+            unknown[p] = Some(m);
+            m += 1;
+        }
+    }
+    let e0 = energy(times, pts);
+    let mut report = Report {
+        points: pts.len(),
+        iterations: 0,
+        energy_start: e0,
+        energy: e0,
+        gradient_start: 0.0,
+        gradient: 0.0,
+        converged: true,
+    };
+    if m == 0 {
+        return report;
+    }
+    let mut h = Banded::zeros(3 * m, 8);
+    let mut g = vec![0.0; 3 * m];
+    let mut step = vec![0.0; 3 * m];
+    let mut trial = pts.to_vec();
+    let mut damping = 0.0;
+    let mut previous: Option<(Vec<DQuat>, f64)> = None;
+    let done = |gn: f64, g0: f64, floor: f64| gn <= REL_TOL * g0 || gn <= ABS_TOL.max(floor);
+    for it in 0..=MAX_ITERATIONS {
+        let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g);
+        let gn = norm(&g);
+        if it == 0 {
+            report.gradient_start = gn;
+        }
+        // A step taken without line search that did not shrink the gradient: undo it and stop.
+        if let Some((before, gn_before)) = previous.take()
+            && gn >= gn_before
+        {
+            pts.copy_from_slice(&before);
+            break;
+        }
+        report.iterations = it;
+        report.energy = e;
+        report.gradient = gn;
+        if done(gn, report.gradient_start, floor) {
+            report.converged = true;
+            return report;
+        }
+        if it == MAX_ITERATIONS {
+            break;
+        }
+        // Solve (H + μ·s·I) δ = −g (s the largest diagonal entry), raising μ only while H is
+        // not positive definite (modified Newton).
+        let diag_scale = (0..3 * m)
+            .map(|i| h.get(i, i).abs())
+            .fold(f64::MIN_POSITIVE, f64::max);
+        let factored = loop {
+            let mut hd = h.clone();
+            if damping > 0.0 {
+                for i in 0..3 * m {
+                    hd.add(i, i, damping * diag_scale);
+                }
+            }
+            if hd.cholesky() {
+                break Some(hd);
+            }
+            damping = if damping == 0.0 {
+                1e-10
+            } else {
+                damping * 10.0
+            };
+            if damping > 1e3 {
+                break None;
+            }
+        };
+        let Some(factor) = factored else { break };
+        for (s, gi) in step.iter_mut().zip(&g) {
+            *s = -gi;
+        }
+        factor.solve(&mut step);
+        let slope = step.iter().zip(&g).map(|(a, b)| a * b).sum::<f64>();
+        if -slope <= 1e-13 * e.max(f64::MIN_POSITIVE) {
+            // The predicted decrease is below what E resolves in f64: take the full step and let
+            // the gradient judge it at the next iteration.
+            previous = Some((pts.to_vec(), gn));
+            for (p, q) in pts.iter_mut().enumerate() {
+                if let Some(u) = unknown[p] {
+                    let d = DVec3::new(step[3 * u], step[3 * u + 1], step[3 * u + 2]);
+                    *q = (exp(d) * *q).normalize();
+                }
+            }
+            continue;
+        }
+        let mut t = 1.0;
+        let mut accepted = false;
+        for _ in 0..40 {
+            for (p, q) in pts.iter().enumerate() {
+                trial[p] = match unknown[p] {
+                    Some(u) => {
+                        let d = DVec3::new(step[3 * u], step[3 * u + 1], step[3 * u + 2]) * t;
+                        (exp(d) * *q).normalize()
+                    }
+                    None => *q,
+                };
+            }
+            let et = energy(times, &trial);
+            if et <= e + 1e-4 * t * slope || (et <= e && t < 1e-6) {
+                accepted = et <= e;
+                break;
+            }
+            t *= 0.5;
+        }
+        if !accepted {
+            break;
+        }
+        pts.copy_from_slice(&trial);
+        damping *= 0.1;
+        if damping < 1e-14 {
+            damping = 0.0;
+        }
+    }
+    // Out of budget, or no descent is possible any more at f64 precision.
+    let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g);
+    report.energy = e;
+    report.gradient = norm(&g);
+    report.converged = done(report.gradient, report.gradient_start, floor);
+    report
+}
+
+/// Solves the minaccel problem for a track at `fps`.
+pub fn solve(keys: &Keys, fps: f64) -> Solution {
+    Problem::new(keys, fps).solve()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::test_support::keys;
+    use crate::rotation::quat::geodesic;
+    use crate::tangent::{EndConditions, Ends};
+
+    #[test]
+    fn two_keys_give_the_geodesic() {
+        let q = [
+            DQuat::IDENTITY,
+            DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 2.0),
+        ];
+        let k = keys(&[0.0, 1.0], &q, EndConditions::default());
+        let sol = solve(&k, 30.0);
+        assert!(sol.report.converged);
+        assert!(sol.report.energy < 1e-20, "{:?}", sol.report);
+        for (t, p) in sol.times.iter().zip(&sol.points) {
+            assert!((*p - geodesic(q[0], q[1], *t)).length() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn lowers_energy_below_hermite_and_converges() {
+        let k = crate::curve::test_support::sample_keys();
+        let problem = Problem::new(&k, 30.0);
+        let start = problem.energy_of(problem.grid_points());
+        let sol = problem.solve();
+        assert!(sol.report.converged, "{:?}", sol.report);
+        assert!(sol.report.energy < start);
+        assert!(sol.report.gradient <= 1e-9 * sol.report.gradient_start);
+        for p in &sol.points {
+            assert!((p.length() - 1.0).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn rest_ends_have_phantoms() {
+        let q = [DQuat::IDENTITY, DQuat::from_rotation_z(1.0)];
+        let ends = EndConditions {
+            ends: Ends::Rest,
+            ..Default::default()
+        };
+        let k = keys(&[0.0, 1.0], &q, ends);
+        let p = Problem::new(&k, 30.0);
+        assert_eq!(p.times.len(), 31 + 2);
+        let sol = p.solve();
+        assert!(sol.report.converged, "{:?}", sol.report);
+        // Starts slowly: the first step is much shorter than the geodesic's.
+        let first = s3_angle(sol.points[0], sol.points[1]);
+        assert!(first < 0.2 * (0.5 / 30.0), "{first}");
+    }
+}
