@@ -19,6 +19,15 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
+    /// Smoothness report per track and scheme: speed, acceleration, jumps at keys, energy.
+    ///
+    /// Examples:
+    ///   inbetween analyze keys.json
+    ///   inbetween analyze keys.csv --scheme hermite,minaccel --output-format csv
+    ///   inbetween analyze keys.json --scheme squad --fps 60 --angles rad --output-format json
+    #[command(verbatim_doc_comment)]
+    Analyze(AnalyzeArgs),
+
     /// Interpolate keyframes: write every frame between the first and last key.
     ///
     /// Examples:
@@ -115,21 +124,38 @@ pub struct InterpArgs {
     #[command(flatten)]
     pub output: OutputArgs,
 
+    /// Interpolation scheme.
+    #[arg(long, value_enum, default_value = "hermite")]
+    pub scheme: SchemeArg,
+
+    #[command(flatten)]
+    pub curve: CurveArgs,
+
+    /// Add each frame's world-frame angular velocity: CSV columns wx,wy,wz (JSON
+    /// "angular_velocity"), in --angles units per second.
+    #[arg(long)]
+    pub velocity: bool,
+
+    /// Report on stderr what the minaccel solver did for each track (points, iterations, energy,
+    /// projected gradient).
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+/// Options that shape the curve (shared by interp, analyze and plot).
+#[derive(Debug, Args)]
+pub struct CurveArgs {
     /// Output frame rate: 24, 25, 30, 60, 23.976, 29.97, 59.94 (the exact /1001 ratios),
     /// 30000/1001, any positive number or ratio. Default: the document's "fps", else 30.
     #[arg(long, value_name = "RATE", value_parser = parse_fps)]
     pub fps: Option<Fps>,
-
-    /// Interpolation scheme.
-    #[arg(long, value_enum, default_value = "hermite")]
-    pub scheme: SchemeArg,
 
     /// Hermite blending function: cubic (3u²−2u³) or quadratic (2u², then 1−2(1−u)²).
     #[arg(long, value_enum, default_value = "cubic")]
     pub blend: BlendArg,
 
     /// End condition without a given velocity: chord (along the first/last chord) or rest
-    /// (zero velocity).
+    /// (zero velocity). minaccel's ends are free unless rest or a velocity is given.
     #[arg(long, value_enum, default_value = "chord")]
     pub ends: EndsArg,
 
@@ -146,11 +172,58 @@ pub struct InterpArgs {
     /// as-given: keep quaternion signs (a flipped key is reached the long way round).
     #[arg(long, value_enum, default_value = "shortest")]
     pub path: PathArg,
+}
 
-    /// Report on stderr what the minaccel solver did for each track (points, iterations, energy,
-    /// projected gradient).
-    #[arg(short, long)]
-    pub verbose: bool,
+#[derive(Debug, Args)]
+pub struct AnalyzeArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Schemes to compare: one, a comma-separated list, or all.
+    #[arg(long, value_name = "S,S…|all", value_parser = parse_schemes, default_value = "all")]
+    pub scheme: SchemeList,
+
+    #[command(flatten)]
+    pub curve: CurveArgs,
+
+    /// text (an aligned table), csv or json.
+    #[arg(long, value_enum, default_value = "text")]
+    pub output_format: ReportFormat,
+
+    /// Output file, replaced atomically; default standard output.
+    #[arg(short = 'o', long = "output", value_name = "PATH")]
+    pub output: Option<PathBuf>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum ReportFormat {
+    Text,
+    Csv,
+    Json,
+}
+
+/// A list of schemes (`--scheme hermite,squad` or `all`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SchemeList(pub Vec<SchemeArg>);
+
+fn parse_schemes(s: &str) -> Result<SchemeList, String> {
+    use clap::ValueEnum;
+    if s == "all" {
+        return Ok(SchemeList(SchemeArg::value_variants().to_vec()));
+    }
+    let mut out = Vec::new();
+    for name in s.split(',').map(str::trim) {
+        let v = SchemeArg::from_str(name, false).map_err(|_| {
+            format!(
+                "expected schemes from hermite, squad, bezier, slerp, minaccel (comma-separated) \
+                 or all, found \"{name}\""
+            )
+        })?;
+        if !out.contains(&v) {
+            out.push(v);
+        }
+    }
+    Ok(SchemeList(out))
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

@@ -16,6 +16,7 @@ use crate::curve::squad::Squad;
 use crate::curve::{Blend, Scheme, Segment, antipode_gap};
 use crate::io::write::FrameSink;
 use crate::keys::TimedTrack;
+use crate::motion::{Side, segment_omega};
 use crate::rotation::quat::geodesic;
 use crate::tangent::{EndConditions, Keys, PathMode};
 use std::io;
@@ -28,6 +29,8 @@ pub struct Settings {
     pub blend: Blend,
     pub path: PathMode,
     pub ends: EndConditions,
+    /// Compute each frame's angular velocity (SPEC: `interp --velocity`).
+    pub velocity: bool,
 }
 
 /// Tolerance for "a blend comes within 1e-9 of an antipode" (SPEC §4.3).
@@ -52,7 +55,7 @@ pub fn run(
             Scheme::Squad => track_frames::<Squad>(&keys, track, settings, sink, warn)?,
             Scheme::Bezier => track_frames::<Bezier>(&keys, track, settings, sink, warn)?,
             Scheme::MinAccel => {
-                reports.push(minaccel_frames(&keys, track, settings.fps, sink, warn)?);
+                reports.push(minaccel_frames(&keys, track, settings, sink, warn)?);
             }
         }
         sink.end_track()?;
@@ -66,10 +69,11 @@ pub fn run(
 fn minaccel_frames(
     keys: &Keys,
     track: &TimedTrack,
-    fps: Fps,
+    settings: &Settings,
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&str),
 ) -> io::Result<Report> {
+    let fps = settings.fps;
     let sol = minaccel::solve(keys, fps.as_f64());
     let r = sol.report;
     if !r.converged {
@@ -85,7 +89,17 @@ fn minaccel_frames(
             r.gradient / r.gradient_start
         ));
     }
-    let (times, pts) = (&sol.times, &sol.points);
+    let curve = crate::motion::TrackCurve::Grid {
+        times: sol.times,
+        points: sol.points,
+        key_times: keys.times.clone(),
+    };
+    let crate::motion::TrackCurve::Grid {
+        times, points: pts, ..
+    } = &curve
+    else {
+        unreachable!("built as a grid just above")
+    };
     let n = times.len();
     let (first, last) = fps.frames_between(times[0], times[n - 1]);
     let mut j = 0;
@@ -102,7 +116,19 @@ fn minaccel_frames(
             let u = ((t - times[j]) / (times[j + 1] - times[j])).clamp(0.0, 1.0);
             geodesic(pts[j], pts[j + 1], u)
         };
-        sink.frame(k, t, q)?;
+        let omega = settings.velocity.then(|| {
+            let side = if k == last { Side::Left } else { Side::Right };
+            // On a grid point, the grid point's own time (frames snap to it).
+            let tg = if (t - times[j]).abs() <= TIME_TOL {
+                times[j]
+            } else if (t - times[j + 1]).abs() <= TIME_TOL {
+                times[j + 1]
+            } else {
+                t
+            };
+            curve.omega(tg, side)
+        });
+        sink.frame(k, t, q, omega)?;
     }
     Ok(r)
 }
@@ -152,24 +178,26 @@ fn track_frames<S: Segment>(
                 settings.scheme.name()
             ));
         }
+        let delta = t1 - t0;
+        let omega = |u: f64| settings.velocity.then(|| segment_omega(&seg, u, delta));
         if (fps.time_of(k) - t0).abs() <= TIME_TOL {
-            sink.frame(k, fps.time_of(k), keys.quats[s])?;
+            sink.frame(k, fps.time_of(k), keys.quats[s], omega(0.0))?;
             k += 1;
         }
         let end_snap = last_segment && k < k_end && (fps.time_of(k_end - 1) - t1).abs() <= TIME_TOL;
         let stop = if end_snap { k_end - 1 } else { k_end };
         if stop > k {
-            let delta = t1 - t0;
             let u0 = (fps.time_of(k) - t0) / delta;
             let du = period / delta;
             for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
                 let kj = k + j as i64;
-                sink.frame(kj, fps.time_of(kj), q)?;
+                let w = omega((fps.time_of(kj) - t0) / delta);
+                sink.frame(kj, fps.time_of(kj), q, w)?;
             }
             k = stop;
         }
         if end_snap {
-            sink.frame(k, fps.time_of(k), keys.quats[n - 1])?;
+            sink.frame(k, fps.time_of(k), keys.quats[n - 1], omega(1.0))?;
             k += 1;
         }
     }

@@ -10,12 +10,14 @@
 //! - [`io`]: CSV and JSON readers and writers, atomic output.
 //! - [`cli`], [`cmd`]: the command line.
 
+pub mod analyze;
 pub mod cli;
 pub mod clock;
 pub mod cmd;
 pub mod error;
 pub mod io;
 pub mod keys;
+pub mod motion;
 pub mod rotation;
 
 pub use error::InputError;

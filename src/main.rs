@@ -13,6 +13,7 @@ fn main() -> ExitCode {
     let result = match &cli.command {
         Command::Convert(args) => inbetween::cmd::convert::run(args, &mut stdin, &mut warn),
         Command::Interp(args) => inbetween::cmd::interp::run(args, &mut stdin, &mut warn),
+        Command::Analyze(args) => inbetween::cmd::analyze::run(args, &mut stdin, &mut warn),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,8 @@
 //! One module per subcommand: validated settings from the parsed arguments, then the library.
 
+pub mod analyze;
 pub mod convert;
+pub mod curve;
 pub mod interp;
 
 use crate::cli::InputArgs;

@@ -18,7 +18,7 @@ use super::num::{NumFormat, NumWriter};
 use crate::clock::Fps;
 use crate::keys::{Document, KeyTime};
 use crate::rotation::{AngleUnit, MAX_WIDTH, QuatOrder, Repr};
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 use std::io::{self, Write};
 
 /// How rotations and numbers are written.
@@ -112,8 +112,9 @@ fn json_string(s: &str) -> String {
     serde_json::to_string(s).unwrap_or_else(|_| "\"\"".to_string())
 }
 
-/// Document-level JSON header fields shared by frames and keys output.
-fn json_head(out: &mut Vec<u8>, fps: Option<Fps>, style: &Style) {
+/// Document-level JSON header fields shared by frames and keys output. `"angles"` is written
+/// when any angle is (an angle representation, or velocities when `velocity`).
+fn json_head(out: &mut Vec<u8>, fps: Option<Fps>, style: &Style, velocity: bool) {
     out.push(b'{');
     if let Some(fps) = fps {
         if fps.den() == 1 {
@@ -123,7 +124,7 @@ fn json_head(out: &mut Vec<u8>, fps: Option<Fps>, style: &Style) {
         }
     }
     out.extend_from_slice(format!("\"rotation\": \"{}\"", style.repr).as_bytes());
-    if style.repr.has_angles() {
+    if style.repr.has_angles() || velocity {
         out.extend_from_slice(format!(", \"angles\": \"{}\"", style.angles.as_str()).as_bytes());
     }
 }
@@ -133,7 +134,8 @@ const FLUSH_AT: usize = 1 << 15;
 /// Receives the frames of `interp`, track by track.
 pub trait FrameSink {
     fn begin_track(&mut self, name: Option<&str>) -> io::Result<()>;
-    fn frame(&mut self, k: i64, time: f64, q: DQuat) -> io::Result<()>;
+    /// One frame; `omega` is the world-frame angular velocity in rad/s when it was asked for.
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()>;
     fn end_track(&mut self) -> io::Result<()>;
     /// Writes what closes the document and flushes the buffer to the writer.
     fn finish(&mut self) -> io::Result<()>;
@@ -147,14 +149,24 @@ pub struct FrameWriter<W: Write> {
     rot: RotationFormatter,
     nums: NumWriter,
     track_column: bool,
+    velocity: bool,
+    angles: AngleUnit,
     track: Vec<u8>,
     tracks_written: usize,
     frames_in_track: usize,
 }
 
 impl<W: Write> FrameWriter<W> {
-    /// `track_column`: write the CSV `track` column (several tracks, or the input named them).
-    pub fn new(w: W, format: Format, style: Style, fps: Fps, track_column: bool) -> Self {
+    /// `track_column`: write the CSV `track` column (several tracks, or the input named them);
+    /// `velocity`: write angular velocity columns `wx,wy,wz` (JSON `"angular_velocity"`).
+    pub fn new(
+        w: W,
+        format: Format,
+        style: Style,
+        fps: Fps,
+        track_column: bool,
+        velocity: bool,
+    ) -> Self {
         let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
         match format {
             Format::Csv => {
@@ -166,10 +178,13 @@ impl<W: Write> FrameWriter<W> {
                     buf.push(b',');
                     buf.extend_from_slice(c.as_bytes());
                 }
+                if velocity {
+                    buf.extend_from_slice(b",wx,wy,wz");
+                }
                 buf.push(b'\n');
             }
             Format::Json => {
-                json_head(&mut buf, Some(fps), &style);
+                json_head(&mut buf, Some(fps), &style, velocity);
                 buf.extend_from_slice(b", \"tracks\": [\n");
             }
         }
@@ -180,6 +195,8 @@ impl<W: Write> FrameWriter<W> {
             rot: RotationFormatter::new(style),
             nums: NumWriter::new(style.num),
             track_column,
+            velocity,
+            angles: style.angles,
             track: Vec::new(),
             tracks_written: 0,
             frames_in_track: 0,
@@ -235,7 +252,12 @@ impl<W: Write> FrameSink for FrameWriter<W> {
     }
 
     #[inline]
-    fn frame(&mut self, k: i64, time: f64, q: DQuat) -> io::Result<()> {
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
+        let omega = if self.velocity {
+            omega.map(|w| w.to_array().map(|x| self.angles.from_rad(x)))
+        } else {
+            None
+        };
         match self.format {
             Format::Csv => {
                 if self.track_column {
@@ -245,6 +267,12 @@ impl<W: Write> FrameSink for FrameWriter<W> {
                 self.buf.push(b',');
                 self.nums.float(&mut self.buf, time);
                 self.rot.csv(&mut self.buf, q);
+                if let Some(w) = omega {
+                    for x in w {
+                        self.buf.push(b',');
+                        self.nums.float(&mut self.buf, x);
+                    }
+                }
                 self.buf.push(b'\n');
             }
             Format::Json => {
@@ -258,6 +286,16 @@ impl<W: Write> FrameSink for FrameWriter<W> {
                 self.nums.float(&mut self.buf, time);
                 self.buf.extend_from_slice(b", ");
                 self.rot.json(&mut self.buf, q);
+                if let Some(w) = omega {
+                    self.buf.extend_from_slice(b", \"angular_velocity\": [");
+                    for (i, x) in w.iter().enumerate() {
+                        if i > 0 {
+                            self.buf.extend_from_slice(b", ");
+                        }
+                        self.nums.float(&mut self.buf, *x);
+                    }
+                    self.buf.push(b']');
+                }
                 self.buf.push(b'}');
             }
         }
@@ -343,7 +381,16 @@ pub fn write_keys<W: Write>(
             }
         }
         Format::Json => {
-            json_head(&mut buf, all_frames.then_some(frame_fps), &style);
+            let velocities = doc
+                .tracks
+                .iter()
+                .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some());
+            json_head(
+                &mut buf,
+                all_frames.then_some(frame_fps),
+                &style,
+                velocities,
+            );
             let vel = |buf: &mut Vec<u8>, nums: &mut NumWriter, name: &str, v: glam::DVec3| {
                 buf.extend_from_slice(format!(", \"{name}\": [").as_bytes());
                 for (i, x) in v.to_array().iter().enumerate() {

@@ -1,6 +1,7 @@
 //! One integration target: conventions against scipy tables, the binary's golden files, error
 //! messages, and property tests.
 
+mod analyze;
 mod conventions;
 mod errors;
 mod golden;

@@ -28,7 +28,7 @@ impl FrameSink for Collect {
     fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
         Ok(())
     }
-    fn frame(&mut self, k: i64, time: f64, q: DQuat) -> io::Result<()> {
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, _omega: Option<DVec3>) -> io::Result<()> {
         self.frames.push((k, time, q));
         Ok(())
     }
@@ -70,6 +70,7 @@ pub fn settings(scheme: Scheme, fps: &str, ends: EndConditions) -> Settings {
         blend: Blend::Cubic,
         path: PathMode::Shortest,
         ends,
+        velocity: false,
     }
 }
 

@@ -1,0 +1,225 @@
+//! `analyze`: smoothness figures of a track's curve, per scheme, for choosing a scheme and for
+//! gating regressions.
+//!
+//! | field | meaning | unit |
+//! |---|---|---|
+//! | `duration` | `t_n − t_1` | s |
+//! | `angle` | total angle travelled, `∫|ω| dt` (Simpson, ≥ 8 samples per frame interval) | angle |
+//! | `max_speed`, `mean_speed` | largest `|ω|` over the samples; `angle / duration` | angle/s |
+//! | `max_accel` | largest `|α|` over the samples | angle/s² |
+//! | `c1_jump` | largest `|ω(t_k⁺) − ω(t_k⁻)|` over interior keys (C¹ defect) | angle/s |
+//! | `c2_jump` | largest `|α(t_k⁺) − α(t_k⁻)|` over interior keys (C² defect) | angle/s² |
+//! | `energy` | Barr's discrete `E = Σ w_p |q_p'' ∖ q_p|²` over the frames at `--fps` | (S³ units)²/s³ |
+//!
+//! ω and α are world-frame angular velocity and acceleration ([`crate::motion`]); "angle" is
+//! `--angles` (degrees by default).
+
+use crate::clock::Fps;
+use crate::curve::minaccel::{Report, energy};
+use crate::curve::{Blend, Scheme};
+use crate::keys::TimedTrack;
+use crate::motion::{Side, TrackCurve};
+use crate::rotation::AngleUnit;
+use crate::tangent::{EndConditions, Keys, PathMode};
+use glam::DQuat;
+use std::fmt::Write as _;
+
+/// The figures of one track and scheme (angles in radians).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Metrics {
+    pub track: Option<String>,
+    pub scheme: Scheme,
+    pub duration: f64,
+    pub angle: f64,
+    pub max_speed: f64,
+    pub mean_speed: f64,
+    pub max_accel: f64,
+    pub c1_jump: f64,
+    pub c2_jump: f64,
+    pub energy: f64,
+    /// minaccel's solver report.
+    pub solver: Option<Report>,
+}
+
+/// Options that shape the curve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveOptions {
+    pub blend: Blend,
+    pub path: PathMode,
+    pub ends: EndConditions,
+    pub fps: Fps,
+}
+
+/// Samples per frame interval for the integrals and maxima.
+const SAMPLES_PER_FRAME: f64 = 8.0;
+
+/// Computes the figures of `track` under `scheme`.
+pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Metrics {
+    let keys = Keys::new(track, opts.path, opts.ends);
+    let (curve, solver) = TrackCurve::new(keys, scheme, opts.blend, opts.fps);
+    let b = curve.breaks().to_vec();
+    let fps = opts.fps.as_f64();
+    let (mut angle, mut max_speed, mut max_accel) = (0.0, 0.0f64, 0.0f64);
+    for i in 0..b.len() - 1 {
+        let (t0, t1) = (b[i], b[i + 1]);
+        // Simpson over the piece, an even number of intervals.
+        let m = (((t1 - t0) * fps * SAMPLES_PER_FRAME).ceil() as usize)
+            .max(2)
+            .div_ceil(2)
+            * 2;
+        let h = (t1 - t0) / m as f64;
+        let mut integral = 0.0;
+        for j in 0..=m {
+            let t = t0 + j as f64 * h;
+            let side = if j == m { Side::Left } else { Side::Right };
+            let speed = curve.omega(t, side).length();
+            let weight = if j == 0 || j == m {
+                1.0
+            } else if j % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
+            integral += weight * speed;
+            max_speed = max_speed.max(speed);
+            max_accel = max_accel.max(curve.alpha(t, side).length());
+        }
+        angle += integral * h / 3.0;
+    }
+    let keys = curve.key_times().to_vec();
+    let (mut c1, mut c2) = (0.0f64, 0.0f64);
+    for &tk in &keys[1..keys.len() - 1] {
+        c1 = c1.max((curve.omega(tk, Side::Right) - curve.omega(tk, Side::Left)).length());
+        c2 = c2.max((curve.alpha(tk, Side::Right) - curve.alpha(tk, Side::Left)).length());
+    }
+    let (first, last) = opts.fps.frames_between(keys[0], keys[keys.len() - 1]);
+    let (times, pts): (Vec<f64>, Vec<DQuat>) = (first..=last)
+        .map(|k| {
+            let t = opts.fps.time_of(k);
+            (t, curve.eval(t))
+        })
+        .unzip();
+    let duration = keys[keys.len() - 1] - keys[0];
+    Metrics {
+        track: track.name.clone(),
+        scheme,
+        duration,
+        angle,
+        max_speed,
+        mean_speed: angle / duration,
+        max_accel,
+        c1_jump: c1,
+        c2_jump: c2,
+        energy: if times.len() >= 3 {
+            energy(&times, &pts)
+        } else {
+            0.0
+        },
+        solver,
+    }
+}
+
+/// Column names of the csv and json output, in order.
+pub const FIELDS: [&str; 10] = [
+    "track",
+    "scheme",
+    "duration",
+    "angle",
+    "max_speed",
+    "mean_speed",
+    "max_accel",
+    "c1_jump",
+    "c2_jump",
+    "energy",
+];
+
+impl Metrics {
+    /// The numeric fields in `unit` (after `track` and `scheme`).
+    pub fn values(&self, unit: AngleUnit) -> [f64; 8] {
+        let a = |x: f64| unit.from_rad(x);
+        [
+            self.duration,
+            a(self.angle),
+            a(self.max_speed),
+            a(self.mean_speed),
+            a(self.max_accel),
+            a(self.c1_jump),
+            a(self.c2_jump),
+            self.energy,
+        ]
+    }
+}
+
+/// An aligned table for a terminal, with units in the header.
+pub fn text_table(rows: &[Metrics], unit: AngleUnit) -> String {
+    let u = unit.as_str();
+    let header = [
+        "track".to_string(),
+        "scheme".to_string(),
+        "duration s".to_string(),
+        format!("angle {u}"),
+        format!("max speed {u}/s"),
+        format!("mean speed {u}/s"),
+        format!("max accel {u}/s²"),
+        format!("C¹ jump {u}/s"),
+        format!("C² jump {u}/s²"),
+        "energy E".to_string(),
+    ];
+    let mut cells: Vec<Vec<String>> = vec![header.to_vec()];
+    for r in rows {
+        let mut row = vec![
+            r.track.clone().unwrap_or_else(|| "-".into()),
+            r.scheme.name().to_string(),
+        ];
+        row.extend(r.values(unit).iter().map(|x| format_sig(*x)));
+        cells.push(row);
+    }
+    let widths: Vec<usize> = (0..header.len())
+        .map(|c| {
+            cells
+                .iter()
+                .map(|r| r[c].chars().count())
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    let mut out = String::new();
+    for row in &cells {
+        for (c, cell) in row.iter().enumerate() {
+            let pad = widths[c] - cell.chars().count();
+            if c < 2 {
+                let _ = write!(out, "{cell}{}", " ".repeat(pad));
+            } else {
+                let _ = write!(out, "{}{cell}", " ".repeat(pad));
+            }
+            out.push_str(if c + 1 < row.len() { "  " } else { "\n" });
+        }
+    }
+    out
+}
+
+/// Six significant digits, without exponent for ordinary magnitudes.
+fn format_sig(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let mag = x.abs().log10().floor() as i32;
+    if !(-4..9).contains(&mag) {
+        return format!("{x:.5e}");
+    }
+    let decimals = (5 - mag).max(0) as usize;
+    format!("{x:.decimals$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sig_format() {
+        assert_eq!(format_sig(123.456789), "123.457");
+        assert_eq!(format_sig(0.001234567), "0.00123457");
+        assert_eq!(format_sig(1.5e-9), "1.50000e-9");
+        assert_eq!(format_sig(0.0), "0");
+    }
+}
