@@ -28,6 +28,16 @@ pub enum Command {
     #[command(verbatim_doc_comment)]
     Analyze(AnalyzeArgs),
 
+    /// SVG chart of angular speed (or velocity components, or accumulated energy) over time,
+    /// schemes side by side, keys marked.
+    ///
+    /// Examples:
+    ///   inbetween plot keys.json -o speed.svg
+    ///   inbetween plot keys.csv --scheme slerp,hermite,minaccel --what components -o w.svg
+    ///   inbetween plot rig.json --track hip --what energy -o energy.svg
+    #[command(verbatim_doc_comment)]
+    Plot(PlotArgs),
+
     /// Interpolate keyframes: write every frame between the first and last key.
     ///
     /// Examples:
@@ -193,6 +203,38 @@ pub struct AnalyzeArgs {
     /// Output file, replaced atomically; default standard output.
     #[arg(short = 'o', long = "output", value_name = "PATH")]
     pub output: Option<PathBuf>,
+}
+
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Schemes to draw: one, a comma-separated list, or all.
+    #[arg(long, value_name = "S,S…|all", value_parser = parse_schemes, default_value = "all")]
+    pub scheme: SchemeList,
+
+    /// speed (|ω| over time), components (ωx, ωy, ωz), or energy (accumulated E).
+    #[arg(long, value_enum, default_value = "speed")]
+    pub what: WhatArg,
+
+    /// The track to draw (default: the first).
+    #[arg(long, value_name = "NAME")]
+    pub track: Option<String>,
+
+    #[command(flatten)]
+    pub curve: CurveArgs,
+
+    /// The SVG file to write (replaced atomically), or - for standard output.
+    #[arg(short = 'o', long = "output", value_name = "FILE.svg")]
+    pub output: PathBuf,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum WhatArg {
+    Speed,
+    Components,
+    Energy,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

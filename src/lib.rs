@@ -18,6 +18,7 @@ pub mod error;
 pub mod io;
 pub mod keys;
 pub mod motion;
+pub mod plot;
 pub mod rotation;
 
 pub use error::InputError;

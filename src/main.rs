@@ -14,6 +14,7 @@ fn main() -> ExitCode {
         Command::Convert(args) => inbetween::cmd::convert::run(args, &mut stdin, &mut warn),
         Command::Interp(args) => inbetween::cmd::interp::run(args, &mut stdin, &mut warn),
         Command::Analyze(args) => inbetween::cmd::analyze::run(args, &mut stdin, &mut warn),
+        Command::Plot(args) => inbetween::cmd::plot::run(args, &mut stdin, &mut warn),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -4,6 +4,7 @@ pub mod analyze;
 pub mod convert;
 pub mod curve;
 pub mod interp;
+pub mod plot;
 
 use crate::cli::InputArgs;
 use crate::error::InputError;

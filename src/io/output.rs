@@ -29,10 +29,19 @@ impl Output {
                     Some(d) if !d.as_os_str().is_empty() => d,
                     _ => Path::new("."),
                 };
-                let tmp = tempfile::Builder::new()
-                    .prefix(".inbetween-")
-                    .suffix(".tmp")
-                    .tempfile_in(dir)?;
+                let mut builder = tempfile::Builder::new();
+                builder.prefix(".inbetween-").suffix(".tmp");
+                // tempfile creates 0600 files; an output file should get what any program's
+                // output gets (0666 less the umask), or keep the mode of the file it replaces.
+                #[cfg(unix)]
+                {
+                    use std::os::unix::fs::PermissionsExt;
+                    builder.permissions(std::fs::Permissions::from_mode(0o666));
+                }
+                let tmp = builder.tempfile_in(dir)?;
+                if let Ok(meta) = std::fs::metadata(p) {
+                    tmp.as_file().set_permissions(meta.permissions())?;
+                }
                 Ok(Output::File {
                     writer: BufWriter::with_capacity(BUF, tmp),
                     target: p.to_path_buf(),

@@ -7,6 +7,7 @@ mod errors;
 mod golden;
 mod hard_cases;
 mod minaccel;
+mod plot;
 mod properties;
 mod roundtrip;
 mod support;
