@@ -2,8 +2,8 @@
 //! into validated library types here, so a bad value is a usage error (exit 2) naming the flag.
 
 use crate::clock::Fps;
-use crate::io::Format;
 use crate::io::num::{MAX_PRECISION, NumFormat};
+use crate::io::{Format, OutputFormat};
 use crate::rotation::{AngleUnit, QuatOrder, Repr};
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -92,9 +92,10 @@ pub struct OutputArgs {
     #[arg(long, value_name = "REPR", value_parser = parse_repr, default_value = "quat")]
     pub to: Repr,
 
-    /// Output format; by default the input's.
-    #[arg(long, value_name = "F", value_parser = parse_format)]
-    pub output_format: Option<Format>,
+    /// Output format: csv, json, or (interp only) npy, a NumPy array of float64 rows; by
+    /// default the input's format.
+    #[arg(long, value_name = "F", value_parser = parse_output_format)]
+    pub output_format: Option<OutputFormat>,
 
     /// Output file, replaced atomically (nothing is written on error); default standard output.
     #[arg(short = 'o', long = "output", value_name = "PATH")]
@@ -321,6 +322,10 @@ fn parse_angles(s: &str) -> Result<AngleUnit, String> {
 
 fn parse_quat_order(s: &str) -> Result<QuatOrder, String> {
     QuatOrder::parse(s).map_err(|e| e.0)
+}
+
+fn parse_output_format(s: &str) -> Result<OutputFormat, String> {
+    OutputFormat::parse(s).map_err(|e| e.0)
 }
 
 fn parse_format(s: &str) -> Result<Format, String> {

@@ -2,6 +2,7 @@
 
 use crate::cli::ConvertArgs;
 use crate::clock::Fps;
+use crate::io::OutputFormat;
 use crate::io::output::Output;
 use crate::io::write::{Style, write_keys};
 use std::io::Read;
@@ -21,7 +22,17 @@ pub fn run(
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
     }
-    let format = args.output.output_format.unwrap_or(in_format);
+    let format = match args.output.output_format {
+        None => in_format,
+        Some(OutputFormat::Doc(f)) => f,
+        Some(OutputFormat::Npy) => {
+            return Err(crate::input_err!(
+                "--output-format npy: convert writes keyframe documents (csv or json); npy is \
+                 for interp's frames"
+            )
+            .into());
+        }
+    };
     if format == crate::io::Format::Csv
         && doc
             .tracks

@@ -2,6 +2,8 @@
 
 use crate::cli::InterpArgs;
 use crate::interp::{Settings, run as interpolate};
+use crate::io::OutputFormat;
+use crate::io::npy::NpyWriter;
 use crate::io::output::Output;
 use crate::io::write::{FrameWriter, Style};
 use std::io::Read;
@@ -24,7 +26,10 @@ pub fn run(
         ends: opts.ends,
         velocity: args.velocity,
     };
-    let format = args.output.output_format.unwrap_or(in_format);
+    let format = args
+        .output
+        .output_format
+        .unwrap_or(OutputFormat::Doc(in_format));
     let style = Style {
         repr: args.output.to,
         angles: unit,
@@ -33,9 +38,27 @@ pub fn run(
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
     let out = Output::open(args.output.output.as_deref())?;
-    let mut writer = FrameWriter::new(out, format, style, opts.fps, track_column, args.velocity);
-    let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
-    writer.into_inner().commit()?;
+    let reports = if let OutputFormat::Doc(format) = format {
+        let mut writer =
+            FrameWriter::new(out, format, style, opts.fps, track_column, args.velocity);
+        let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
+        writer.into_inner().commit()?;
+        reports
+    } else {
+        let rows: u64 = tracks
+            .iter()
+            .map(|t| {
+                let (a, b) = opts
+                    .fps
+                    .frames_between(t.times[0], t.times[t.times.len() - 1]);
+                (b - a + 1).max(0) as u64
+            })
+            .sum();
+        let mut writer = NpyWriter::new(out, style, rows, track_column, args.velocity);
+        let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
+        writer.into_inner().commit()?;
+        reports
+    };
     if args.verbose {
         for (track, r) in tracks.iter().zip(&reports) {
             let name = track.name.as_deref().unwrap_or("-");

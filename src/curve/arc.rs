@@ -144,15 +144,23 @@ pub struct ArcSteps {
     s: f64,
 }
 
+impl ArcSteps {
+    /// The next point (the iterator never ends).
+    #[inline(always)]
+    pub fn next_point(&mut self) -> DQuat {
+        let out = self.q;
+        self.q += self.d;
+        self.d -= self.q * self.s;
+        out
+    }
+}
+
 impl Iterator for ArcSteps {
     type Item = DQuat;
 
     #[inline(always)]
     fn next(&mut self) -> Option<DQuat> {
-        let out = self.q;
-        self.q += self.d;
-        self.d -= self.q * self.s;
-        Some(out)
+        Some(self.next_point())
     }
 }
 

@@ -16,6 +16,7 @@
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
 use super::arc::{Arc, ArcSteps};
+use super::blend4::{geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Keys;
@@ -29,7 +30,8 @@ pub struct Bezier {
     r2: Arc,
 }
 
-/// Bézier in-betweens.
+/// Bézier in-betweens: the three first-level arcs by forward differences, the three blends four
+/// frames at a time ([`super::blend4`]).
 #[derive(Debug, Clone)]
 pub struct BezierFrames {
     r0: ArcSteps,
@@ -38,6 +40,8 @@ pub struct BezierFrames {
     u0: f64,
     du: f64,
     j: f64,
+    buf: [DQuat; 4],
+    pos: usize,
 }
 
 #[inline]
@@ -50,10 +54,21 @@ impl Iterator for BezierFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        let (a, b, c) = (self.r0.next()?, self.r1.next()?, self.r2.next()?);
-        let u = self.u0 + self.j * self.du;
-        self.j += 1.0;
-        Some(casteljau(a, b, c, u))
+        if self.pos == 4 {
+            let (a, b, c) = (
+                steps4(&mut self.r0),
+                steps4(&mut self.r1),
+                steps4(&mut self.r2),
+            );
+            let u = params4(self.u0, self.du, self.j, |u| u);
+            let s0 = geodesic4(a, b, u);
+            let s1 = geodesic4(b, c, u);
+            self.buf = geodesic4(s0, s1, u).to_quats();
+            self.j += 4.0;
+            self.pos = 0;
+        }
+        self.pos += 1;
+        Some(self.buf[self.pos - 1])
     }
 }
 
@@ -79,6 +94,8 @@ impl Segment for Bezier {
             u0,
             du,
             j: 0.0,
+            buf: [DQuat::IDENTITY; 4],
+            pos: 4,
         }
     }
 

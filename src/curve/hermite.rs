@@ -19,6 +19,7 @@
 //!   per segment) is ill defined; the tool warns (SPEC §4.3).
 
 use super::arc::{Arc, ArcSteps};
+use super::blend4::{geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Keys;
@@ -33,7 +34,8 @@ pub struct Hermite {
     blend: Blend,
 }
 
-/// Hermite in-betweens: both arcs by forward differences, the blend per frame.
+/// Hermite in-betweens: both arcs by forward differences, the blends four frames at a time
+/// ([`super::blend4`]).
 #[derive(Debug, Clone)]
 pub struct HermiteFrames {
     c1: ArcSteps,
@@ -42,6 +44,8 @@ pub struct HermiteFrames {
     du: f64,
     j: f64,
     blend: Blend,
+    buf: [DQuat; 4],
+    pos: usize,
 }
 
 impl Iterator for HermiteFrames {
@@ -49,11 +53,17 @@ impl Iterator for HermiteFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        let a = self.c1.next()?;
-        let b = self.c2.next()?;
-        let u = self.u0 + self.j * self.du;
-        self.j += 1.0;
-        Some(geodesic(a, b, self.blend.f(u)))
+        if self.pos == 4 {
+            let a = steps4(&mut self.c1);
+            let b = steps4(&mut self.c2);
+            let blend = self.blend;
+            let f = params4(self.u0, self.du, self.j, |u| blend.f(u));
+            self.buf = geodesic4(a, b, f).to_quats();
+            self.j += 4.0;
+            self.pos = 0;
+        }
+        self.pos += 1;
+        Some(self.buf[self.pos - 1])
     }
 }
 
@@ -81,6 +91,8 @@ impl Segment for Hermite {
             du,
             j: 0.0,
             blend: self.blend,
+            buf: [DQuat::IDENTITY; 4],
+            pos: 4,
         }
     }
 

@@ -13,6 +13,7 @@
 pub mod arc;
 pub mod banded;
 pub mod bezier;
+pub mod blend4;
 pub mod hermite;
 pub mod minaccel;
 pub mod slerp;

@@ -21,6 +21,7 @@
 //!   and the curve is not C¹ there; the tool says so on stderr.
 
 use super::arc::{Arc, ArcSteps};
+use super::blend4::{geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::{exp, geodesic};
 use crate::tangent::{Keys, step};
@@ -72,7 +73,8 @@ fn b_point(k: &Keys, i: usize) -> DQuat {
     exp(b_exponent(k, i)) * k.quats[i]
 }
 
-/// Squad in-betweens: both arcs by forward differences, the blend per frame.
+/// Squad in-betweens: both arcs by forward differences, the blends four frames at a time
+/// ([`super::blend4`]).
 #[derive(Debug, Clone)]
 pub struct SquadFrames {
     outer: ArcSteps,
@@ -80,6 +82,8 @@ pub struct SquadFrames {
     u0: f64,
     du: f64,
     j: f64,
+    buf: [DQuat; 4],
+    pos: usize,
 }
 
 impl Iterator for SquadFrames {
@@ -87,11 +91,16 @@ impl Iterator for SquadFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        let a = self.outer.next()?;
-        let b = self.inner.next()?;
-        let u = self.u0 + self.j * self.du;
-        self.j += 1.0;
-        Some(geodesic(a, b, 2.0 * u * (1.0 - u)))
+        if self.pos == 4 {
+            let a = steps4(&mut self.outer);
+            let b = steps4(&mut self.inner);
+            let f = params4(self.u0, self.du, self.j, |u| 2.0 * u * (1.0 - u));
+            self.buf = geodesic4(a, b, f).to_quats();
+            self.j += 4.0;
+            self.pos = 0;
+        }
+        self.pos += 1;
+        Some(self.buf[self.pos - 1])
     }
 }
 
@@ -123,6 +132,8 @@ impl Segment for Squad {
             u0,
             du,
             j: 0.0,
+            buf: [DQuat::IDENTITY; 4],
+            pos: 4,
         }
     }
 

@@ -3,6 +3,7 @@
 
 pub mod csv;
 pub mod json;
+pub mod npy;
 pub mod num;
 pub mod output;
 pub mod write;
@@ -46,6 +47,24 @@ impl Format {
             Format::Json
         } else {
             Format::Csv
+        }
+    }
+}
+
+/// Output format of a command: a document format, or NumPy `.npy` (interp's frames only).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    Doc(Format),
+    Npy,
+}
+
+impl OutputFormat {
+    pub fn parse(s: &str) -> InputResult<OutputFormat> {
+        match s {
+            "npy" => Ok(OutputFormat::Npy),
+            _ => Format::parse(s)
+                .map(OutputFormat::Doc)
+                .map_err(|_| input_err!("expected \"csv\", \"json\" or \"npy\", found \"{s}\"")),
         }
     }
 }

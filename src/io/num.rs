@@ -38,16 +38,84 @@ impl NumWriter {
         match self.format {
             // `+ 0.0` turns −0 into 0: a sign on zero carries no information here.
             NumFormat::Shortest => out.extend_from_slice(self.zmij.format(x + 0.0).as_bytes()),
-            NumFormat::Fixed(n) => {
-                use std::io::Write;
-                let _ = write!(out, "{x:.n$}");
-            }
+            NumFormat::Fixed(n) => fixed(out, x, n, &mut self.itoa),
         }
     }
 
     #[inline]
     pub fn int(&mut self, out: &mut Vec<u8>, k: i64) {
         out.extend_from_slice(self.itoa.format(k).as_bytes());
+    }
+}
+
+/// Appends `x` with exactly `n` digits after the point: the same bytes as `format!("{x:.n$}")`
+/// (the exact binary value rounded half to even, `-` kept on negative values and −0), without
+/// its generic machinery.
+///
+/// `x = m·2^e` exactly (`m` < 2⁵³), so `x·10ⁿ = m·10ⁿ·2^e`; for `e < 0` and `n ≤ 17` the product
+/// `m·10ⁿ < 2¹¹⁰` fits a `u128`, and the rounded quotient by `2^−e` is one shift and one
+/// comparison. Other values (|x| ≥ 2⁵², non-finite) go through `format!`.
+#[inline]
+pub fn fixed(out: &mut Vec<u8>, x: f64, n: usize, ints: &mut itoa::Buffer) {
+    const POW10: [u128; 18] = [
+        1,
+        10,
+        100,
+        1_000,
+        10_000,
+        100_000,
+        1_000_000,
+        10_000_000,
+        100_000_000,
+        1_000_000_000,
+        10_000_000_000,
+        100_000_000_000,
+        1_000_000_000_000,
+        10_000_000_000_000,
+        100_000_000_000_000,
+        1_000_000_000_000_000,
+        10_000_000_000_000_000,
+        100_000_000_000_000_000,
+    ];
+    let bits = x.to_bits();
+    let exp_bits = ((bits >> 52) & 0x7ff) as i32;
+    if n > 17 || exp_bits >= 1023 + 52 || exp_bits == 0x7ff {
+        use std::io::Write;
+        let _ = write!(out, "{x:.n$}");
+        return;
+    }
+    let frac = bits & ((1u64 << 52) - 1);
+    let (m, e) = if exp_bits == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), exp_bits - 1075)
+    };
+    // e < 0 here: x·10ⁿ = m·10ⁿ / 2^s.
+    let s = (-e) as u32;
+    let prod = m as u128 * POW10[n];
+    let q = if s >= 128 {
+        0
+    } else {
+        let q = prod >> s;
+        let rem = prod & ((1u128 << s) - 1);
+        let half = 1u128 << (s - 1);
+        if rem > half || (rem == half && q & 1 == 1) {
+            q + 1
+        } else {
+            q
+        }
+    };
+    if x.is_sign_negative() {
+        out.push(b'-');
+    }
+    let int_part = q / POW10[n];
+    out.extend_from_slice(ints.format(int_part as u64).as_bytes());
+    if n > 0 {
+        out.push(b'.');
+        let frac_part = (q % POW10[n]) as u64;
+        let digits = ints.format(frac_part).as_bytes();
+        out.extend(std::iter::repeat_n(b'0', n - digits.len()));
+        out.extend_from_slice(digits);
     }
 }
 
@@ -67,6 +135,62 @@ mod tests {
             assert_eq!(fmt(NumFormat::Shortest, x).parse::<f64>().unwrap(), x);
         }
         assert_eq!(fmt(NumFormat::Shortest, 0.5), "0.5");
+    }
+
+    #[test]
+    fn fixed_matches_format_exactly() {
+        // A deterministic spread: quaternion-like values, halfway cases, tiny and large
+        // magnitudes, negative zero, subnormals.
+        let mut vals = vec![
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            1.5,
+            2.5,
+            0.125,
+            0.0625,
+            1e-300,
+            -1e-300,
+            5e-324,
+            4.5e15,
+            -4.5e15,
+            123456.789,
+            std::f64::consts::FRAC_1_SQRT_2,
+            -std::f64::consts::FRAC_1_SQRT_2,
+            1e-10,
+            0.05,
+            0.15,
+            0.25,
+            0.35,
+            9.9999999995,
+            999999.9999999995,
+        ];
+        let mut state = 0x2545F4914F6CDD1Du64;
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let mantissa = (state >> 11) as f64 / (1u64 << 53) as f64;
+            let scale = 10f64.powi((state % 24) as i32 - 12);
+            vals.push((mantissa - 0.5) * 2.0 * scale);
+            vals.push(f64::from_bits(state >> 2));
+        }
+        let mut ints = itoa::Buffer::new();
+        for &x in &vals {
+            if !x.is_finite() {
+                continue;
+            }
+            for n in 0..=17 {
+                let mut out = Vec::new();
+                fixed(&mut out, x, n, &mut ints);
+                assert_eq!(
+                    String::from_utf8(out).unwrap(),
+                    format!("{x:.n$}"),
+                    "{x:e} n={n}"
+                );
+            }
+        }
     }
 
     #[test]
