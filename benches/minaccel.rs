@@ -33,13 +33,13 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("minaccel");
     // 32 points per 1 s interval: 6·32 + 1 = 193 grid points.
     g.bench_function("figure7_193_points", |b| {
-        b.iter(|| black_box(solve(black_box(&keys), 32.0)))
+        b.iter(|| black_box(solve(black_box(&keys), 32.0).unwrap()))
     });
     for points in [1_000usize, 10_000, 100_000] {
         let fps = (points as f64 / 6.0).ceil();
         g.sample_size(if points >= 100_000 { 10 } else { 20 });
         g.bench_with_input(BenchmarkId::new("grid_points", points), &fps, |b, &fps| {
-            b.iter(|| black_box(solve(black_box(&keys), fps)))
+            b.iter(|| black_box(solve(black_box(&keys), fps).unwrap()))
         });
     }
     g.finish();

@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     for track in doc.timed_tracks(doc.fps.unwrap_or(Fps::new(30, 1)?))? {
         let keys = Keys::new(&track, PathMode::Shortest, EndConditions::default());
-        let problem = Problem::new(&keys, fps);
+        let problem = Problem::new(&keys, fps)?;
         let grid = problem.grid_times().to_vec();
         println!("track {:?}: {} grid points", track.name, grid.len());
         for scheme in [

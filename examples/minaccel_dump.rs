@@ -29,7 +29,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..Default::default()
     };
     let keys = Keys::new(&tracks[0], PathMode::Shortest, ends);
-    let sol = solve(&keys, fps);
+    let sol = solve(&keys, fps)?;
     let pts: Vec<[f64; 4]> = sol.points.iter().map(|q| [q.w, q.x, q.y, q.z]).collect();
     println!(
         "{}",

@@ -17,6 +17,7 @@
 use crate::clock::Fps;
 use crate::curve::minaccel::{Report, energy};
 use crate::curve::{Blend, Scheme};
+use crate::error::InputResult;
 use crate::keys::TimedTrack;
 use crate::motion::{Side, TrackCurve};
 use crate::rotation::AngleUnit;
@@ -54,9 +55,9 @@ pub struct CurveOptions {
 const SAMPLES_PER_FRAME: f64 = 8.0;
 
 /// Computes the figures of `track` under `scheme`.
-pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Metrics {
+pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> InputResult<Metrics> {
     let keys = Keys::new(track, opts.path, opts.ends);
-    let (curve, solver) = TrackCurve::new(keys, scheme, opts.blend, opts.fps);
+    let (curve, solver) = TrackCurve::new(keys, scheme, opts.blend, opts.fps)?;
     let b = curve.breaks().to_vec();
     let fps = opts.fps.as_f64();
     let (mut angle, mut max_speed, mut max_accel) = (0.0, 0.0f64, 0.0f64);
@@ -100,7 +101,7 @@ pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Metri
         })
         .unzip();
     let duration = keys[keys.len() - 1] - keys[0];
-    Metrics {
+    Ok(Metrics {
         track: track.name.clone(),
         scheme,
         duration,
@@ -116,7 +117,7 @@ pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Metri
             0.0
         },
         solver,
-    }
+    })
 }
 
 /// Column names of the csv and json output, in order.

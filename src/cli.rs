@@ -123,7 +123,7 @@ pub struct ConvertArgs {
 
     /// Rate of `frame` values in documents that do not give one (JSON "fps" wins for its own
     /// frames): 24, 29.97, 30000/1001, ...
-    #[arg(long, value_name = "RATE", value_parser = parse_fps)]
+    #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
     pub fps: Option<Fps>,
 }
 
@@ -158,7 +158,7 @@ pub struct InterpArgs {
 pub struct CurveArgs {
     /// Output frame rate: 24, 25, 30, 60, 23.976, 29.97, 59.94 (the exact /1001 ratios),
     /// 30000/1001, any positive number or ratio. Default: the document's "fps", else 30.
-    #[arg(long, value_name = "RATE", value_parser = parse_fps)]
+    #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
     pub fps: Option<Fps>,
 
     /// Hermite blending function: cubic (3u²−2u³) or quadratic (2u², then 1−2(1−u)²).

@@ -33,9 +33,11 @@ impl Fps {
     /// `num/den` frames per second; both positive.
     pub fn new(num: u64, den: u64) -> InputResult<Fps> {
         if num == 0 || den == 0 {
-            return Err(input_err!(
-                "expected a positive frame rate, found {num}/{den}"
-            ));
+            return Err(if den == 1 {
+                input_err!("expected a positive frame rate, found {num}")
+            } else {
+                input_err!("expected a positive frame rate, found {num}/{den}")
+            });
         }
         let g = gcd(num, den);
         let fps = Fps {

@@ -29,6 +29,16 @@ impl InputError {
     }
 }
 
+/// A number for a message: plain digits for ordinary magnitudes, exponent notation for very small
+/// or large ones (Rust's `{}` would print 5e-324 with 323 zeros).
+pub fn num(x: f64) -> String {
+    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) || !x.is_finite() {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 /// Shorthand for results whose error is an [`InputError`].
 pub type InputResult<T> = Result<T, InputError>;
 

@@ -38,13 +38,15 @@ pub const ANTIPODE_TOL: f64 = 1e-9;
 
 /// Interpolates every track into `sink`. Warnings (antipodal blends, a solver that did not
 /// converge) go to `warn`. Returns the minaccel solver's report of each track (empty for the
-/// other schemes).
+/// other schemes). Errors: the sink's I/O errors, and an [`crate::InputError`] when minaccel
+/// cannot solve a track (its grid would be too large) — possibly after earlier tracks were
+/// written, which is why `-o` output is atomic.
 pub fn run(
     tracks: &[TimedTrack],
     settings: &Settings,
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&str),
-) -> io::Result<Vec<Report>> {
+) -> anyhow::Result<Vec<Report>> {
     let mut reports = Vec::new();
     for track in tracks {
         let keys = Keys::new(track, settings.path, settings.ends);
@@ -72,9 +74,12 @@ fn minaccel_frames(
     settings: &Settings,
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&str),
-) -> io::Result<Report> {
+) -> anyhow::Result<Report> {
     let fps = settings.fps;
-    let sol = minaccel::solve(keys, fps.as_f64());
+    let sol = minaccel::solve(keys, fps.as_f64()).map_err(|e| match &track.name {
+        Some(n) => e.at(format!("track \"{n}\"")),
+        None => e,
+    })?;
     let r = sol.report;
     if !r.converged {
         let name = track
@@ -105,7 +110,8 @@ fn minaccel_frames(
     let mut j = 0;
     for k in first..=last {
         let t = fps.time_of(k);
-        while j + 2 < n && t >= times[j + 1] - TIME_TOL {
+        // The next grid interval once within 1e-9 s of its start, unless nearer this one's.
+        while j + 2 < n && t >= times[j + 1] - TIME_TOL && times[j + 1] - t <= t - times[j] {
             j += 1;
         }
         let q = if (t - times[j]).abs() <= TIME_TOL {
@@ -152,7 +158,13 @@ fn track_frames<S: Segment>(
         let k_end = if last_segment {
             last + 1
         } else {
-            fps.first_frame_from(t1).min(last + 1)
+            // Frames from 1e-9 s before the next key belong to it, except one that is nearer
+            // this key (keys less than 2e-9 s apart).
+            let mut e = fps.first_frame_from(t1).min(last + 1);
+            while e <= last && fps.time_of(e) < t1 && fps.time_of(e) - t0 < t1 - fps.time_of(e) {
+                e += 1;
+            }
+            e
         };
         if k >= k_end {
             continue;

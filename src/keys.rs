@@ -2,11 +2,15 @@
 //! tracks ready for interpolation (times in seconds, strictly increasing, at least two keys).
 
 use crate::clock::Fps;
-use crate::error::InputResult;
+use crate::error::{InputResult, num};
 use crate::input_err;
 use crate::rotation::Repr;
 use glam::{DQuat, DVec3};
 use std::fmt;
+
+/// Smallest accepted time between consecutive keys: closer keys would make the chord tangent
+/// `log(q_{i+1} q_i⁻¹)/Δ` overflow (at denormal Δ) or meaningless; the frame tolerance is 1e-9 s.
+pub const MIN_KEY_GAP: f64 = 1e-12;
 
 /// Where a key came from, for error messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -125,7 +129,20 @@ impl Document {
             if i > 0 && t <= times[i - 1] {
                 let prev = times[i - 1];
                 return Err(input_err!(
-                    "expected times strictly increasing within a track, found {t} s after {prev} s"
+                    "expected times strictly increasing within a track, found {} s after {} s",
+                    num(t),
+                    num(prev)
+                )
+                .at(format!("{}: {field}", at(&self.source, key.loc))));
+            }
+            if i > 0 && t - times[i - 1] < MIN_KEY_GAP {
+                let prev = times[i - 1];
+                return Err(input_err!(
+                    "expected keys at least 1e-12 s apart, found {} s only {:e} s after {} s \
+                     (merge the two keys)",
+                    num(t),
+                    t - prev,
+                    num(prev)
                 )
                 .at(format!("{}: {field}", at(&self.source, key.loc))));
             }

@@ -21,6 +21,7 @@ use crate::curve::minaccel::{self, Report};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Blend, Scheme, Segment};
+use crate::error::InputResult;
 use crate::rotation::quat::{geodesic, log};
 use crate::tangent::Keys;
 use glam::{DQuat, DVec3};
@@ -81,11 +82,17 @@ pub fn chord_omega(a: DQuat, b: DQuat, h: f64) -> DVec3 {
 }
 
 impl TrackCurve {
-    /// Builds the curve of `keys` (solving minaccel on its grid at `fps`).
-    pub fn new(keys: Keys, scheme: Scheme, blend: Blend, fps: Fps) -> (TrackCurve, Option<Report>) {
-        match scheme {
+    /// Builds the curve of `keys` (solving minaccel on its grid at `fps`, which can fail for
+    /// an absurd grid size).
+    pub fn new(
+        keys: Keys,
+        scheme: Scheme,
+        blend: Blend,
+        fps: Fps,
+    ) -> InputResult<(TrackCurve, Option<Report>)> {
+        Ok(match scheme {
             Scheme::MinAccel => {
-                let sol = minaccel::solve(&keys, fps.as_f64());
+                let sol = minaccel::solve(&keys, fps.as_f64())?;
                 let report = sol.report;
                 (
                     TrackCurve::Grid {
@@ -104,7 +111,7 @@ impl TrackCurve {
                 },
                 None,
             ),
-        }
+        })
     }
 
     /// The piece boundaries: key times, or minaccel's grid times.
@@ -274,7 +281,8 @@ mod tests {
             Scheme::Slerp,
             Blend::Cubic,
             Fps::new(30, 1).unwrap(),
-        );
+        )
+        .unwrap();
         let w = log(k.quats[2] * k.quats[1].conjugate()) * (2.0 / k.delta(1));
         for t in [0.5, 0.7, 1.0, 1.2] {
             assert!((c.omega(t, Side::Right) - w).length() < 1e-10 * w.length());
@@ -293,7 +301,8 @@ mod tests {
             Scheme::Hermite,
             Blend::Cubic,
             Fps::new(30, 1).unwrap(),
-        );
+        )
+        .unwrap();
         for i in 0..k.times.len() {
             let want = k.w[i] * 2.0;
             for side in [Side::Left, Side::Right] {

@@ -97,7 +97,7 @@ pub fn svg(
     let mut lines = Vec::new();
     for &s in schemes {
         let keys = Keys::new(track, opts.path, opts.ends);
-        let (curve, _) = TrackCurve::new(keys, s, opts.blend, opts.fps);
+        let (curve, _) = TrackCurve::new(keys, s, opts.blend, opts.fps).map_err(|e| e.0)?;
         let c = colour(s);
         match what {
             What::Speed => lines.push(Line {

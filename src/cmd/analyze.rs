@@ -18,7 +18,10 @@ pub fn run(
     let mut rows = Vec::new();
     for track in &tracks {
         for &s in &args.scheme.0 {
-            let m = analyze(track, s.into(), &opts);
+            let m = analyze(track, s.into(), &opts).map_err(|e| match &track.name {
+                Some(n) => e.at(format!("{}: track \"{n}\"", doc.source)),
+                None => e.at(&doc.source),
+            })?;
             if let Some(r) = m.solver
                 && !r.converged
             {

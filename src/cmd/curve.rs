@@ -36,8 +36,9 @@ pub fn curve_setup(
         for &time in [t.times[0], t.times[t.times.len() - 1]].iter() {
             if !fps.in_range(time) {
                 return Err(crate::input_err!(
-                    "{}: time {time} s is beyond the frame numbers --fps {fps} supports (2^53)",
-                    doc.source
+                    "{}: time {} s is beyond the frame numbers --fps {fps} supports (2^53)",
+                    doc.source,
+                    crate::error::num(time)
                 ));
             }
         }

@@ -38,10 +38,15 @@ pub fn run(
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
     let out = Output::open(args.output.output.as_deref())?;
+    // Input errors found while interpolating (minaccel's grid cap) name the file too.
+    let locate = |e: anyhow::Error| match e.downcast::<crate::InputError>() {
+        Ok(ie) => anyhow::Error::new(ie.at(&doc.source)),
+        Err(e) => e,
+    };
     let reports = if let OutputFormat::Doc(format) = format {
         let mut writer =
             FrameWriter::new(out, format, style, opts.fps, track_column, args.velocity);
-        let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
+        let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
         writer.into_inner().commit()?;
         reports
     } else {
@@ -55,7 +60,7 @@ pub fn run(
             })
             .sum();
         let mut writer = NpyWriter::new(out, style, rows, track_column, args.velocity);
-        let reports = interpolate(&tracks, &settings, &mut writer, warn)?;
+        let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
         writer.into_inner().commit()?;
         reports
     };

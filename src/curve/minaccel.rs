@@ -39,10 +39,15 @@
 use super::banded::Banded;
 use super::hermite::Hermite;
 use super::{Blend, Segment};
+use crate::error::InputResult;
+use crate::input_err;
 use crate::rotation::quat::exp;
 use crate::tangent::Keys;
 use glam::{DQuat, DVec3, DVec4};
 use std::f64::consts::FRAC_PI_4;
+
+/// Largest grid the solver accepts (about 300 bytes a point while solving).
+pub const MAX_GRID_POINTS: usize = 2_000_000;
 
 /// Iteration budget of the Newton solver.
 pub const MAX_ITERATIONS: usize = 100;
@@ -100,8 +105,19 @@ fn s3_angle(a: DQuat, b: DQuat) -> f64 {
 }
 
 impl Problem {
-    /// The grid for `keys` at `fps` frames per second, started on the hermite curve.
-    pub fn new(keys: &Keys, fps: f64) -> Problem {
+    /// The grid for `keys` at `fps` frames per second, started on the hermite curve. Fails when
+    /// the grid would need more than [`MAX_GRID_POINTS`] points (a very high rate, or end
+    /// velocities of very many turns per segment).
+    pub fn new(keys: &Keys, fps: f64) -> InputResult<Problem> {
+        let too_many = |steps: &[usize]| {
+            let total = steps.iter().fold(1usize, |a, &b| a.saturating_add(b));
+            (total > MAX_GRID_POINTS).then(|| {
+                input_err!(
+                    "minaccel would need a grid of {total} points (at most {MAX_GRID_POINTS}): \
+                     lower --fps or the end velocities, or use another scheme"
+                )
+            })
+        };
         let mut steps = base_steps(keys, fps);
         let n = keys.quats.len();
         // Phantoms keep within 45° of their keys (S³ angle h·|ω|/2).
@@ -114,21 +130,52 @@ impl Problem {
             let need = (keys.delta(s) * keys.w[n - 1].length() / FRAC_PI_4).ceil() as usize;
             steps[s] = steps[s].max(need);
         }
-        // Refine until neighbouring start points are within 45° on S³.
+        if let Some(e) = too_many(&steps) {
+            return Err(e);
+        }
+        // Enough steps that the start curve moves at most 45° on S³ per step: a segment of the
+        // hermite curve is no longer than its two arcs and its chord. Then up to three passes
+        // refine where sampled neighbours are still further apart (a blend that passes near an
+        // antipode can make the start curve jump, which no refinement removes).
+        for (s, st) in steps.iter_mut().enumerate() {
+            let bound = keys.tangent(s, s).length()
+                + keys.tangent(s + 1, s).length()
+                + s3_angle(keys.quats[s], keys.quats[s + 1]);
+            let need = (bound / FRAC_PI_4).ceil();
+            if need > *st as f64 {
+                *st = if need < MAX_GRID_POINTS as f64 {
+                    need as usize
+                } else {
+                    MAX_GRID_POINTS
+                };
+            }
+        }
+        if let Some(e) = too_many(&steps) {
+            return Err(e);
+        }
+        let mut pass = 0;
         let (times, pts, is_key) = loop {
             let (times, pts, is_key) = sample_hermite(keys, &steps);
-            let mut refined = false;
+            pass += 1;
+            if pass > 3 {
+                break (times, pts, is_key);
+            }
+            let mut double = vec![false; steps.len()];
             let mut seg = 0;
             for p in 0..pts.len() - 1 {
                 if is_key[p] && p > 0 {
                     seg += 1;
                 }
-                let angle = s3_angle(pts[p], pts[p + 1]);
-                if angle > FRAC_PI_4 {
-                    let factor = (angle / FRAC_PI_4).ceil() as usize;
-                    steps[seg] = steps[seg].saturating_mul(factor.max(2));
-                    refined = true;
+                double[seg] |= s3_angle(pts[p], pts[p + 1]) > FRAC_PI_4;
+            }
+            let refined = double.iter().any(|&d| d);
+            for (st, d) in steps.iter_mut().zip(double) {
+                if d {
+                    *st = st.saturating_mul(2);
                 }
+            }
+            if let Some(e) = too_many(&steps) {
+                return Err(e);
             }
             if !refined {
                 break (times, pts, is_key);
@@ -155,13 +202,13 @@ impl Problem {
             ext_q.push(exp(keys.w[n - 1] * h) * keys.quats[n - 1]);
             fixed.push(true);
         }
-        Problem {
+        Ok(Problem {
             times: ext_t,
             pts: ext_q,
             fixed,
             first,
             grid_len: times.len(),
-        }
+        })
     }
 
     /// Grid times (without phantoms).
@@ -493,8 +540,8 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
 }
 
 /// Solves the minaccel problem for a track at `fps`.
-pub fn solve(keys: &Keys, fps: f64) -> Solution {
-    Problem::new(keys, fps).solve()
+pub fn solve(keys: &Keys, fps: f64) -> InputResult<Solution> {
+    Ok(Problem::new(keys, fps)?.solve())
 }
 
 #[cfg(test)]
@@ -511,7 +558,7 @@ mod tests {
             DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 2.0),
         ];
         let k = keys(&[0.0, 1.0], &q, EndConditions::default());
-        let sol = solve(&k, 30.0);
+        let sol = solve(&k, 30.0).unwrap();
         assert!(sol.report.converged);
         assert!(sol.report.energy < 1e-20, "{:?}", sol.report);
         for (t, p) in sol.times.iter().zip(&sol.points) {
@@ -522,7 +569,7 @@ mod tests {
     #[test]
     fn lowers_energy_below_hermite_and_converges() {
         let k = crate::curve::test_support::sample_keys();
-        let problem = Problem::new(&k, 30.0);
+        let problem = Problem::new(&k, 30.0).unwrap();
         let start = problem.energy_of(problem.grid_points());
         let sol = problem.solve();
         assert!(sol.report.converged, "{:?}", sol.report);
@@ -534,6 +581,19 @@ mod tests {
     }
 
     #[test]
+    fn absurd_velocity_is_an_error_not_an_allocation() {
+        let q = [DQuat::IDENTITY, DQuat::IDENTITY];
+        let ends = EndConditions {
+            ends: Ends::Chord,
+            start: Some(DVec3::new(0.0, 0.0, 1e12)),
+            end: None,
+        };
+        let k = keys(&[0.0, 1.0], &q, ends);
+        let e = solve(&k, 30.0).unwrap_err();
+        assert!(e.0.starts_with("minaccel would need a grid of"), "{e}");
+    }
+
+    #[test]
     fn rest_ends_have_phantoms() {
         let q = [DQuat::IDENTITY, DQuat::from_rotation_z(1.0)];
         let ends = EndConditions {
@@ -541,7 +601,7 @@ mod tests {
             ..Default::default()
         };
         let k = keys(&[0.0, 1.0], &q, ends);
-        let p = Problem::new(&k, 30.0);
+        let p = Problem::new(&k, 30.0).unwrap();
         assert_eq!(p.times.len(), 31 + 2);
         let sol = p.solve();
         assert!(sol.report.converged, "{:?}", sol.report);

@@ -63,6 +63,20 @@ fn serde_message(e: &serde_json::Error) -> String {
     }
 }
 
+/// Deserialises `value`, naming the field that failed (`quat: invalid length 3, …`).
+fn from_value<T: serde::de::DeserializeOwned>(value: Value) -> Result<T, String> {
+    serde_path_to_error::deserialize(value).map_err(|e| {
+        let path = e.path().to_string();
+        let msg = serde_message(e.inner());
+        // An unknown field's message names it already.
+        if path == "." || path.is_empty() || msg.starts_with("unknown field") {
+            msg
+        } else {
+            format!("\"{path}\": {msg}")
+        }
+    })
+}
+
 /// Reads a JSON keyframe document.
 pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Document> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -89,8 +103,21 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             keys: Some(keys),
             tracks: None,
         },
-        other => DocWire::deserialize(other)
-            .map_err(|e| input_err!("{source}: {}", serde_message(&e)))?,
+        Value::Object(map) => {
+            from_value(Value::Object(map)).map_err(|e| input_err!("{source}: {e}"))?
+        }
+        other => {
+            let kind = match other {
+                Value::Null => "null",
+                Value::Bool(_) => "a boolean",
+                Value::Number(_) => "a number",
+                _ => "a string",
+            };
+            return Err(input_err!(
+                "{source}: expected an object with \"keys\" or \"tracks\" (or an array of keys), \
+                 found {kind}"
+            ));
+        }
     };
     let angles = match &wire.angles {
         Some(a) => AngleUnit::parse(a).map_err(|e| e.at(format!("{source}: \"angles\"")))?,
@@ -208,8 +235,7 @@ impl KeyContext<'_> {
         for (i, v) in values.into_iter().enumerate() {
             let loc = Loc::Json { track, key: i };
             let here = |e: InputError| e.at(format!("{}:{loc}", self.source));
-            let w =
-                KeyWire::deserialize(v).map_err(|e| here(input_err!("{}", serde_message(&e))))?;
+            let w: KeyWire = from_value(v).map_err(|e| here(input_err!("{e}")))?;
             let when = match (w.time, w.frame) {
                 (Some(t), None) => KeyTime::Seconds(t),
                 (None, Some(f)) => KeyTime::Frame(f),

@@ -67,6 +67,70 @@ fn bad_input_leaves_existing_output_untouched() {
     assert_eq!(left.len(), 1);
 }
 
+/// Bad option values: exit 2 and a first line that names the option and the value.
+#[test]
+fn bad_option_values_name_option_and_value() {
+    let cases: [(&[&str], &str); 11] = [
+        (
+            &["--to", "quaternion"],
+            "error: invalid value 'quaternion' for '--to <REPR>': expected one of quat, euler:SEQ (e.g. euler:ZYX), matrix, axis-angle, rotvec, found \"quaternion\"",
+        ),
+        (
+            &["--to", "euler:XXY"],
+            "error: invalid value 'euler:XXY' for '--to <REPR>': expected an Euler sequence of three letters from xyz (extrinsic) or XYZ (intrinsic) with no axis twice in a row, such as ZYX or zxz, found \"XXY\"",
+        ),
+        (
+            &["--fps", "0"],
+            "error: invalid value '0' for '--fps <RATE>': expected a positive frame rate, found 0",
+        ),
+        (
+            &["--fps", "-24"],
+            "error: invalid value '-24' for '--fps <RATE>': expected a positive frame rate such as 24, 29.97 or 30000/1001, found \"-24\"",
+        ),
+        (
+            &["--fps", "1e9"],
+            "error: invalid value '1e9' for '--fps <RATE>': expected a positive frame rate such as 24, 29.97 or 30000/1001, found \"1e9\"",
+        ),
+        (
+            &["--fps", "50000000"],
+            "error: invalid value '50000000' for '--fps <RATE>': expected a frame rate between 1e-6 and 1e7 frames per second, found 50000000",
+        ),
+        (
+            &["--scheme", "foo"],
+            "error: invalid value 'foo' for '--scheme <SCHEME>'",
+        ),
+        (
+            &["--precision", "99"],
+            "error: invalid value '99' for '--precision <N>': expected a whole number from 0 to 17, found \"99\"",
+        ),
+        (
+            &["--start-velocity", "1,2"],
+            "error: invalid value '1,2' for '--start-velocity <X,Y,Z>': expected three finite numbers X,Y,Z such as 0,0,90, found \"1,2\"",
+        ),
+        (
+            &["--angles", "grad"],
+            "error: invalid value 'grad' for '--angles <U>': expected \"deg\" or \"rad\", found \"grad\"",
+        ),
+        (
+            &["--output-format", "xml"],
+            "error: invalid value 'xml' for '--output-format <F>': expected \"csv\", \"json\" or \"npy\", found \"xml\"",
+        ),
+    ];
+    for (args, first_line) in cases {
+        let out = Command::cargo_bin("inbetween")
+            .unwrap()
+            .current_dir(root())
+            .args(["interp", "fixtures/interp/uniform.json"])
+            .args(args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(stderr.lines().next(), Some(first_line), "{args:?}");
+        assert!(out.stdout.is_empty());
+    }
+}
+
 #[test]
 fn usage_errors_exit_2() {
     for args in [

@@ -9,5 +9,6 @@ mod hard_cases;
 mod minaccel;
 mod plot;
 mod properties;
+mod reliability;
 mod roundtrip;
 mod support;

@@ -1,0 +1,237 @@
+//! Reliability (issue 7): input that is messy but valid, numeric extremes, output that is never
+//! half-written, and a closed stdout.
+
+use crate::properties::{interpolate, settings, track};
+use assert_cmd::Command;
+use glam::{DQuat, DVec3};
+use inbetween::curve::Scheme;
+use inbetween::tangent::{EndConditions, Ends};
+use std::io::Read;
+use std::process::Stdio;
+
+fn root() -> &'static str {
+    env!("CARGO_MANIFEST_DIR")
+}
+
+fn sane(frames: &[(i64, f64, DQuat)]) {
+    for (k, t, q) in frames {
+        assert!(t.is_finite() && q.is_finite(), "frame {k}");
+        assert!(
+            (q.length() - 1.0).abs() < 1e-9,
+            "frame {k}: |q| = {}",
+            q.length()
+        );
+    }
+}
+
+#[test]
+fn bom_crlf_spaces_quotes_and_blank_lines_are_accepted() {
+    let run = |f: &str| {
+        let out = Command::cargo_bin("inbetween")
+            .unwrap()
+            .current_dir(root())
+            .args(["interp", f, "--fps", "10"])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(out.stderr.is_empty());
+        out.stdout
+    };
+    assert_eq!(run("fixtures/ok/messy.csv"), run("fixtures/ok/clean.csv"));
+}
+
+#[test]
+fn a_million_keys() {
+    let n = 1_000_000;
+    let quats = (0..n)
+        .map(|i| {
+            DQuat::from_axis_angle(
+                DVec3::new(1.0, (i % 7) as f64, 2.0).normalize(),
+                0.001 * i as f64,
+            )
+        })
+        .collect();
+    let t = track((0..n).map(|i| i as f64 * 0.1).collect(), quats);
+    let (frames, warnings) = interpolate(
+        &t,
+        &settings(Scheme::Hermite, "10", EndConditions::default()),
+    );
+    assert_eq!(frames.len(), n);
+    assert!(warnings.is_empty());
+    sane(&frames);
+}
+
+#[test]
+fn ten_thousand_fps_and_durations_of_days() {
+    let q = [
+        DQuat::IDENTITY,
+        DQuat::from_rotation_y(2.0),
+        DQuat::from_rotation_x(1.0),
+    ];
+    // 10⁴ fps over 10 s.
+    let t = track(vec![0.0, 4.0, 10.0], q.to_vec());
+    let (frames, _) = interpolate(
+        &t,
+        &settings(Scheme::Squad, "10000", EndConditions::default()),
+    );
+    assert_eq!(frames.len(), 100_001);
+    sane(&frames);
+    // Three days at one frame per 100 s.
+    let day = 86_400.0;
+    let t = track(vec![0.0, day, 3.0 * day], q.to_vec());
+    let (frames, _) = interpolate(
+        &t,
+        &settings(Scheme::Hermite, "0.01", EndConditions::default()),
+    );
+    assert_eq!(frames.len(), 2593);
+    sane(&frames);
+    // Frame numbers beyond 2³²: five days in, at 10⁴ fps.
+    let t0 = 5.0 * day;
+    let t = track(vec![t0, t0 + 0.5, t0 + 1.0], q.to_vec());
+    for scheme in [Scheme::Hermite, Scheme::MinAccel] {
+        let (frames, _) = interpolate(&t, &settings(scheme, "10000", EndConditions::default()));
+        assert_eq!(frames.len(), 10_001);
+        assert_eq!(frames[0].0, 4_320_000_000);
+        assert!(frames[0].0 > 1 << 32);
+        assert_eq!(frames[0].1, t0);
+        assert_eq!(frames[10_000].1, t0 + 1.0);
+        assert_eq!(frames[0].2, q[0]);
+        sane(&frames);
+    }
+}
+
+#[test]
+fn end_velocities_of_a_thousand_turns_per_second() {
+    let omega = DVec3::new(0.0, 0.0, 1000.0 * std::f64::consts::TAU);
+    let t = track(
+        vec![0.0, 1.0],
+        vec![DQuat::IDENTITY, DQuat::from_rotation_x(0.5)],
+    );
+    let e = EndConditions {
+        ends: Ends::Chord,
+        start: Some(omega),
+        end: Some(-omega),
+    };
+    for scheme in [
+        Scheme::Hermite,
+        Scheme::Squad,
+        Scheme::Bezier,
+        Scheme::Slerp,
+        Scheme::MinAccel,
+    ] {
+        let (frames, _) = interpolate(&t, &settings(scheme, "30", e));
+        assert_eq!(frames.len(), 31, "{scheme:?}");
+        sane(&frames);
+    }
+}
+
+#[test]
+fn segments_of_a_nanosecond() {
+    let t = track(
+        vec![0.0, 1e-9, 0.5, 0.5 + 1e-9, 1.0],
+        vec![
+            DQuat::IDENTITY,
+            DQuat::from_rotation_x(1e-6),
+            DQuat::from_rotation_y(1.0),
+            DQuat::from_rotation_y(1.0 + 1e-7),
+            DQuat::from_rotation_z(0.3),
+        ],
+    );
+    for scheme in [
+        Scheme::Hermite,
+        Scheme::Squad,
+        Scheme::Bezier,
+        Scheme::Slerp,
+        Scheme::MinAccel,
+    ] {
+        let (frames, _) = interpolate(&t, &settings(scheme, "30", EndConditions::default()));
+        assert_eq!(frames.len(), 31, "{scheme:?}");
+        // Frame 0 is exactly key 0 (not key 1, 1 ns later).
+        assert_eq!(frames[0].2, DQuat::IDENTITY, "{scheme:?}");
+        sane(&frames);
+    }
+}
+
+/// The second track fails after the first was streamed: the existing `-o` file is untouched and
+/// no temporary file is left.
+#[test]
+fn failure_halfway_leaves_the_output_file_untouched() {
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("frames.csv");
+    std::fs::write(&target, "precious\n").unwrap();
+    let out = Command::cargo_bin("inbetween")
+        .unwrap()
+        .current_dir(root())
+        .args([
+            "interp",
+            "fixtures/bad/minaccel_grid_too_large.json",
+            "--scheme",
+            "minaccel",
+            "-o",
+        ])
+        .arg(&target)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("track \"spin\": minaccel would need"));
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "precious\n");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    // And a good run replaces it, with ordinary permissions.
+    let ok = Command::cargo_bin("inbetween")
+        .unwrap()
+        .current_dir(root())
+        .args(["interp", "fixtures/interp/uniform.json", "-o"])
+        .arg(&target)
+        .output()
+        .unwrap();
+    assert!(ok.status.success());
+    assert!(
+        std::fs::read_to_string(&target)
+            .unwrap()
+            .starts_with("{\"fps\": 30")
+    );
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&target).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o644 & mode.max(0o600), "mode {mode:o}");
+        assert!(mode & 0o044 != 0 || mode == 0o600, "mode {mode:o}");
+    }
+}
+
+/// `inbetween interp big.csv | head -1`: the reader goes away; the tool ends quietly.
+#[test]
+fn closed_stdout_ends_quietly() {
+    let mut child = std::process::Command::new(assert_cmd::cargo::cargo_bin("inbetween"))
+        .current_dir(root())
+        .args([
+            "interp",
+            "fixtures/interp/uniform.json",
+            "--fps",
+            "100000",
+            "--output-format",
+            "csv",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdout = child.stdout.take().unwrap();
+    let mut first = [0u8; 64];
+    stdout.read_exact(&mut first).unwrap();
+    drop(stdout);
+    let status = child.wait().unwrap();
+    let mut stderr = String::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_string(&mut stderr)
+        .unwrap();
+    assert!(stderr.is_empty(), "{stderr}");
+    assert!(status.success(), "{status:?}");
+}
