@@ -129,7 +129,9 @@ pub fn svg(
                 let times: Vec<f64> = (first..=last).map(|k| opts.fps.time_of(k)).collect();
                 let pts: Vec<_> = times.iter().map(|&t| curve.eval(t)).collect();
                 let mut acc = 0.0;
-                let mut points = vec![(times[0], 0.0)];
+                // A track may span no frame at all (keys closer than a frame period).
+                let mut points: Vec<(f64, f64)> =
+                    times.first().map(|&t| (t, 0.0)).into_iter().collect();
                 for p in 1..times.len().saturating_sub(1) {
                     acc += energy(&times[p - 1..p + 2], &pts[p - 1..p + 2]);
                     points.push((times[p], acc));

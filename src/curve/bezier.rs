@@ -16,7 +16,7 @@
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
 use super::arc::{Arc, ArcSteps};
-use super::blend4::{geodesic4, params4, steps4};
+use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Keys;
@@ -40,8 +40,7 @@ pub struct BezierFrames {
     u0: f64,
     du: f64,
     j: f64,
-    buf: [DQuat; 4],
-    pos: usize,
+    block: Block4,
 }
 
 #[inline]
@@ -54,21 +53,22 @@ impl Iterator for BezierFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        if self.pos == 4 {
-            let (a, b, c) = (
-                steps4(&mut self.r0),
-                steps4(&mut self.r1),
-                steps4(&mut self.r2),
-            );
-            let u = params4(self.u0, self.du, self.j, |u| u);
-            let s0 = geodesic4(a, b, u);
-            let s1 = geodesic4(b, c, u);
-            self.buf = geodesic4(s0, s1, u).to_quats();
-            self.j += 4.0;
-            self.pos = 0;
-        }
-        self.pos += 1;
-        Some(self.buf[self.pos - 1])
+        let BezierFrames {
+            r0,
+            r1,
+            r2,
+            u0,
+            du,
+            j,
+            block,
+        } = self;
+        Some(block.next(|| {
+            let (a, b, c) = (steps4(r0), steps4(r1), steps4(r2));
+            let u = params4(*u0, *du, *j, |u| u);
+            *j += 4.0;
+            let (s0, s1) = (geodesic4(a, b, u), geodesic4(b, c, u));
+            geodesic4(s0, s1, u).to_quats()
+        }))
     }
 }
 
@@ -94,8 +94,7 @@ impl Segment for Bezier {
             u0,
             du,
             j: 0.0,
-            buf: [DQuat::IDENTITY; 4],
-            pos: 4,
+            block: Block4::default(),
         }
     }
 

@@ -44,6 +44,34 @@ impl Quat4 {
     }
 }
 
+/// Hands out frames computed four at a time: `next` refills the block when it is used up.
+#[derive(Debug, Clone)]
+pub struct Block4 {
+    buf: [DQuat; 4],
+    pos: usize,
+}
+
+impl Default for Block4 {
+    fn default() -> Self {
+        Block4 {
+            buf: [DQuat::IDENTITY; 4],
+            pos: 4,
+        }
+    }
+}
+
+impl Block4 {
+    #[inline]
+    pub fn next(&mut self, refill: impl FnOnce() -> [DQuat; 4]) -> DQuat {
+        if self.pos == 4 {
+            self.buf = refill();
+            self.pos = 0;
+        }
+        self.pos += 1;
+        self.buf[self.pos - 1]
+    }
+}
+
 /// The next four points of an arc's forward differences, as lanes.
 #[inline]
 pub fn steps4(steps: &mut super::arc::ArcSteps) -> Quat4 {

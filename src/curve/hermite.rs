@@ -19,7 +19,7 @@
 //!   per segment) is ill defined; the tool warns (SPEC §4.3).
 
 use super::arc::{Arc, ArcSteps};
-use super::blend4::{geodesic4, params4, steps4};
+use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Keys;
@@ -44,8 +44,7 @@ pub struct HermiteFrames {
     du: f64,
     j: f64,
     blend: Blend,
-    buf: [DQuat; 4],
-    pos: usize,
+    block: Block4,
 }
 
 impl Iterator for HermiteFrames {
@@ -53,17 +52,21 @@ impl Iterator for HermiteFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        if self.pos == 4 {
-            let a = steps4(&mut self.c1);
-            let b = steps4(&mut self.c2);
-            let blend = self.blend;
-            let f = params4(self.u0, self.du, self.j, |u| blend.f(u));
-            self.buf = geodesic4(a, b, f).to_quats();
-            self.j += 4.0;
-            self.pos = 0;
-        }
-        self.pos += 1;
-        Some(self.buf[self.pos - 1])
+        let HermiteFrames {
+            c1,
+            c2,
+            u0,
+            du,
+            j,
+            blend,
+            block,
+        } = self;
+        Some(block.next(|| {
+            let (a, b) = (steps4(c1), steps4(c2));
+            let f = params4(*u0, *du, *j, |u| blend.f(u));
+            *j += 4.0;
+            geodesic4(a, b, f).to_quats()
+        }))
     }
 }
 
@@ -91,8 +94,7 @@ impl Segment for Hermite {
             du,
             j: 0.0,
             blend: self.blend,
-            buf: [DQuat::IDENTITY; 4],
-            pos: 4,
+            block: Block4::default(),
         }
     }
 

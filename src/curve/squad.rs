@@ -21,7 +21,7 @@
 //!   and the curve is not C¹ there; the tool says so on stderr.
 
 use super::arc::{Arc, ArcSteps};
-use super::blend4::{geodesic4, params4, steps4};
+use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::{exp, geodesic};
 use crate::tangent::{Keys, step};
@@ -82,8 +82,7 @@ pub struct SquadFrames {
     u0: f64,
     du: f64,
     j: f64,
-    buf: [DQuat; 4],
-    pos: usize,
+    block: Block4,
 }
 
 impl Iterator for SquadFrames {
@@ -91,16 +90,20 @@ impl Iterator for SquadFrames {
 
     #[inline]
     fn next(&mut self) -> Option<DQuat> {
-        if self.pos == 4 {
-            let a = steps4(&mut self.outer);
-            let b = steps4(&mut self.inner);
-            let f = params4(self.u0, self.du, self.j, |u| 2.0 * u * (1.0 - u));
-            self.buf = geodesic4(a, b, f).to_quats();
-            self.j += 4.0;
-            self.pos = 0;
-        }
-        self.pos += 1;
-        Some(self.buf[self.pos - 1])
+        let SquadFrames {
+            outer,
+            inner,
+            u0,
+            du,
+            j,
+            block,
+        } = self;
+        Some(block.next(|| {
+            let (a, b) = (steps4(outer), steps4(inner));
+            let f = params4(*u0, *du, *j, |u| 2.0 * u * (1.0 - u));
+            *j += 4.0;
+            geodesic4(a, b, f).to_quats()
+        }))
     }
 }
 
@@ -132,8 +135,7 @@ impl Segment for Squad {
             u0,
             du,
             j: 0.0,
-            buf: [DQuat::IDENTITY; 4],
-            pos: 4,
+            block: Block4::default(),
         }
     }
 

@@ -235,3 +235,31 @@ fn closed_stdout_ends_quietly() {
     assert!(stderr.is_empty(), "{stderr}");
     assert!(status.success(), "{status:?}");
 }
+
+/// Keys closer together than one frame period: no frame to write, and no command panics.
+#[test]
+fn a_track_that_spans_no_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("c.svg");
+    let input = "time,w,x,y,z\n0.01,1,0,0,0\n0.02,0,1,0,0\n";
+    for args in [
+        vec!["interp"],
+        vec!["interp", "--scheme", "minaccel"],
+        vec!["analyze"],
+        vec!["plot", "--what", "energy", "-o", svg.to_str().unwrap()],
+        vec!["plot", "--what", "speed", "-o", svg.to_str().unwrap()],
+    ] {
+        let out = Command::cargo_bin("inbetween")
+            .unwrap()
+            .args(&args)
+            .args(["-", "--input-format", "csv"])
+            .write_stdin(input)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
