@@ -263,3 +263,68 @@ fn a_track_that_spans_no_frame() {
         );
     }
 }
+
+/// `--output-format npy`: a valid .npy v1.0 header with the frame count and columns, rows equal
+/// to the CSV output (shortest round-trip digits read back exactly).
+#[test]
+fn npy_reads_back_as_the_csv_values() {
+    let dir = tempfile::tempdir().unwrap();
+    let npy = dir.path().join("f.npy");
+    let run = |args: &[&str]| {
+        let out = Command::cargo_bin("inbetween")
+            .unwrap()
+            .current_dir(root())
+            .args([
+                "interp",
+                "fixtures/interp/multitrack.json",
+                "--velocity",
+                "--to",
+                "euler:ZYX",
+            ])
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out.stdout
+    };
+    run(&["--output-format", "npy", "-o", npy.to_str().unwrap()]);
+    let csv_out = run(&["--output-format", "csv"]);
+    let bytes = std::fs::read(&npy).unwrap();
+    assert_eq!(&bytes[..8], b"\x93NUMPY\x01\x00");
+    let hlen = u16::from_le_bytes([bytes[8], bytes[9]]) as usize;
+    assert_eq!((10 + hlen) % 64, 0);
+    let header = std::str::from_utf8(&bytes[10..10 + hlen]).unwrap();
+    let mut rdr = csv::Reader::from_reader(csv_out.as_slice());
+    let rows: Vec<Vec<f64>> = rdr
+        .records()
+        .map(|r| {
+            let r = r.unwrap();
+            // track name -> index in order of appearance
+            let idx = if &r[0] == "hip" { 0.0 } else { 1.0 };
+            std::iter::once(idx)
+                .chain(r.iter().skip(1).map(|x| x.parse::<f64>().unwrap()))
+                .collect()
+        })
+        .collect();
+    let cols = rows[0].len();
+    assert_eq!(cols, 1 + 2 + 3 + 3);
+    assert_eq!(
+        header.trim_end(),
+        format!(
+            "{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {cols}), }}",
+            rows.len()
+        )
+    );
+    let data: Vec<f64> = bytes[10 + hlen..]
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(data.len(), rows.len() * cols);
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(&data[i * cols..(i + 1) * cols], row.as_slice(), "row {i}");
+    }
+}
