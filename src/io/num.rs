@@ -108,11 +108,14 @@ pub fn fixed(out: &mut Vec<u8>, x: f64, n: usize, ints: &mut itoa::Buffer) {
     if x.is_sign_negative() {
         out.push(b'-');
     }
-    let int_part = q / POW10[n];
-    out.extend_from_slice(ints.format(int_part as u64).as_bytes());
+    // u128 division is a slow library call; every value that matters here fits a u64.
+    let (int_part, frac_part) = match u64::try_from(q) {
+        Ok(q) => (q / POW10[n] as u64, q % POW10[n] as u64),
+        Err(_) => ((q / POW10[n]) as u64, (q % POW10[n]) as u64),
+    };
+    out.extend_from_slice(ints.format(int_part).as_bytes());
     if n > 0 {
         out.push(b'.');
-        let frac_part = (q % POW10[n]) as u64;
         let digits = ints.format(frac_part).as_bytes();
         out.extend(std::iter::repeat_n(b'0', n - digits.len()));
         out.extend_from_slice(digits);
