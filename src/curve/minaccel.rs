@@ -24,7 +24,9 @@
 //! neighbouring points, so the exact Hessian is block-pentadiagonal (3×3 blocks, half-bandwidth
 //! 8): Newton's method, assembled and factorised in O(n) per iteration with [`super::banded`]
 //! (a multiple of the identity is added only while the Hessian is not positive definite). A
-//! backtracking line search on `E` keeps every step a descent; once the predicted decrease is
+//! backtracking line search on `E` keeps every step a descent (where the Hessian is not positive
+//! definite, far from a minimum, the step uses the Gauss–Newton matrix instead, which is); once
+//! the predicted decrease is
 //! below what `E` resolves in f64, full steps are taken while the gradient keeps shrinking. The
 //! start is the `hermite` curve on the grid. It stops when the projected gradient `‖Jᵀr‖` is ≤ 1e-9 of its value at the
 //! start (or ≤ 1e-14), and reports when it does not within [`MAX_ITERATIONS`].
@@ -321,12 +323,17 @@ type Block = (usize, [DVec4; 3], DVec3, f64);
 /// ```
 /// The noise floor: each term is a sum of parts as large as `w·(|α|+|β|+|γ|)²`, so rounding
 /// leaves about ε times that in each gradient entry.
+///
+/// With `gauss_newton` the matrix is instead `2JᵀJ` for the residuals
+/// `r_p = √w (A − s q_p)`, `J_a = √w (M_a − q_p v_aᵀ − s N_a)`: positive semi-definite, with the
+/// same gradient, for iterations where the exact Hessian is not positive definite.
 fn assemble(
     times: &[f64],
     pts: &[DQuat],
     unknown: &[Option<usize>],
     h: &mut Banded,
     g: &mut [f64],
+    gauss_newton: bool,
 ) -> (f64, f64) {
     h.clear();
     g.fill(0.0);
@@ -385,16 +392,25 @@ fn assemble(
                         if cj > ri {
                             continue;
                         }
-                        let mut x = ma[i].dot(mb[j]) - va[i] * vb[j];
-                        if ib == 1 {
-                            x -= s * ma[i].dot(tp[j]);
-                        }
-                        if ia == 1 {
-                            x -= s * tp[i].dot(mb[j]);
-                        }
-                        if ia == ib && i == j {
-                            x += shift;
-                        }
+                        let x = if gauss_newton {
+                            let col = |m: &[DVec4; 3], v: DVec3, k: usize, a: usize| {
+                                let c = m[k] - q * v[k];
+                                if a == 1 { c - tp[k] * s } else { c }
+                            };
+                            col(ma, *va, i, ia).dot(col(mb, *vb, j, ib))
+                        } else {
+                            let mut x = ma[i].dot(mb[j]) - va[i] * vb[j];
+                            if ib == 1 {
+                                x -= s * ma[i].dot(tp[j]);
+                            }
+                            if ia == 1 {
+                                x -= s * tp[i].dot(mb[j]);
+                            }
+                            if ia == ib && i == j {
+                                x += shift;
+                            }
+                            x
+                        };
                         h.add(ri, cj, two_w * x);
                     }
                 }
@@ -435,11 +451,10 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
     let mut g = vec![0.0; 3 * m];
     let mut step = vec![0.0; 3 * m];
     let mut trial = pts.to_vec();
-    let mut damping = 0.0;
     let mut previous: Option<(Vec<DQuat>, f64)> = None;
     let done = |gn: f64, g0: f64, floor: f64| gn <= REL_TOL * g0 || gn <= ABS_TOL.max(floor);
     for it in 0..=MAX_ITERATIONS {
-        let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g);
+        let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g, false);
         let gn = norm(&g);
         if it == 0 {
             report.gradient_start = gn;
@@ -461,28 +476,36 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
         if it == MAX_ITERATIONS {
             break;
         }
-        // Solve (H + μ·s·I) δ = −g (s the largest diagonal entry), raising μ only while H is
-        // not positive definite (modified Newton).
-        let diag_scale = (0..3 * m)
-            .map(|i| h.get(i, i).abs())
-            .fold(f64::MIN_POSITIVE, f64::max);
-        let factored = loop {
-            let mut hd = h.clone();
-            if damping > 0.0 {
-                for i in 0..3 * m {
-                    hd.add(i, i, damping * diag_scale);
+        // Newton's step where the Hessian is positive definite. Otherwise the Gauss–Newton
+        // matrix 2JᵀJ (positive semi-definite, same gradient), with μ·s·I added (s its largest
+        // diagonal entry) only while that still fails to factorise.
+        let mut factored = h.clone();
+        let factored = if factored.cholesky() {
+            Some(factored)
+        } else {
+            assemble(times, pts, &unknown, &mut h, &mut g, true);
+            let diag_scale = (0..3 * m)
+                .map(|i| h.get(i, i).abs())
+                .fold(f64::MIN_POSITIVE, f64::max);
+            let mut damping = 0.0;
+            loop {
+                let mut hd = h.clone();
+                if damping > 0.0 {
+                    for i in 0..3 * m {
+                        hd.add(i, i, damping * diag_scale);
+                    }
                 }
-            }
-            if hd.cholesky() {
-                break Some(hd);
-            }
-            damping = if damping == 0.0 {
-                1e-10
-            } else {
-                damping * 10.0
-            };
-            if damping > 1e3 {
-                break None;
+                if hd.cholesky() {
+                    break Some(hd);
+                }
+                damping = if damping == 0.0 {
+                    1e-12
+                } else {
+                    damping * 10.0
+                };
+                if damping > 1e3 {
+                    break None;
+                }
             }
         };
         let Some(factor) = factored else { break };
@@ -526,13 +549,9 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
             break;
         }
         pts.copy_from_slice(&trial);
-        damping *= 0.1;
-        if damping < 1e-14 {
-            damping = 0.0;
-        }
     }
     // Out of budget, or no descent is possible any more at f64 precision.
-    let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g);
+    let (e, floor) = assemble(times, pts, &unknown, &mut h, &mut g, false);
     report.energy = e;
     report.gradient = norm(&g);
     report.converged = done(report.gradient, report.gradient_start, floor);

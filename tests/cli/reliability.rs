@@ -328,3 +328,42 @@ fn npy_reads_back_as_the_csv_values() {
         assert_eq!(&data[i * cols..(i + 1) * cols], row.as_slice(), "row {i}");
     }
 }
+
+/// Found by the `interp_pipeline` fuzzer (a timeout under instrumentation): minaccel with a start
+/// velocity of about 23 turns/s beside a 66 s segment. Far from any minimum, the solver crawls
+/// along an ill-conditioned valley; within its budget it must still give finite unit frames and
+/// say on stderr that it did not converge. (0.1 s in release.)
+#[test]
+fn regression_fuzz_minaccel_slow_start() {
+    let out = Command::cargo_bin("inbetween")
+        .unwrap()
+        .current_dir(root())
+        .args([
+            "interp",
+            "fixtures/ok/fuzz_minaccel_slow.csv",
+            "--scheme",
+            "minaccel",
+            "--fps",
+            "24",
+            "--angles",
+            "rad",
+            "--start-velocity=-63.5,31.75,-127",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("minaccel did not converge in 100 iterations"),
+        "{stderr}"
+    );
+    let mut rdr = csv::Reader::from_reader(out.stdout.as_slice());
+    let mut n = 0;
+    for rec in rdr.records() {
+        let v: Vec<f64> = rec.unwrap().iter().map(|x| x.parse().unwrap()).collect();
+        let norm = (v[2] * v[2] + v[3] * v[3] + v[4] * v[4] + v[5] * v[5]).sqrt();
+        assert!((norm - 1.0).abs() < 1e-12, "frame {}", v[0]);
+        n += 1;
+    }
+    assert_eq!(n, 67 * 24 + 1);
+}
