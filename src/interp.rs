@@ -16,7 +16,7 @@ use crate::curve::squad::Squad;
 use crate::curve::{Blend, Scheme, Segment, antipode_gap};
 use crate::io::write::FrameSink;
 use crate::keys::TimedTrack;
-use crate::motion::{Side, segment_omega};
+use crate::motion::{Side, TrackCurve, segment_omega};
 use crate::rotation::quat::geodesic;
 use crate::tangent::{EndConditions, Keys, PathMode};
 use std::io;
@@ -94,17 +94,12 @@ fn minaccel_frames(
             r.gradient / r.gradient_start
         ));
     }
-    let curve = crate::motion::TrackCurve::Grid {
+    let curve = TrackCurve::Grid {
         times: sol.times,
         points: sol.points,
         key_times: keys.times.clone(),
     };
-    let crate::motion::TrackCurve::Grid {
-        times, points: pts, ..
-    } = &curve
-    else {
-        unreachable!("built as a grid just above")
-    };
+    let (times, pts) = (curve.breaks(), curve.grid_points());
     let n = times.len();
     let (first, last) = fps.frames_between(times[0], times[n - 1]);
     let mut j = 0;

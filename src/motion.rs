@@ -122,6 +122,14 @@ impl TrackCurve {
         }
     }
 
+    /// minaccel's grid points (empty for a segment curve).
+    pub fn grid_points(&self) -> &[DQuat] {
+        match self {
+            TrackCurve::Segments { .. } => &[],
+            TrackCurve::Grid { points, .. } => points,
+        }
+    }
+
     /// The key times.
     pub fn key_times(&self) -> &[f64] {
         match self {
