@@ -21,6 +21,13 @@ pub struct NumWriter {
     itoa: itoa::Buffer,
 }
 
+impl Clone for NumWriter {
+    /// A writer with the same format and fresh scratch buffers.
+    fn clone(&self) -> Self {
+        NumWriter::new(self.format)
+    }
+}
+
 impl NumWriter {
     pub fn new(format: NumFormat) -> Self {
         NumWriter {

@@ -31,6 +31,7 @@ pub struct Style {
 }
 
 /// Formats one rotation's values (CSV: comma-separated; JSON: an array) into `out`.
+#[derive(Clone)]
 struct RotationFormatter {
     style: Style,
     nums: NumWriter,
@@ -141,19 +142,153 @@ pub trait FrameSink {
     fn finish(&mut self) -> io::Result<()>;
 }
 
-/// Writes frames as CSV or JSON.
-pub struct FrameWriter<W: Write> {
-    w: W,
-    buf: Vec<u8>,
+/// One frame waiting to be formatted.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    k: i64,
+    time: f64,
+    q: DQuat,
+    omega: Option<DVec3>,
+}
+
+/// Frames per block; blocks alternate between this thread and the formatting worker.
+const BLOCK: usize = 4096;
+
+/// Turns frames into CSV rows or JSON objects (one per line). Owned by the writer and cloned
+/// into the worker thread.
+#[derive(Clone)]
+struct RowFormatter {
     format: Format,
     rot: RotationFormatter,
     nums: NumWriter,
     track_column: bool,
     velocity: bool,
     angles: AngleUnit,
+}
+
+impl RowFormatter {
+    /// Appends `frames`, the first being frame number `start` of its track; `track` is the CSV
+    /// row prefix (`name,`).
+    fn rows(&mut self, out: &mut Vec<u8>, track: &[u8], start: usize, frames: &[Frame]) {
+        for (i, f) in frames.iter().enumerate() {
+            let omega = if self.velocity {
+                f.omega
+                    .map(|w| w.to_array().map(|x| self.angles.from_rad(x)))
+            } else {
+                None
+            };
+            match self.format {
+                Format::Csv => {
+                    if self.track_column {
+                        out.extend_from_slice(track);
+                    }
+                    self.nums.int(out, f.k);
+                    out.push(b',');
+                    self.nums.float(out, f.time);
+                    self.rot.csv(out, f.q);
+                    if let Some(w) = omega {
+                        for x in w {
+                            out.push(b',');
+                            self.nums.float(out, x);
+                        }
+                    }
+                    out.push(b'\n');
+                }
+                Format::Json => {
+                    out.extend_from_slice(if start + i == 0 {
+                        b"\n{\"frame\": "
+                    } else {
+                        b",\n{\"frame\": "
+                    });
+                    self.nums.int(out, f.k);
+                    out.extend_from_slice(b", \"time\": ");
+                    self.nums.float(out, f.time);
+                    out.extend_from_slice(b", ");
+                    self.rot.json(out, f.q);
+                    if let Some(w) = omega {
+                        out.extend_from_slice(b", \"angular_velocity\": [");
+                        for (j, x) in w.iter().enumerate() {
+                            if j > 0 {
+                                out.extend_from_slice(b", ");
+                            }
+                            self.nums.float(out, *x);
+                        }
+                        out.push(b']');
+                    }
+                    out.push(b'}');
+                }
+            }
+        }
+    }
+}
+
+/// A block sent to the worker: frames, CSV track prefix, index of the first frame in its track;
+/// a buffer to format into comes along and goes back with the result.
+type Job = (Vec<Frame>, Vec<u8>, usize, Vec<u8>);
+
+/// The formatting thread: formats the blocks it is sent, in order.
+struct Worker {
+    jobs: std::sync::mpsc::Sender<Job>,
+    done: std::sync::mpsc::Receiver<(Vec<u8>, Vec<Frame>)>,
+    handle: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Worker {
+    fn spawn(mut rows: RowFormatter) -> Worker {
+        let (jobs, inbox) = std::sync::mpsc::channel::<Job>();
+        let (outbox, done) = std::sync::mpsc::channel();
+        let handle = std::thread::spawn(move || {
+            for (frames, track, start, mut out) in inbox {
+                out.clear();
+                rows.rows(&mut out, &track, start, &frames);
+                if outbox.send((out, frames)).is_err() {
+                    break;
+                }
+            }
+        });
+        Worker {
+            jobs,
+            done,
+            handle: Some(handle),
+        }
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        // Closing the job channel ends the thread.
+        let (closed, _) = std::sync::mpsc::channel();
+        drop(std::mem::replace(&mut self.jobs, closed));
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+fn worker_gone() -> io::Error {
+    io::Error::other("the formatting thread stopped")
+}
+
+/// Writes frames as CSV or JSON.
+///
+/// With two or more cores, once a track has more than one block of frames, alternate blocks of
+/// 4096 frames are formatted by a second thread while this one computes and formats the next;
+/// blocks are written in order, so the bytes are those of the sequential writer (tested).
+pub struct FrameWriter<W: Write> {
+    w: W,
+    buf: Vec<u8>,
+    format: Format,
+    rows: RowFormatter,
     track: Vec<u8>,
     tracks_written: usize,
+    /// Frames of the current track formatted or queued so far.
     frames_in_track: usize,
+    block: Vec<Frame>,
+    parallel: bool,
+    worker: Option<Worker>,
+    /// The worker holds a block whose bytes are not written yet.
+    in_flight: bool,
+    spare: Vec<u8>,
 }
 
 impl<W: Write> FrameWriter<W> {
@@ -188,19 +323,34 @@ impl<W: Write> FrameWriter<W> {
                 buf.extend_from_slice(b", \"tracks\": [\n");
             }
         }
+        let parallel = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
         FrameWriter {
             w,
             buf,
             format,
-            rot: RotationFormatter::new(style),
-            nums: NumWriter::new(style.num),
-            track_column,
-            velocity,
-            angles: style.angles,
+            rows: RowFormatter {
+                format,
+                rot: RotationFormatter::new(style),
+                nums: NumWriter::new(style.num),
+                track_column,
+                velocity,
+                angles: style.angles,
+            },
             track: Vec::new(),
             tracks_written: 0,
             frames_in_track: 0,
+            block: Vec::with_capacity(BLOCK),
+            parallel,
+            worker: None,
+            in_flight: false,
+            spare: Vec::new(),
         }
+    }
+
+    /// Formats everything in this thread (for comparison with the parallel writer).
+    pub fn sequential(mut self) -> Self {
+        self.parallel = false;
+        self
     }
 
     #[inline]
@@ -212,7 +362,60 @@ impl<W: Write> FrameWriter<W> {
         Ok(())
     }
 
-    /// The writer, after [`FrameSink::finish`].
+    /// Writes the worker's block, if it holds one.
+    fn collect(&mut self) -> io::Result<()> {
+        if self.in_flight {
+            let worker = self.worker.as_ref().ok_or_else(worker_gone)?;
+            let (bytes, mut frames) = worker.done.recv().map_err(|_| worker_gone())?;
+            self.in_flight = false;
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+            self.w.write_all(&bytes)?;
+            self.spare = bytes;
+            frames.clear();
+            if self.block.capacity() < BLOCK {
+                self.block = frames;
+            }
+        }
+        Ok(())
+    }
+
+    /// Formats the pending block: hands it to the worker when it is free, else formats it here
+    /// and writes it after the worker's.
+    fn flush_block(&mut self, full: bool) -> io::Result<()> {
+        if self.block.is_empty() {
+            return self.collect();
+        }
+        let start = self.frames_in_track;
+        self.frames_in_track += self.block.len();
+        if full && self.parallel && !self.in_flight {
+            if self.worker.is_none() {
+                self.worker = Some(Worker::spawn(self.rows.clone()));
+            }
+            let worker = self.worker.as_ref().ok_or_else(worker_gone)?;
+            let frames = std::mem::replace(&mut self.block, Vec::with_capacity(BLOCK));
+            let out = std::mem::take(&mut self.spare);
+            worker
+                .jobs
+                .send((frames, self.track.clone(), start, out))
+                .map_err(|_| worker_gone())?;
+            self.in_flight = true;
+            // Everything before the worker's block must reach the writer first.
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+            return Ok(());
+        }
+        let mut local = std::mem::take(&mut self.buf);
+        let mut mine = Vec::with_capacity(self.block.len() * 96);
+        self.rows.rows(&mut mine, &self.track, start, &self.block);
+        self.block.clear();
+        self.collect()?;
+        local.extend_from_slice(&mine);
+        self.buf = local;
+        self.maybe_flush()
+    }
+
+    /// The writer, after [`FrameSink::finish`] (the worker thread, if any, ends).
     pub fn into_inner(self) -> W {
         self.w
     }
@@ -253,57 +456,16 @@ impl<W: Write> FrameSink for FrameWriter<W> {
 
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
-        let omega = if self.velocity {
-            omega.map(|w| w.to_array().map(|x| self.angles.from_rad(x)))
-        } else {
-            None
-        };
-        match self.format {
-            Format::Csv => {
-                if self.track_column {
-                    self.buf.extend_from_slice(&self.track);
-                }
-                self.nums.int(&mut self.buf, k);
-                self.buf.push(b',');
-                self.nums.float(&mut self.buf, time);
-                self.rot.csv(&mut self.buf, q);
-                if let Some(w) = omega {
-                    for x in w {
-                        self.buf.push(b',');
-                        self.nums.float(&mut self.buf, x);
-                    }
-                }
-                self.buf.push(b'\n');
-            }
-            Format::Json => {
-                self.buf.extend_from_slice(if self.frames_in_track == 0 {
-                    b"\n{\"frame\": "
-                } else {
-                    b",\n{\"frame\": "
-                });
-                self.nums.int(&mut self.buf, k);
-                self.buf.extend_from_slice(b", \"time\": ");
-                self.nums.float(&mut self.buf, time);
-                self.buf.extend_from_slice(b", ");
-                self.rot.json(&mut self.buf, q);
-                if let Some(w) = omega {
-                    self.buf.extend_from_slice(b", \"angular_velocity\": [");
-                    for (i, x) in w.iter().enumerate() {
-                        if i > 0 {
-                            self.buf.extend_from_slice(b", ");
-                        }
-                        self.nums.float(&mut self.buf, *x);
-                    }
-                    self.buf.push(b']');
-                }
-                self.buf.push(b'}');
-            }
+        self.block.push(Frame { k, time, q, omega });
+        if self.block.len() == BLOCK {
+            self.flush_block(true)?;
         }
-        self.frames_in_track += 1;
-        self.maybe_flush()
+        Ok(())
     }
 
     fn end_track(&mut self) -> io::Result<()> {
+        self.flush_block(false)?;
+        self.collect()?;
         if self.format == Format::Json {
             self.buf.extend_from_slice(b"\n]}");
         }
@@ -311,6 +473,8 @@ impl<W: Write> FrameSink for FrameWriter<W> {
     }
 
     fn finish(&mut self) -> io::Result<()> {
+        self.flush_block(false)?;
+        self.collect()?;
         if self.format == Format::Json {
             self.buf.extend_from_slice(b"\n]}\n");
         }
@@ -441,4 +605,66 @@ pub fn write_keys<W: Write>(
     }
     w.write_all(&buf)?;
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::num::NumFormat;
+    use crate::rotation::{EulerSeq, QuatOrder};
+
+    /// Writes tracks of the given lengths with both writers.
+    fn both(format: Format, style: Style, lengths: &[usize], velocity: bool) -> (Vec<u8>, Vec<u8>) {
+        let fps = Fps::new(30, 1).unwrap();
+        let write = |w: &mut FrameWriter<Vec<u8>>| {
+            for (ti, &n) in lengths.iter().enumerate() {
+                w.begin_track(Some(&format!("t{ti}"))).unwrap();
+                for k in 0..n as i64 {
+                    let t = k as f64 / 30.0;
+                    let q = DQuat::from_euler(glam::EulerRot::ZYX, t, 0.3 * t + ti as f64, -t);
+                    w.frame(k, t, q, Some(DVec3::new(t, -t, 0.5))).unwrap();
+                }
+                w.end_track().unwrap();
+            }
+            w.finish().unwrap();
+        };
+        let mut par = FrameWriter::new(Vec::new(), format, style, fps, true, velocity);
+        assert!(par.parallel || std::thread::available_parallelism().map_or(1, |n| n.get()) < 2);
+        write(&mut par);
+        let mut seq = FrameWriter::new(Vec::new(), format, style, fps, true, velocity).sequential();
+        write(&mut seq);
+        (par.into_inner(), seq.into_inner())
+    }
+
+    #[test]
+    fn parallel_formatting_gives_the_sequential_bytes() {
+        let lengths = [0, 1, BLOCK - 1, BLOCK, BLOCK + 1, 3 * BLOCK + 17, 2 * BLOCK];
+        let styles = [
+            Style {
+                repr: Repr::Quat,
+                angles: AngleUnit::Deg,
+                quat_order: QuatOrder::Wxyz,
+                num: NumFormat::Shortest,
+            },
+            Style {
+                repr: Repr::Euler(EulerSeq::parse("zyx").unwrap()),
+                angles: AngleUnit::Rad,
+                quat_order: QuatOrder::Xyzw,
+                num: NumFormat::Fixed(9),
+            },
+        ];
+        for format in [Format::Csv, Format::Json] {
+            for style in styles {
+                for velocity in [false, true] {
+                    let (par, seq) = both(format, style, &lengths, velocity);
+                    assert!(par.len() > 100_000);
+                    assert!(
+                        par == seq,
+                        "{format:?} {:?} velocity {velocity}",
+                        style.repr
+                    );
+                }
+            }
+        }
+    }
 }
