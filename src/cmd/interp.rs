@@ -4,7 +4,7 @@ use crate::cli::InterpArgs;
 use crate::interp::{Settings, run as interpolate};
 use crate::io::OutputFormat;
 use crate::io::npy::NpyWriter;
-use crate::io::output::Output;
+use crate::io::output::{Output, WriteBehind};
 use crate::io::write::{FrameWriter, Style};
 use std::io::Read;
 
@@ -37,7 +37,7 @@ pub fn run(
         num: args.output.num_format(),
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
-    let out = Output::open(args.output.output.as_deref())?;
+    let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
     // Input errors found while interpolating (minaccel's grid cap) name the file too.
     let locate = |e: anyhow::Error| match e.downcast::<crate::InputError>() {
         Ok(ie) => anyhow::Error::new(ie.at(&doc.source)),
@@ -47,7 +47,7 @@ pub fn run(
         let mut writer =
             FrameWriter::new(out, format, style, opts.fps, track_column, args.velocity);
         let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
-        writer.into_inner().commit()?;
+        writer.into_inner().finish()?.commit()?;
         reports
     } else {
         let rows: u64 = tracks
@@ -61,7 +61,7 @@ pub fn run(
             .sum();
         let mut writer = NpyWriter::new(out, style, rows, track_column, args.velocity);
         let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
-        writer.into_inner().commit()?;
+        writer.into_inner().finish()?.commit()?;
         reports
     };
     if args.verbose {

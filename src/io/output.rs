@@ -86,3 +86,113 @@ impl Write for Output {
         }
     }
 }
+
+/// Bytes handed to a second thread that writes them, so that the system calls (the kernel's copy
+/// into the file or pipe) overlap the computation. Chunks of 1 MiB go through a channel bounded
+/// to four chunks (recycled), so memory stays flat. [`WriteBehind::finish`] returns the destination for
+/// [`Output::commit`]; a write error (a closed pipe included) is reported by the next write or
+/// by `finish`.
+pub struct WriteBehind {
+    buf: Vec<u8>,
+    chunks: Option<std::sync::mpsc::SyncSender<Vec<u8>>>,
+    /// Written chunks come back for reuse (a fresh 1 MiB buffer page-faults on first use).
+    empty: std::sync::mpsc::Receiver<Vec<u8>>,
+    thread: Option<std::thread::JoinHandle<(Output, io::Result<()>)>>,
+}
+
+const CHUNK: usize = 1 << 20;
+
+impl WriteBehind {
+    pub fn new(mut out: Output) -> WriteBehind {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<u8>>(4);
+        let (back, empty) = std::sync::mpsc::channel::<Vec<u8>>();
+        let thread = std::thread::spawn(move || {
+            for mut chunk in rx {
+                if let Err(e) = out.write_all(&chunk) {
+                    return (out, Err(e));
+                }
+                chunk.clear();
+                let _ = back.send(chunk);
+            }
+            (out, Ok(()))
+        });
+        WriteBehind {
+            buf: Vec::with_capacity(CHUNK),
+            chunks: Some(tx),
+            empty,
+            thread: Some(thread),
+        }
+    }
+
+    /// Ends the thread and returns its error, if it stopped on one.
+    fn join(&mut self) -> io::Result<Output> {
+        self.chunks = None;
+        let thread = self
+            .thread
+            .take()
+            .ok_or_else(|| io::Error::other("output thread already finished"))?;
+        let (out, result) = thread
+            .join()
+            .map_err(|_| io::Error::other("the output thread panicked"))?;
+        result.map(|()| out)
+    }
+
+    fn send(&mut self) -> io::Result<()> {
+        let next = self
+            .empty
+            .try_recv()
+            .unwrap_or_else(|_| Vec::with_capacity(CHUNK));
+        let chunk = std::mem::replace(&mut self.buf, next);
+        let sent = match &self.chunks {
+            Some(tx) => tx.send(chunk).is_ok(),
+            None => false,
+        };
+        if sent {
+            Ok(())
+        } else {
+            // The thread stopped on an error: report it.
+            self.join()
+                .and(Err(io::Error::other("output thread stopped")))
+        }
+    }
+
+    /// Writes what is left and returns the destination, ready for [`Output::commit`].
+    pub fn finish(mut self) -> io::Result<Output> {
+        if !self.buf.is_empty() {
+            self.send()?;
+        }
+        self.join()
+    }
+}
+
+impl Write for WriteBehind {
+    fn write(&mut self, data: &[u8]) -> io::Result<usize> {
+        self.write_all(data)?;
+        Ok(data.len())
+    }
+
+    fn write_all(&mut self, data: &[u8]) -> io::Result<()> {
+        self.buf.extend_from_slice(data);
+        if self.buf.len() >= CHUNK {
+            self.send()?;
+        }
+        Ok(())
+    }
+
+    /// Only hands over the bytes so far; the thread writes them in order.
+    fn flush(&mut self) -> io::Result<()> {
+        if !self.buf.is_empty() {
+            self.send()?;
+        }
+        Ok(())
+    }
+}
+
+impl Drop for WriteBehind {
+    fn drop(&mut self) {
+        self.chunks = None;
+        if let Some(t) = self.thread.take() {
+            let _ = t.join();
+        }
+    }
+}

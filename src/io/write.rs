@@ -288,7 +288,11 @@ pub struct FrameWriter<W: Write> {
     worker: Option<Worker>,
     /// The worker holds a block whose bytes are not written yet.
     in_flight: bool,
+    /// Buffers kept for reuse: blocks are large, and a fresh allocation each time costs page
+    /// faults (they are above malloc's mmap threshold).
     spare: Vec<u8>,
+    scratch: Vec<u8>,
+    recycled: Vec<Frame>,
 }
 
 impl<W: Write> FrameWriter<W> {
@@ -344,6 +348,8 @@ impl<W: Write> FrameWriter<W> {
             worker: None,
             in_flight: false,
             spare: Vec::new(),
+            scratch: Vec::new(),
+            recycled: Vec::new(),
         }
     }
 
@@ -373,9 +379,7 @@ impl<W: Write> FrameWriter<W> {
             self.w.write_all(&bytes)?;
             self.spare = bytes;
             frames.clear();
-            if self.block.capacity() < BLOCK {
-                self.block = frames;
-            }
+            self.recycled = frames;
         }
         Ok(())
     }
@@ -393,7 +397,9 @@ impl<W: Write> FrameWriter<W> {
                 self.worker = Some(Worker::spawn(self.rows.clone()));
             }
             let worker = self.worker.as_ref().ok_or_else(worker_gone)?;
-            let frames = std::mem::replace(&mut self.block, Vec::with_capacity(BLOCK));
+            let mut next = std::mem::take(&mut self.recycled);
+            next.reserve(BLOCK);
+            let frames = std::mem::replace(&mut self.block, next);
             let out = std::mem::take(&mut self.spare);
             worker
                 .jobs
@@ -405,14 +411,21 @@ impl<W: Write> FrameWriter<W> {
             self.buf.clear();
             return Ok(());
         }
-        let mut local = std::mem::take(&mut self.buf);
-        let mut mine = Vec::with_capacity(self.block.len() * 96);
-        self.rows.rows(&mut mine, &self.track, start, &self.block);
+        if !self.in_flight {
+            // Nothing to overlap with: format straight into the output buffer.
+            self.rows
+                .rows(&mut self.buf, &self.track, start, &self.block);
+            self.block.clear();
+            return self.maybe_flush();
+        }
+        // Format this block while the worker formats the previous one, then write both in order.
+        self.scratch.clear();
+        self.rows
+            .rows(&mut self.scratch, &self.track, start, &self.block);
         self.block.clear();
         self.collect()?;
-        local.extend_from_slice(&mine);
-        self.buf = local;
-        self.maybe_flush()
+        self.w.write_all(&self.scratch)?;
+        Ok(())
     }
 
     /// The writer, after [`FrameSink::finish`] (the worker thread, if any, ends).
