@@ -35,6 +35,7 @@ fn main() {
         path: PathMode::Shortest,
         ends: EndConditions::default(),
         velocity: false,
+        parallel: true,
     };
     for num in [NumFormat::Shortest, NumFormat::Fixed(9)] {
         let style = Style {

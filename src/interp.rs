@@ -19,6 +19,7 @@ use crate::keys::TimedTrack;
 use crate::motion::{Side, TrackCurve, segment_omega};
 use crate::rotation::quat::geodesic;
 use crate::tangent::{EndConditions, Keys, PathMode};
+use glam::{DQuat, DVec3};
 use std::io;
 
 /// Everything `interp` needs besides the tracks.
@@ -31,6 +32,8 @@ pub struct Settings {
     pub ends: EndConditions,
     /// Compute each frame's angular velocity (SPEC: `interp --velocity`).
     pub velocity: bool,
+    /// Generate long tracks on two threads (same frames; off for comparisons).
+    pub parallel: bool,
 }
 
 /// Tolerance for "a blend comes within 1e-9 of an antipode" (SPEC §4.3).
@@ -134,23 +137,24 @@ fn minaccel_frames(
     Ok(r)
 }
 
-fn track_frames<S: Segment>(
-    keys: &Keys,
-    track: &TimedTrack,
-    settings: &Settings,
-    sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
-) -> io::Result<()> {
-    let fps = settings.fps;
+/// The frames `[from, to)` of segment `s` (only segments with frames are listed).
+#[derive(Debug, Clone, Copy)]
+struct SegmentFrames {
+    s: usize,
+    from: i64,
+    to: i64,
+}
+
+/// Which frames each segment writes (see the module documentation).
+fn plan(keys: &Keys, fps: Fps) -> Vec<SegmentFrames> {
     let times = &keys.times;
     let n = times.len();
     let (first, last) = fps.frames_between(times[0], times[n - 1]);
     let mut k = first;
-    let period = fps.den() as f64 / fps.num() as f64;
+    let mut out = Vec::new();
     for s in 0..n - 1 {
         let (t0, t1) = (times[s], times[s + 1]);
-        let last_segment = s == n - 2;
-        let k_end = if last_segment {
+        let k_end = if s == n - 2 {
             last + 1
         } else {
             // Frames from 1e-9 s before the next key belong to it, except one that is nearer
@@ -161,54 +165,165 @@ fn track_frames<S: Segment>(
             }
             e
         };
-        if k >= k_end {
-            continue;
-        }
-        let seg = S::new(keys, s, settings.blend);
-        let name = || {
-            track
-                .name
-                .as_deref()
-                .map_or(String::new(), |n| format!("track \"{n}\", "))
-        };
-        if let Some(note) = seg.limitation() {
-            warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));
-        }
-        if let Some((gap, u)) = antipode_gap(&seg)
-            && gap < ANTIPODE_TOL
-        {
-            warn(&format!(
-                "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
-                 {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
-                 use --scheme minaccel",
-                name(),
-                settings.scheme.name()
-            ));
-        }
-        let delta = t1 - t0;
-        let omega = |u: f64| settings.velocity.then(|| segment_omega(&seg, u, delta));
-        if (fps.time_of(k) - t0).abs() <= TIME_TOL {
-            sink.frame(k, fps.time_of(k), keys.quats[s], omega(0.0))?;
-            k += 1;
-        }
-        let end_snap = last_segment && k < k_end && (fps.time_of(k_end - 1) - t1).abs() <= TIME_TOL;
-        let stop = if end_snap { k_end - 1 } else { k_end };
-        if stop > k {
-            let u0 = (fps.time_of(k) - t0) / delta;
-            let du = period / delta;
-            for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
-                let kj = k + j as i64;
-                let w = omega((fps.time_of(kj) - t0) / delta);
-                sink.frame(kj, fps.time_of(kj), q, w)?;
-            }
-            k = stop;
-        }
-        if end_snap {
-            sink.frame(k, fps.time_of(k), keys.quats[n - 1], omega(1.0))?;
-            k += 1;
+        if k < k_end {
+            out.push(SegmentFrames {
+                s,
+                from: k,
+                to: k_end,
+            });
+            k = k_end;
         }
     }
+    out
+}
+
+/// One generated frame: number, time, rotation, angular velocity.
+type Frame = (i64, f64, DQuat, Option<DVec3>);
+
+/// Generates the frames of one segment into `emit`; warnings about it go to `warn`.
+fn segment_frames<S: Segment>(
+    keys: &Keys,
+    track: &TimedTrack,
+    settings: &Settings,
+    p: SegmentFrames,
+    warn: &mut dyn FnMut(&str),
+    emit: &mut dyn FnMut(Frame) -> io::Result<()>,
+) -> io::Result<()> {
+    let fps = settings.fps;
+    let times = &keys.times;
+    let n = times.len();
+    let s = p.s;
+    let (t0, t1) = (times[s], times[s + 1]);
+    let period = fps.den() as f64 / fps.num() as f64;
+    let seg = S::new(keys, s, settings.blend);
+    let name = || {
+        track
+            .name
+            .as_deref()
+            .map_or(String::new(), |n| format!("track \"{n}\", "))
+    };
+    if let Some(note) = seg.limitation() {
+        warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));
+    }
+    if let Some((gap, u)) = antipode_gap(&seg)
+        && gap < ANTIPODE_TOL
+    {
+        warn(&format!(
+            "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
+             {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
+             use --scheme minaccel",
+            name(),
+            settings.scheme.name()
+        ));
+    }
+    let delta = t1 - t0;
+    let omega = |u: f64| settings.velocity.then(|| segment_omega(&seg, u, delta));
+    let mut k = p.from;
+    if (fps.time_of(k) - t0).abs() <= TIME_TOL {
+        emit((k, fps.time_of(k), keys.quats[s], omega(0.0)))?;
+        k += 1;
+    }
+    let end_snap = s == n - 2 && k < p.to && (fps.time_of(p.to - 1) - t1).abs() <= TIME_TOL;
+    let stop = if end_snap { p.to - 1 } else { p.to };
+    if stop > k {
+        let u0 = (fps.time_of(k) - t0) / delta;
+        let du = period / delta;
+        for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
+            let kj = k + j as i64;
+            let w = omega((fps.time_of(kj) - t0) / delta);
+            emit((kj, fps.time_of(kj), q, w))?;
+        }
+        k = stop;
+    }
+    if end_snap {
+        emit((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)))?;
+    }
     Ok(())
+}
+
+/// Tracks with at least this many frames are generated on two threads.
+const PARALLEL_FRAMES: i64 = 1 << 17;
+/// About this many frames per chunk of segments handed to the second thread.
+const CHUNK_FRAMES: i64 = 1 << 14;
+
+/// Every frame of a track into `sink`, in order. A long track is generated on two threads:
+/// chunks of segments alternate between this thread (straight into the sink) and a worker whose
+/// frames come back through a one-slot channel, so memory stays bounded and the sink sees the
+/// frames in order (and the same frames: each segment is generated the same way either way).
+fn track_frames<S: Segment>(
+    keys: &Keys,
+    track: &TimedTrack,
+    settings: &Settings,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    let plans = plan(keys, settings.fps);
+    let total: i64 = plans.iter().map(|p| p.to - p.from).sum();
+    let mut to_sink = |(k, t, q, w): Frame| sink.frame(k, t, q, w);
+    let parallel = settings.parallel
+        && total >= PARALLEL_FRAMES
+        && plans.len() >= 2
+        && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    if !parallel {
+        for &p in &plans {
+            segment_frames::<S>(keys, track, settings, p, warn, &mut to_sink)?;
+        }
+        return Ok(());
+    }
+    // Chunks of consecutive segments of about CHUNK_FRAMES frames.
+    let mut chunks = Vec::new();
+    let (mut start, mut frames) = (0, 0);
+    for (i, p) in plans.iter().enumerate() {
+        frames += p.to - p.from;
+        if frames >= CHUNK_FRAMES || i + 1 == plans.len() {
+            chunks.push(start..i + 1);
+            (start, frames) = (i + 1, 0);
+        }
+    }
+    std::thread::scope(|scope| {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<(Vec<Frame>, Vec<String>)>(1);
+        let (plans, chunks) = (&plans, &chunks);
+        scope.spawn(move || {
+            for c in chunks.iter().skip(1).step_by(2) {
+                let mut frames = Vec::with_capacity(CHUNK_FRAMES as usize + 4096);
+                let mut notes = Vec::new();
+                for &p in &plans[c.clone()] {
+                    let _ = segment_frames::<S>(
+                        keys,
+                        track,
+                        settings,
+                        p,
+                        &mut |m| notes.push(m.to_string()),
+                        &mut |f| {
+                            frames.push(f);
+                            Ok(())
+                        },
+                    );
+                }
+                if tx.send((frames, notes)).is_err() {
+                    return;
+                }
+            }
+        });
+        for (i, c) in chunks.iter().enumerate() {
+            if i % 2 == 0 {
+                for &p in &plans[c.clone()] {
+                    segment_frames::<S>(keys, track, settings, p, warn, &mut to_sink)?;
+                }
+            } else {
+                let (frames, notes) = rx
+                    .recv()
+                    .map_err(|_| io::Error::other("the generating thread stopped"))?;
+                for m in &notes {
+                    warn(m);
+                }
+                for f in frames {
+                    to_sink(f)?;
+                }
+            }
+        }
+        Ok(())
+    })
 }
 
 /// Direct evaluation of a track's curve at time `t` (clamped to the keys' span), for tests and

@@ -69,6 +69,7 @@ fuzz_target!(|data: &[u8]| {
             end: vel(o[4]),
         },
         velocity: o[2] & 8 != 0,
+        parallel: o[2] & 16 != 0,
     };
     let format = Format::sniff(text);
     let Ok(doc) = read_document(text, "fuzz", format, &ReadOptions::default()) else {

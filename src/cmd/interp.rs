@@ -25,6 +25,7 @@ pub fn run(
         path: opts.path,
         ends: opts.ends,
         velocity: args.velocity,
+        parallel: true,
     };
     let format = args
         .output

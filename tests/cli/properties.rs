@@ -71,6 +71,7 @@ pub fn settings(scheme: Scheme, fps: &str, ends: EndConditions) -> Settings {
         path: PathMode::Shortest,
         ends,
         velocity: false,
+        parallel: true,
     }
 }
 

@@ -367,3 +367,36 @@ fn regression_fuzz_minaccel_slow_start() {
     }
     assert_eq!(n, 67 * 24 + 1);
 }
+
+/// Long tracks are generated on two threads: the frames (bit for bit) and the warnings, in
+/// order, are those of one thread.
+#[test]
+fn two_thread_generation_gives_the_same_frames() {
+    let n = 260;
+    let quats = (0..n)
+        .map(|i| {
+            let a = i as f64;
+            DQuat::from_axis_angle(
+                DVec3::new(a.sin(), 0.4, (0.3 * a).cos()).normalize(),
+                0.7 * a,
+            )
+        })
+        .collect();
+    // 259 s at 1000 fps: 259 001 frames, above the two-thread threshold.
+    let t = track((0..n).map(|i| i as f64).collect(), quats);
+    for scheme in [Scheme::Hermite, Scheme::Bezier, Scheme::Slerp] {
+        let mut s = settings(scheme, "1000", EndConditions::default());
+        s.velocity = true;
+        let (par, warn_par) = interpolate(&t, &s);
+        s.parallel = false;
+        let (seq, warn_seq) = interpolate(&t, &s);
+        assert_eq!(par.len(), 259_001);
+        assert_eq!(warn_par, warn_seq);
+        assert!(
+            par.iter()
+                .zip(&seq)
+                .all(|(a, b)| a.0 == b.0 && a.1 == b.1 && a.2 == b.2),
+            "{scheme:?}"
+        );
+    }
+}
