@@ -102,7 +102,7 @@ fn bench(c: &mut Criterion) {
                     path: PathMode::Shortest,
                     ends: EndConditions::default(),
                     velocity: false,
-                    parallel: true,
+                    parallel: false,
                 };
                 let mut w =
                     FrameWriter::new(io::sink(), Format::Csv, style(num), fps(), false, false);

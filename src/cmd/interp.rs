@@ -25,7 +25,9 @@ pub fn run(
         path: opts.path,
         ends: opts.ends,
         velocity: args.velocity,
-        parallel: true,
+        // Two generating threads pay only when the output is cheap to write (npy); with text,
+        // formatting already uses the second core (measured: docs/performance.md).
+        parallel: args.output.output_format == Some(OutputFormat::Npy),
     };
     let format = args
         .output
