@@ -5,21 +5,14 @@ use inbetween::clock::Fps;
 use inbetween::curve::minaccel::Problem;
 use inbetween::curve::{Blend, Scheme};
 use inbetween::interp::eval_at;
-use inbetween::io::{Format, ReadOptions, read_document};
+use inbetween::io::{ReadOptions, read_path};
 use inbetween::tangent::{EndConditions, Keys, PathMode};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = std::path::Path::new(args.get(1).ok_or("usage: KEYS [FPS]")?);
     let fps: f64 = args.get(2).map_or(Ok(30.0), |s| s.parse())?;
-    let text = std::fs::read_to_string(path)?;
-    let format = Format::from_path(path).unwrap_or(Format::sniff(&text));
-    let doc = read_document(
-        &text,
-        &path.display().to_string(),
-        format,
-        &ReadOptions::default(),
-    )?;
+    let (doc, _) = read_path(path, None, &ReadOptions::default())?;
     for track in doc.timed_tracks(doc.fps.unwrap_or(Fps::new(30, 1)?))? {
         let keys = Keys::new(&track, PathMode::Shortest, EndConditions::default());
         let problem = Problem::new(&keys, fps)?;

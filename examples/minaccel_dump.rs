@@ -4,21 +4,14 @@
 
 use inbetween::clock::Fps;
 use inbetween::curve::minaccel::solve;
-use inbetween::io::{Format, ReadOptions, read_document};
+use inbetween::io::{ReadOptions, read_path};
 use inbetween::tangent::{EndConditions, Ends, Keys, PathMode};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = std::path::Path::new(args.get(1).ok_or("usage: KEYS FPS [rest]")?);
     let fps: f64 = args.get(2).ok_or("usage: KEYS FPS [rest]")?.parse()?;
-    let text = std::fs::read_to_string(path)?;
-    let format = Format::from_path(path).unwrap_or(Format::sniff(&text));
-    let doc = read_document(
-        &text,
-        &path.display().to_string(),
-        format,
-        &ReadOptions::default(),
-    )?;
+    let (doc, _) = read_path(path, None, &ReadOptions::default())?;
     let tracks = doc.timed_tracks(doc.fps.unwrap_or(Fps::new(30, 1)?))?;
     let ends = EndConditions {
         ends: if args.get(3).map(String::as_str) == Some("rest") {

@@ -12,9 +12,8 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> anyhow::Result<()> {
-    let (doc, _) = super::read_input(&args.input, stdin, warn)?;
+    let (doc, _, tracks, opts) = super::read_curves(&args.input, &args.curve, stdin, warn)?;
     let unit = args.input.angles;
-    let (tracks, opts) = super::curve::curve_setup(&args.curve, &doc, unit)?;
     let mut rows = Vec::new();
     for track in &tracks {
         for &s in &args.scheme.0 {

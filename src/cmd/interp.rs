@@ -15,9 +15,8 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> anyhow::Result<()> {
-    let (doc, in_format) = super::read_input(&args.input, stdin, warn)?;
+    let (doc, in_format, tracks, opts) = super::read_curves(&args.input, &args.curve, stdin, warn)?;
     let unit = args.input.angles;
-    let (tracks, opts) = super::curve::curve_setup(&args.curve, &doc, unit)?;
     let settings = Settings {
         fps: opts.fps,
         scheme: args.scheme.into(),

@@ -81,6 +81,38 @@ pub struct ReadOptions {
     pub quat_order: QuatOrder,
 }
 
+/// Parses a document from raw bytes: UTF-8 checked, the format as given, else from `path`'s
+/// extension, else sniffed. `source` names the input in messages.
+pub fn parse_bytes(
+    bytes: Vec<u8>,
+    source: &str,
+    path: Option<&Path>,
+    format: Option<Format>,
+    opts: &ReadOptions,
+) -> InputResult<(Document, Format)> {
+    let text = String::from_utf8(bytes).map_err(|e| {
+        input_err!(
+            "{source}: expected UTF-8 text, found an invalid byte at offset {}",
+            e.utf8_error().valid_up_to()
+        )
+    })?;
+    let format = format
+        .or_else(|| path.and_then(Format::from_path))
+        .unwrap_or_else(|| Format::sniff(&text));
+    Ok((read_document(&text, source, format, opts)?, format))
+}
+
+/// Reads and parses a keyframe file (see [`parse_bytes`]).
+pub fn read_path(
+    path: &Path,
+    format: Option<Format>,
+    opts: &ReadOptions,
+) -> InputResult<(Document, Format)> {
+    let source = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| input_err!("{source}: cannot read: {e}"))?;
+    parse_bytes(bytes, &source, Some(path), format, opts)
+}
+
 /// Parses a document in the given format.
 pub fn read_document(
     text: &str,
