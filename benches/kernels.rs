@@ -10,12 +10,12 @@ use inbetween::curve::hermite::Hermite;
 use inbetween::curve::slerp::Slerp;
 use inbetween::curve::squad::Squad;
 use inbetween::curve::{Blend, Segment};
-use inbetween::tangent::{EndConditions, Keys, PathMode};
+use inbetween::tangent::{EndConditions, Knots, PathMode};
 use std::hint::black_box;
 use support::{INBETWEENS, SEGMENTS, track};
 
 /// Generates every in-between of every segment and folds them (so nothing is optimised away).
-fn run<S: Segment>(keys: &Keys) -> DQuat {
+fn run<S: Segment>(keys: &Knots) -> DQuat {
     let du = 1.0 / INBETWEENS as f64;
     let mut acc = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
     for s in 0..keys.segments() {
@@ -28,7 +28,7 @@ fn run<S: Segment>(keys: &Keys) -> DQuat {
 }
 
 fn bench(c: &mut Criterion) {
-    let keys = Keys::new(
+    let keys = Knots::new(
         &track(SEGMENTS),
         PathMode::Shortest,
         EndConditions::default(),

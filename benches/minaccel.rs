@@ -5,12 +5,12 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::{DQuat, DVec3};
 use inbetween::curve::minaccel::solve;
-use inbetween::keys::TimedTrack;
-use inbetween::tangent::{EndConditions, Keys, PathMode};
+use inbetween::tangent::Knots;
+use inbetween::{EndConditions, PathMode, Track};
 use std::hint::black_box;
 
 /// Seven keys one second apart, turning about changing axes (Figure 7 has seven keys).
-pub fn figure7_keys() -> Keys {
+pub fn figure7_keys() -> Knots {
     let quats: Vec<DQuat> = (0..7)
         .map(|i| {
             let a = i as f64;
@@ -18,14 +18,8 @@ pub fn figure7_keys() -> Keys {
             DQuat::from_axis_angle(axis, 0.6 * a)
         })
         .collect();
-    let track = TimedTrack {
-        name: None,
-        times: (0..7).map(f64::from).collect(),
-        quats,
-        start_velocity: None,
-        end_velocity: None,
-    };
-    Keys::new(&track, PathMode::Shortest, EndConditions::default())
+    let track = Track::new((0..7).map(f64::from).collect(), quats).expect("a valid track");
+    Knots::new(&track, PathMode::Shortest, EndConditions::default())
 }
 
 fn bench(c: &mut Criterion) {

@@ -6,14 +6,11 @@ mod support;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::DQuat;
-use inbetween::curve::{Blend, Scheme};
-use inbetween::interp::{Settings, run};
 use inbetween::io::Format;
-use inbetween::io::npy::NpyWriter;
-use inbetween::io::num::NumFormat;
-use inbetween::io::write::{FrameSink, FrameWriter, Style};
+use inbetween::io::write::num::NumFormat;
+use inbetween::io::write::{FrameWriter, NpyWriter, Style};
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
-use inbetween::tangent::{EndConditions, PathMode};
+use inbetween::{BakeOptions, Curve, CurveOptions, FrameSink, bake};
 use std::hint::black_box;
 use std::io;
 use support::{fps, track};
@@ -95,18 +92,11 @@ fn bench(c: &mut Criterion) {
     ] {
         g.bench_function(name, |b| {
             b.iter(|| {
-                let settings = Settings {
-                    fps: fps(),
-                    scheme: Scheme::Hermite,
-                    blend: Blend::Cubic,
-                    path: PathMode::Shortest,
-                    ends: EndConditions::default(),
-                    velocity: false,
-                    parallel: false,
-                };
+                let curve = Curve::new(&t, &CurveOptions::default()).unwrap();
                 let mut w =
                     FrameWriter::new(io::sink(), Format::Csv, style(num), fps(), false, false);
-                run(std::slice::from_ref(&t), &settings, &mut w, &mut |_| {}).unwrap();
+                bake(&curve, fps(), BakeOptions::default(), &mut w, &mut |_| {}).unwrap();
+                w.finish().unwrap();
             })
         });
     }

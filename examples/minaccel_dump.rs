@@ -2,17 +2,17 @@
 //! `[w, x, y, z]`), for checking against an independent optimiser:
 //! `cargo run --release --example minaccel_dump -- KEYS FPS [rest]`.
 
-use inbetween::clock::Fps;
 use inbetween::curve::minaccel::solve;
 use inbetween::io::{ReadOptions, read_path};
-use inbetween::tangent::{EndConditions, Ends, Keys, PathMode};
+use inbetween::tangent::Knots;
+use inbetween::{EndConditions, Ends, Fps, PathMode};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
     let path = std::path::Path::new(args.get(1).ok_or("usage: KEYS FPS [rest]")?);
     let fps: f64 = args.get(2).ok_or("usage: KEYS FPS [rest]")?.parse()?;
     let (doc, _) = read_path(path, None, &ReadOptions::default())?;
-    let tracks = doc.timed_tracks(doc.fps.unwrap_or(Fps::new(30, 1)?))?;
+    let tracks = doc.tracks(doc.fps.unwrap_or(Fps::DEFAULT))?;
     let ends = EndConditions {
         ends: if args.get(3).map(String::as_str) == Some("rest") {
             Ends::Rest
@@ -21,7 +21,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         },
         ..Default::default()
     };
-    let keys = Keys::new(&tracks[0], PathMode::Shortest, ends);
+    let keys = Knots::new(&tracks[0], PathMode::Shortest, ends);
     let sol = solve(&keys, fps)?;
     let pts: Vec<[f64; 4]> = sol.points.iter().map(|q| [q.w, q.x, q.y, q.z]).collect();
     println!(

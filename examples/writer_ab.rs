@@ -2,38 +2,28 @@
 //! discarding writer: `cargo run --release --example writer_ab`.
 
 use glam::{DQuat, DVec3};
-use inbetween::clock::Fps;
-use inbetween::curve::{Blend, Scheme};
-use inbetween::interp::{Settings, run};
 use inbetween::io::Format;
-use inbetween::io::num::NumFormat;
+use inbetween::io::write::num::NumFormat;
 use inbetween::io::write::{FrameWriter, Style};
-use inbetween::keys::TimedTrack;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
-use inbetween::tangent::{EndConditions, PathMode};
+use inbetween::{BakeOptions, Curve, CurveOptions, Fps, FrameSink, Track, bake};
 use std::time::Instant;
 
 fn main() {
     let n = 1000;
-    let track = TimedTrack {
-        name: None,
-        times: (0..=n).map(f64::from).collect(),
-        quats: (0..=n)
+    let track = Track::new(
+        (0..=n).map(f64::from).collect(),
+        (0..=n)
             .map(|i| {
                 let a = f64::from(i);
                 DQuat::from_axis_angle(DVec3::new(a.sin(), 0.5, 1.0).normalize(), 0.3 * a)
             })
             .collect(),
-        start_velocity: None,
-        end_velocity: None,
-    };
+    )
+    .expect("a valid track");
     let fps = Fps::new(1000, 1).unwrap();
-    let settings = Settings {
-        fps,
-        scheme: Scheme::Hermite,
-        blend: Blend::Cubic,
-        path: PathMode::Shortest,
-        ends: EndConditions::default(),
+    let curve = Curve::new(&track, &CurveOptions::default()).expect("a hermite curve");
+    let opts = BakeOptions {
         velocity: false,
         parallel: true,
     };
@@ -50,7 +40,8 @@ fn main() {
                 let w = FrameWriter::new(std::io::sink(), Format::Csv, style, fps, false, false);
                 let mut w = if parallel { w } else { w.sequential() };
                 let t0 = Instant::now();
-                run(std::slice::from_ref(&track), &settings, &mut w, &mut |_| {}).unwrap();
+                bake(&curve, fps, opts, &mut w, &mut |_| {}).unwrap();
+                w.finish().unwrap();
                 times[i].push(t0.elapsed().as_secs_f64());
             }
         }

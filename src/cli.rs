@@ -1,11 +1,11 @@
 //! Command-line definitions (clap derive). Doc comments are the help text. Values are parsed
 //! into validated library types here, so a bad value is a usage error (exit 2) naming the flag.
 
-use crate::clock::Fps;
-use crate::io::num::{MAX_PRECISION, NumFormat};
-use crate::io::{Format, OutputFormat};
-use crate::rotation::{AngleUnit, QuatOrder, Repr};
 use clap::{Args, Parser, Subcommand};
+use inbetween::Fps;
+use inbetween::io::write::num::{MAX_PRECISION, NumFormat};
+use inbetween::io::{Format, OutputFormat};
+use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 use std::path::PathBuf;
 
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
@@ -313,27 +313,27 @@ fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
 }
 
 fn parse_repr(s: &str) -> Result<Repr, String> {
-    Repr::parse(s).map_err(|e| e.0)
+    Repr::parse(s).map_err(|e| e.message().to_string())
 }
 
 fn parse_angles(s: &str) -> Result<AngleUnit, String> {
-    AngleUnit::parse(s).map_err(|e| e.0)
+    AngleUnit::parse(s).map_err(|e| e.message().to_string())
 }
 
 fn parse_quat_order(s: &str) -> Result<QuatOrder, String> {
-    QuatOrder::parse(s).map_err(|e| e.0)
+    QuatOrder::parse(s).map_err(|e| e.message().to_string())
 }
 
 fn parse_output_format(s: &str) -> Result<OutputFormat, String> {
-    OutputFormat::parse(s).map_err(|e| e.0)
+    OutputFormat::parse(s).map_err(|e| e.message().to_string())
 }
 
 fn parse_format(s: &str) -> Result<Format, String> {
-    Format::parse(s).map_err(|e| e.0)
+    Format::parse(s).map_err(|e| e.message().to_string())
 }
 
-pub(crate) fn parse_fps(s: &str) -> Result<Fps, String> {
-    Fps::parse(s).map_err(|e| e.0)
+fn parse_fps(s: &str) -> Result<Fps, String> {
+    Fps::parse(s).map_err(|e| e.message().to_string())
 }
 
 fn parse_precision(s: &str) -> Result<usize, String> {

@@ -1,21 +1,43 @@
-//! Exact rational frame rates and the frame grid.
+//! Exact rational frame rates and the frame grid: which frames a span has, which piece of a
+//! curve each frame belongs to, and when a frame is a key.
 //!
 //! A rate is `num/den` frames per second in lowest terms. The NTSC decimals `23.976`, `29.97`,
 //! `59.94` (and `47.952`, `119.88`) mean the exact `N·1000/1001` ratios; any other decimal is
 //! taken exactly as written (`12.5` = 25/2). Frame `k` is at time `k·den/num`, computed from the
 //! integer index (one rounding), never by accumulating `t += dt`.
+//!
+//! The frame-clock rule (docs/spec.md §3), in one place ([`Fps::pieces`]): a track's frames are
+//! those with `t_1 − 1e-9 ≤ k/fps ≤ t_n + 1e-9`. Piece `s` (between breaks `t_s` and `t_{s+1}`:
+//! keys, or minaccel's grid points) takes the frames with `t_s − 1e-9 ≤ k/fps < t_{s+1} − 1e-9`,
+//! except one nearer `t_s` (breaks less than 2e-9 s apart); the last piece runs to
+//! `t_n + 1e-9`. A frame within 1e-9 s of its piece's start, or of the last break, *is* that
+//! break (it snaps).
+//!
+//! ```
+//! use inbetween::Fps;
+//!
+//! let fps: Fps = "29.97".parse()?;
+//! assert_eq!((fps.num(), fps.den()), (30000, 1001));
+//! assert_eq!(fps.time_of(30000), 1001.0);
+//! // Keys at 0, 0.1 and 0.25 s at 30 fps: frames 0..=7, split 0..3 and 3..8; frame 3 is the key.
+//! let fps = Fps::new(30, 1)?;
+//! let pieces: Vec<_> = fps.pieces(&[0.0, 0.1, 0.25]).collect();
+//! assert_eq!((pieces[0].from, pieces[0].to, pieces[1].from, pieces[1].to), (0, 3, 3, 8));
+//! assert!(pieces[1].snap_start && !pieces[1].snap_end);
+//! # Ok::<(), inbetween::InputError>(())
+//! ```
 
 use crate::error::InputResult;
-use crate::input_err;
+use crate::error::input_err;
 use std::fmt;
 
 /// Largest accepted rate, frames per second.
 pub const MAX_FPS: f64 = 1e7;
 
-/// Tolerance in seconds for a frame to count as inside a track or on a key (SPEC §3).
+/// Tolerance in seconds for a frame to count as inside a track or on a key (docs/spec.md §3).
 pub const TIME_TOL: f64 = 1e-9;
 
-/// A positive rational frame rate.
+/// A positive rational frame rate, exact (`30000/1001`, not 29.97002997…).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Fps {
     num: u64,
@@ -30,6 +52,9 @@ fn gcd(mut a: u64, mut b: u64) -> u64 {
 }
 
 impl Fps {
+    /// The rate used when neither the command line nor the document gives one: 30 fps.
+    pub const DEFAULT: Fps = Fps { num: 30, den: 1 };
+
     /// `num/den` frames per second; both positive.
     pub fn new(num: u64, den: u64) -> InputResult<Fps> {
         if num == 0 || den == 0 {
@@ -94,14 +119,17 @@ impl Fps {
         Fps::parse(&format!("{x}"))
     }
 
+    /// Numerator of the rate in lowest terms.
     pub fn num(&self) -> u64 {
         self.num
     }
 
+    /// Denominator of the rate in lowest terms.
     pub fn den(&self) -> u64 {
         self.den
     }
 
+    /// The rate as a float (frames per second).
     pub fn as_f64(&self) -> f64 {
         self.num as f64 / self.den as f64
     }
@@ -156,6 +184,106 @@ impl Fps {
     /// `first > last`).
     pub fn frames_between(&self, t0: f64, t1: f64) -> (i64, i64) {
         (self.first_frame_from(t0), self.last_frame_until(t1))
+    }
+
+    /// Number of frames of the span `[t0, t1]` (see [`Fps::frames_between`]).
+    pub fn frame_count(&self, t0: f64, t1: f64) -> u64 {
+        let (a, b) = self.frames_between(t0, t1);
+        (b - a + 1).max(0) as u64
+    }
+
+    /// The frames of each piece between consecutive `breaks` (strictly increasing, at least two,
+    /// [`Fps::in_range`]), by the frame-clock rule of the module documentation. Only pieces with
+    /// frames are listed, in order; together they are every frame of the span exactly once.
+    pub fn pieces(self, breaks: &[f64]) -> Pieces<'_> {
+        let n = breaks.len();
+        let (first, last) = self.frames_between(breaks[0], breaks[n - 1]);
+        Pieces {
+            fps: self,
+            breaks,
+            s: 0,
+            k: first,
+            last,
+        }
+    }
+}
+
+/// The frames `from..to` of piece `piece` (between breaks `piece` and `piece + 1`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PieceFrames {
+    /// The piece's index.
+    pub piece: usize,
+    /// Its first frame.
+    pub from: i64,
+    /// One past its last frame.
+    pub to: i64,
+    /// Frame `from` is within 1e-9 s of the piece's start: it is the break itself.
+    pub snap_start: bool,
+    /// Frame `to − 1` is within 1e-9 s of the last break (last piece only, and not the frame
+    /// that already snapped to the start): it is the last break itself.
+    pub snap_end: bool,
+}
+
+/// Iterator of [`PieceFrames`], from [`Fps::pieces`].
+#[derive(Debug, Clone)]
+pub struct Pieces<'a> {
+    fps: Fps,
+    breaks: &'a [f64],
+    s: usize,
+    k: i64,
+    last: i64,
+}
+
+impl Iterator for Pieces<'_> {
+    type Item = PieceFrames;
+
+    fn next(&mut self) -> Option<PieceFrames> {
+        let (fps, times) = (self.fps, self.breaks);
+        let n = times.len();
+        while self.s + 1 < n {
+            let s = self.s;
+            self.s += 1;
+            let (t0, t1) = (times[s], times[s + 1]);
+            let end = if s == n - 2 {
+                self.last + 1
+            } else {
+                // Frames from 1e-9 s before the next break belong to it, except one that is
+                // nearer this break (breaks less than 2e-9 s apart).
+                let mut e = fps.first_frame_from(t1).min(self.last + 1);
+                while e <= self.last
+                    && fps.time_of(e) < t1
+                    && fps.time_of(e) - t0 < t1 - fps.time_of(e)
+                {
+                    e += 1;
+                }
+                e
+            };
+            if self.k < end {
+                let from = self.k;
+                self.k = end;
+                let snap_start = (fps.time_of(from) - t0).abs() <= TIME_TOL;
+                let snap_end = s == n - 2
+                    && from + i64::from(snap_start) < end
+                    && (fps.time_of(end - 1) - t1).abs() <= TIME_TOL;
+                return Some(PieceFrames {
+                    piece: s,
+                    from,
+                    to: end,
+                    snap_start,
+                    snap_end,
+                });
+            }
+        }
+        None
+    }
+}
+
+impl std::str::FromStr for Fps {
+    type Err = crate::InputError;
+
+    /// Same as [`Fps::parse`].
+    fn from_str(s: &str) -> InputResult<Fps> {
+        Fps::parse(s)
     }
 }
 
@@ -224,5 +352,42 @@ mod tests {
         assert_eq!(fps.frames_between(0.1 + 5e-10, 0.2 - 5e-10), (3, 6));
         assert_eq!(fps.frames_between(0.101, 0.132), (4, 3));
         assert_eq!(fps.frames_between(-1.0, -0.5), (-30, -15));
+    }
+
+    #[test]
+    fn pieces_cover_every_frame_once_and_snap_to_breaks() {
+        let fps = Fps::new(30, 1).unwrap();
+        // Breaks on and off the grid; one 1e-10 s before frame 9.
+        let breaks = [0.0, 0.1, 0.123, 0.3 - 1e-10, 0.5];
+        let p: Vec<_> = fps.pieces(&breaks).collect();
+        let mut k = 0;
+        for q in &p {
+            assert_eq!(q.from, k);
+            k = q.to;
+        }
+        assert_eq!(k, 16);
+        assert_eq!(
+            p.iter()
+                .map(|q| (q.piece, q.from, q.to))
+                .collect::<Vec<_>>(),
+            [(0, 0, 3), (1, 3, 4), (2, 4, 9), (3, 9, 16)]
+        );
+        assert!(p[0].snap_start && p[1].snap_start && !p[2].snap_start && p[3].snap_start);
+        assert!(p[3].snap_end && !p[0].snap_end);
+        // A track shorter than a frame: no frames.
+        assert_eq!(fps.pieces(&[0.101, 0.132]).count(), 0);
+    }
+
+    #[test]
+    fn a_frame_between_close_breaks_goes_to_the_nearer() {
+        let fps = Fps::new(10, 1).unwrap();
+        // Frame 1 (0.1 s) is 0.6e-9 after break 1 and 0.4e-9 before break 2: nearer break 2.
+        let p: Vec<_> = fps.pieces(&[0.0, 0.1 - 6e-10, 0.1 + 4e-10, 0.2]).collect();
+        assert_eq!(
+            p.iter()
+                .map(|q| (q.piece, q.from, q.to))
+                .collect::<Vec<_>>(),
+            [(0, 0, 1), (2, 1, 3)]
+        );
     }
 }

@@ -1,14 +1,26 @@
-//! Errors that the user caused (bad input, bad options) versus everything else.
+//! Errors: a typed [`Error`] for the library (the user's input, or I/O), and [`InputError`], a
+//! problem with the user's input or options, located.
 //!
 //! The binary maps [`InputError`] to exit code 2 and any other error to exit code 1. Every
-//! message names where the problem is (file, line or key, field), what was expected and what was
-//! found, e.g. `keys.csv:14: column "w": expected a number, found "abc"`.
+//! input message names where the problem is (file, line or key, field), what was expected and
+//! what was found, e.g. `keys.csv:14: column "w": expected a number, found "abc"`.
 
 use std::fmt;
+use std::io;
 
-/// A problem with the user's input or options. Exit code 2.
+/// A problem with the user's input or options (exit code 2 in the binary).
+///
+/// ```
+/// use inbetween::Fps;
+///
+/// let e = "abc".parse::<Fps>().unwrap_err().at("--fps");
+/// assert_eq!(
+///     e.to_string(),
+///     "--fps: expected a positive frame rate such as 24, 29.97 or 30000/1001, found \"abc\""
+/// );
+/// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct InputError(pub String);
+pub struct InputError(String);
 
 impl fmt::Display for InputError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -19,6 +31,7 @@ impl fmt::Display for InputError {
 impl std::error::Error for InputError {}
 
 impl InputError {
+    /// An error with this message (lowercase, naming what was expected and what was found).
     pub fn new(msg: impl Into<String>) -> Self {
         InputError(msg.into())
     }
@@ -26,6 +39,62 @@ impl InputError {
     /// Prefixes the message with a location such as `keys.csv:14` or `keys.json: keys[3]`.
     pub fn at(self, location: impl fmt::Display) -> Self {
         InputError(format!("{location}: {}", self.0))
+    }
+
+    /// The message.
+    pub fn message(&self) -> &str {
+        &self.0
+    }
+}
+
+impl From<crate::track::TrackError> for InputError {
+    fn from(e: crate::track::TrackError) -> InputError {
+        InputError(e.to_string())
+    }
+}
+
+/// An error of the library: the user's input, or I/O (reading, writing, a worker thread).
+#[derive(Debug)]
+pub enum Error {
+    /// Bad input or options, located.
+    Input(InputError),
+    /// An I/O error.
+    Io(io::Error),
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Error::Input(e) => e.fmt(f),
+            Error::Io(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for Error {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            Error::Input(e) => Some(e),
+            Error::Io(e) => Some(e),
+        }
+    }
+}
+
+impl From<InputError> for Error {
+    fn from(e: InputError) -> Error {
+        Error::Input(e)
+    }
+}
+
+impl From<io::Error> for Error {
+    fn from(e: io::Error) -> Error {
+        Error::Io(e)
+    }
+}
+
+impl From<crate::track::TrackError> for Error {
+    fn from(e: crate::track::TrackError) -> Error {
+        Error::Input(e.into())
     }
 }
 
@@ -43,7 +112,7 @@ pub fn num(x: f64) -> String {
 pub type InputResult<T> = Result<T, InputError>;
 
 /// Builds an [`InputError`] with `format!` syntax.
-#[macro_export]
 macro_rules! input_err {
-    ($($arg:tt)*) => { $crate::error::InputError(format!($($arg)*)) };
+    ($($arg:tt)*) => { $crate::error::InputError::new(format!($($arg)*)) };
 }
+pub(crate) use input_err;

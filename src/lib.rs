@@ -1,27 +1,64 @@
 //! `inbetween`: keyframe in-betweening for 3D orientations.
 //!
-//! The library does the work; the binary (`src/main.rs`) parses arguments, calls
-//! [`cmd`], and maps errors to exit codes. Layout:
+//! A [`Track`] holds keyframe times and unit quaternions, validated once. A [`Curve`] is built
+//! from a track and [`CurveOptions`] under any [`Scheme`] — Nam & Kim's Hermite by blending two
+//! great arcs, squad, spherical Bézier, slerp, or Barr et al.'s minimal-tangential-acceleration
+//! spline — and sampled at any time: rotation, world-frame angular velocity and angular
+//! acceleration. [`bake()`] streams a curve's frames on an exact frame grid ([`Fps`]) into a
+//! [`FrameSink`], by forward differences, as `inbetween interp` writes them.
 //!
-//! - [`rotation`]: representations and conversions (quaternions, scipy-style Euler sequences on
-//!   glam's `EulerRot`, matrices, axis-angle, rotation vectors), and quaternion `log`/`exp`.
-//! - [`keys`]: keyframe documents and validated tracks.
-//! - [`clock`]: exact rational frame rates and the frame grid.
-//! - [`io`]: CSV and JSON readers and writers, atomic output.
-//! - [`cli`], [`cmd`]: the command line.
+//! ```
+//! use inbetween::rotation::quat::rotation_angle_between as angle;
+//! use inbetween::{Curve, CurveOptions, Scheme, Track};
+//! use glam::{DQuat, EulerRot};
+//!
+//! let keys = [(0.0, 0.0), (0.4, 90.0), (1.0, 120.0), (1.5, 300.0)];
+//! let track = Track::new(
+//!     keys.iter().map(|k| k.0).collect(),
+//!     keys.iter()
+//!         .map(|k| DQuat::from_euler(EulerRot::ZYX, f64::to_radians(k.1), 0.3, 0.0))
+//!         .collect(),
+//! )?;
+//! for scheme in [Scheme::Hermite, Scheme::MinAccel] {
+//!     let curve = Curve::new(&track, &CurveOptions { scheme, ..CurveOptions::default() })?;
+//!     // Off the frame grid: any time in the span.
+//!     for t in [0.0123, 0.5, 1.41421] {
+//!         let q = curve.rotation(t);
+//!         let w = curve.angular_velocity(t); // rad/s, world frame
+//!         assert!((q.length() - 1.0).abs() < 1e-12 && w.is_finite());
+//!     }
+//!     // The curve passes through the keys.
+//!     assert!(angle(curve.rotation(0.4), track.rotations()[1]) < 1e-12);
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Layout: [`track`] (validated keys), [`tangent`] (path rule, tangents, end conditions),
+//! [`curve`] (one module per scheme, and [`Curve`]), [`clock`] (exact rates and the frame-clock
+//! rule), [`mod@bake`] (the frame loop), [`rotation`] (representations, Euler conventions, `log`/
+//! `exp`), [`metrics`] (smoothness figures); with the `io` feature [`io`] (CSV, JSON and npy in
+//! and out), with `chart` [`chart`] (SVG). The command line (`cli`, on by default) is the
+//! binary's own and not part of this API.
 
-pub mod analyze;
-pub mod cli;
+#![warn(missing_docs)]
+
+pub mod bake;
+#[cfg(feature = "chart")]
+pub mod chart;
 pub mod clock;
-pub mod cmd;
-pub mod error;
-pub mod io;
-pub mod keys;
-pub mod motion;
-pub mod plot;
-pub mod rotation;
-
-pub use error::InputError;
 pub mod curve;
-pub mod interp;
+pub mod error;
+#[cfg(feature = "io")]
+pub mod io;
+pub mod metrics;
+pub mod rotation;
 pub mod tangent;
+pub mod track;
+
+pub use bake::{BakeOptions, FrameSink, bake};
+pub use clock::Fps;
+pub use curve::{Blend, Curve, CurveOptions, Scheme};
+pub use error::{Error, InputError};
+pub use rotation::{AngleUnit, EulerSeq, Repr};
+pub use tangent::{EndConditions, Ends, PathMode};
+pub use track::{Track, TrackError};

@@ -1,4 +1,4 @@
-//! Keyframe preprocessing and tangents (SPEC §4.1–§4.3).
+//! Keyframe preprocessing and tangents (docs/spec.md §4.1–§4.3).
 //!
 //! Tangents are kept as world-frame "half angular velocities" `w_i` (a pure quaternion, as a
 //! [`DVec3`], per second): the curve's velocity at key `i` is `v_i = w_i·q_i`, and the angular
@@ -12,11 +12,11 @@
 //! - Ends: `chord` `w_1 = log(q_2 q_1⁻¹)/Δ_1`, `w_n = log(q_n q_{n−1}⁻¹)/Δ_{n−1}`; `rest` `w = 0`;
 //!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
 
-use crate::keys::TimedTrack;
 use crate::rotation::quat::log;
+use crate::track::Track;
 use glam::{DQuat, DVec3};
 
-/// How signs of consecutive keys are treated (SPEC §4.3).
+/// How signs of consecutive keys are treated (docs/spec.md §4.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum PathMode {
     /// Flip each key into the hemisphere of the previous one: every step is at most 180°.
@@ -27,7 +27,19 @@ pub enum PathMode {
     AsGiven,
 }
 
-/// End condition when no velocity is given (SPEC §4.2).
+/// End condition when no velocity is given (docs/spec.md §4.2).
+///
+/// ```
+/// use inbetween::{Curve, CurveOptions, Ends, Track};
+/// use glam::{DQuat, DVec3};
+///
+/// let track = Track::new(vec![0.0, 1.0], vec![DQuat::IDENTITY, DQuat::from_rotation_y(1.0)])?;
+/// let rest = CurveOptions { ends: Ends::Rest.into(), ..CurveOptions::default() };
+/// let curve = Curve::new(&track, &rest)?;
+/// assert!(curve.angular_velocity(0.0).length() < 1e-9); // starts at rest
+/// assert!((curve.angular_velocity(0.5) - DVec3::new(0.0, 1.5, 0.0)).length() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Ends {
     /// The end tangent points along the first/last chord (squad's classical `a_1 = q_1`).
@@ -41,21 +53,36 @@ pub enum Ends {
 /// world frame).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct EndConditions {
+    /// The rule at an end without a given velocity.
     pub ends: Ends,
+    /// Angular velocity at the first key, rad/s, world frame (overrides the track's).
     pub start: Option<DVec3>,
+    /// Angular velocity at the last key, rad/s, world frame (overrides the track's).
     pub end: Option<DVec3>,
 }
 
-/// Keys ready for a scheme: hemisphere-processed quaternions, times, and tangents.
+impl From<Ends> for EndConditions {
+    /// The rule at both ends, no given velocity.
+    fn from(ends: Ends) -> EndConditions {
+        EndConditions {
+            ends,
+            start: None,
+            end: None,
+        }
+    }
+}
+
+/// The knots of a spline: a track's times, its quaternions after the path rule, and a tangent at
+/// every key.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Keys {
-    pub times: Vec<f64>,
-    pub quats: Vec<DQuat>,
+pub struct Knots {
+    pub(crate) times: Vec<f64>,
+    pub(crate) quats: Vec<DQuat>,
     /// Per-second half angular velocities: `v_i = w[i]·q_i`.
-    pub w: Vec<DVec3>,
+    pub(crate) w: Vec<DVec3>,
     /// Whether the end tangents were given (a velocity or `rest`) rather than `chord`.
-    pub start_given: bool,
-    pub end_given: bool,
+    pub(crate) start_given: bool,
+    pub(crate) end_given: bool,
 }
 
 /// Applies `--path` to a sequence of quaternions.
@@ -75,12 +102,12 @@ pub fn step(a: DQuat, b: DQuat) -> DVec3 {
     log(b * a.conjugate())
 }
 
-impl Keys {
+impl Knots {
     /// Prepares a track: path mode, then tangents. Velocities in `ends` override the track's.
-    pub fn new(track: &TimedTrack, path: PathMode, ends: EndConditions) -> Keys {
-        let mut quats = track.quats.clone();
+    pub fn new(track: &Track, path: PathMode, ends: EndConditions) -> Knots {
+        let mut quats = track.rotations().to_vec();
         apply_path(&mut quats, path);
-        let t = &track.times;
+        let t = track.times();
         let n = quats.len();
         debug_assert!(n >= 2);
         let mut w = vec![DVec3::ZERO; n];
@@ -94,8 +121,8 @@ impl Keys {
                 step(quats[i - 1], quats[i + 1]) / span
             };
         }
-        let start = ends.start.or(track.start_velocity);
-        let end = ends.end.or(track.end_velocity);
+        let start = ends.start.or(track.start_velocity());
+        let end = ends.end.or(track.end_velocity());
         w[0] = match (start, ends.ends) {
             (Some(omega), _) => omega * 0.5,
             (None, Ends::Rest) => DVec3::ZERO,
@@ -106,13 +133,34 @@ impl Keys {
             (None, Ends::Rest) => DVec3::ZERO,
             (None, Ends::Chord) => step(quats[n - 2], quats[n - 1]) / (t[n - 1] - t[n - 2]),
         };
-        Keys {
-            times: track.times.clone(),
+        Knots {
+            times: t.to_vec(),
             quats,
             w,
             start_given: start.is_some() || ends.ends == Ends::Rest,
             end_given: end.is_some() || ends.ends == Ends::Rest,
         }
+    }
+
+    /// Key times, s.
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
+    /// Key quaternions after the path rule.
+    pub fn quats(&self) -> &[DQuat] {
+        &self.quats
+    }
+
+    /// Tangents: per-second half angular velocities `w_i` (world frame), `v_i = w_i·q_i`.
+    pub fn w(&self) -> &[DVec3] {
+        &self.w
+    }
+
+    /// Whether the start and end tangents were given (a velocity, or `rest`) rather than
+    /// estimated from the chord.
+    pub fn ends_given(&self) -> (bool, bool) {
+        (self.start_given, self.end_given)
     }
 
     /// Number of segments.
@@ -135,14 +183,8 @@ impl Keys {
 mod tests {
     use super::*;
 
-    fn track(times: &[f64], quats: &[DQuat]) -> TimedTrack {
-        TimedTrack {
-            name: None,
-            times: times.to_vec(),
-            quats: quats.to_vec(),
-            start_velocity: None,
-            end_velocity: None,
-        }
+    fn track(times: &[f64], quats: &[DQuat]) -> Track {
+        Track::new(times.to_vec(), quats.to_vec()).unwrap()
     }
 
     #[test]
@@ -162,7 +204,7 @@ mod tests {
             .iter()
             .map(|a| DQuat::from_rotation_y(*a))
             .collect();
-        let k = Keys::new(
+        let k = Knots::new(
             &track(&[0.0, 1.0, 2.0], &q),
             PathMode::Shortest,
             EndConditions::default(),
@@ -182,7 +224,7 @@ mod tests {
             start: Some(DVec3::new(0.0, 0.0, 2.0)),
             end: None,
         };
-        let k = Keys::new(&track(&[0.0, 1.0], &q), PathMode::Shortest, ends);
+        let k = Knots::new(&track(&[0.0, 1.0], &q), PathMode::Shortest, ends);
         assert_eq!(k.w[0], DVec3::new(0.0, 0.0, 1.0));
         assert_eq!(k.w[1], DVec3::ZERO);
     }
@@ -196,7 +238,7 @@ mod tests {
             DQuat::from_xyzw(0.0, 0.0, a.sin(), a.cos()),
             DQuat::from_xyzw(0.0, 0.0, (2.0 * a).sin(), (2.0 * a).cos()),
         ];
-        let k = Keys::new(
+        let k = Knots::new(
             &track(&[0.0, 1.0, 2.0], &q),
             PathMode::AsGiven,
             EndConditions::default(),

@@ -3,13 +3,12 @@
 //! 1000 fps), keys turning about changing axes.
 
 use glam::{DQuat, DVec3};
-use inbetween::clock::Fps;
-use inbetween::keys::TimedTrack;
+use inbetween::{Fps, Track};
 
 pub const SEGMENTS: usize = 1_000;
 pub const INBETWEENS: usize = 1_000;
 
-pub fn track(segments: usize) -> TimedTrack {
+pub fn track(segments: usize) -> Track {
     let quats: Vec<DQuat> = (0..=segments)
         .map(|i| {
             let a = i as f64;
@@ -18,13 +17,7 @@ pub fn track(segments: usize) -> TimedTrack {
                 * DQuat::from_rotation_z(0.2 * a)
         })
         .collect();
-    TimedTrack {
-        name: None,
-        times: (0..=segments).map(|i| i as f64).collect(),
-        quats,
-        start_velocity: None,
-        end_velocity: None,
-    }
+    Track::new((0..=segments).map(|i| i as f64).collect(), quats).expect("a valid track")
 }
 
 pub fn fps() -> Fps {

@@ -1,33 +1,38 @@
 //! `inbetween analyze`: the smoothness figures of every track under the chosen schemes.
 
-use crate::analyze::{FIELDS, Metrics, analyze, text_table};
+use super::settings::read_curves;
 use crate::cli::{AnalyzeArgs, ReportFormat};
-use crate::io::num::{NumFormat, NumWriter};
-use crate::io::output::Output;
-use crate::rotation::AngleUnit;
+use inbetween::io::output::Output;
+use inbetween::io::write::num::{NumFormat, NumWriter};
+use inbetween::metrics::{FIELDS, Metrics, measure, text_table};
+use inbetween::rotation::AngleUnit;
+use inbetween::{Curve, CurveOptions, Error, Scheme};
 use std::io::{Read, Write};
 
+/// Runs `analyze`: the figures of every track under every chosen scheme.
 pub fn run(
     args: &AnalyzeArgs,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> anyhow::Result<()> {
-    let (doc, _, tracks, opts) = super::read_curves(&args.input, &args.curve, stdin, warn)?;
+) -> Result<(), Error> {
+    let input = read_curves(&args.input, &args.curve, Scheme::default(), stdin, warn)?;
     let unit = args.input.angles;
     let mut rows = Vec::new();
-    for track in &tracks {
+    for track in &input.tracks {
         for &s in &args.scheme.0 {
-            let m = analyze(track, s.into(), &opts).map_err(|e| match &track.name {
-                Some(n) => e.at(format!("{}: track \"{n}\"", doc.source)),
-                None => e.at(&doc.source),
-            })?;
+            let opts = CurveOptions {
+                scheme: s.into(),
+                ..input.opts
+            };
+            let curve = Curve::new(track, &opts).map_err(|e| e.at(&input.doc.source))?;
+            let m = measure(&curve, input.fps);
             if let Some(r) = m.solver
                 && !r.converged
             {
                 warn(&format!(
                     "track {}: minaccel did not converge in {} iterations; its figures are of the \
                      best curve found",
-                    track.name.as_deref().unwrap_or("-"),
+                    track.name().unwrap_or("-"),
                     r.iterations
                 ));
             }

@@ -1,10 +1,11 @@
 //! `inbetween convert`: keys in, the same keys out in another representation and/or format.
 
+use super::settings::{rates, read_input};
 use crate::cli::ConvertArgs;
-use crate::clock::Fps;
-use crate::io::OutputFormat;
-use crate::io::output::Output;
-use crate::io::write::{Style, write_keys};
+use inbetween::io::output::Output;
+use inbetween::io::write::{Style, write_keys};
+use inbetween::io::{Format, OutputFormat};
+use inbetween::{Error, InputError};
 use std::io::Read;
 
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
@@ -13,12 +14,9 @@ pub fn run(
     args: &ConvertArgs,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> anyhow::Result<()> {
-    let (doc, in_format) = super::read_input(&args.input, stdin, warn)?;
-    let frame_fps = doc
-        .fps
-        .or(args.fps)
-        .unwrap_or(Fps::new(30, 1).expect("30 is valid"));
+) -> Result<(), Error> {
+    let (doc, in_format) = read_input(&args.input, stdin, warn)?;
+    let (frame_fps, _) = rates(&doc, args.fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
     }
@@ -26,14 +24,14 @@ pub fn run(
         None => in_format,
         Some(OutputFormat::Doc(f)) => f,
         Some(OutputFormat::Npy) => {
-            return Err(crate::input_err!(
+            return Err(InputError::new(
                 "--output-format npy: convert writes keyframe documents (csv or json); npy is \
-                 for interp's frames"
+                 for interp's frames",
             )
             .into());
         }
     };
-    if format == crate::io::Format::Csv
+    if format == Format::Csv
         && doc
             .tracks
             .iter()

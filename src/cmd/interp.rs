@@ -1,28 +1,22 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
+use super::settings::read_curves;
 use crate::cli::InterpArgs;
-use crate::interp::{Settings, run as interpolate};
-use crate::io::OutputFormat;
-use crate::io::npy::NpyWriter;
-use crate::io::output::{Output, WriteBehind};
-use crate::io::write::{FrameWriter, Style};
+use inbetween::io::OutputFormat;
+use inbetween::io::output::{Output, WriteBehind};
+use inbetween::io::write::{FrameWriter, NpyWriter, Style};
+use inbetween::{BakeOptions, Curve, Error, FrameSink, bake};
 use std::io::Read;
 
-/// Validated settings from the arguments and the document (command line wins, except that a
-/// document's `fps` numbers its own `frame` values).
+/// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
 pub fn run(
     args: &InterpArgs,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> anyhow::Result<()> {
-    let (doc, in_format, tracks, opts) = super::read_curves(&args.input, &args.curve, stdin, warn)?;
-    let unit = args.input.angles;
-    let settings = Settings {
-        fps: opts.fps,
-        scheme: args.scheme.into(),
-        blend: opts.blend,
-        path: opts.path,
-        ends: opts.ends,
+) -> Result<(), Error> {
+    let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
+    let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    let bake_opts = BakeOptions {
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
         // formatting already uses the second core (measured: docs/performance.md).
@@ -31,44 +25,50 @@ pub fn run(
     let format = args
         .output
         .output_format
-        .unwrap_or(OutputFormat::Doc(in_format));
+        .unwrap_or(OutputFormat::Doc(input.format));
     let style = Style {
         repr: args.output.to,
-        angles: unit,
+        angles: args.input.angles,
         quat_order: args.input.quat_order,
         num: args.output.num_format(),
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
-    // Input errors found while interpolating (minaccel's grid cap) name the file too.
-    let locate = |e: anyhow::Error| match e.downcast::<crate::InputError>() {
-        Ok(ie) => anyhow::Error::new(ie.at(&doc.source)),
-        Err(e) => e,
+    let mut sink: Box<dyn Sink> = match format {
+        OutputFormat::Doc(format) => Box::new(FrameWriter::new(
+            out,
+            format,
+            style,
+            fps,
+            track_column,
+            args.velocity,
+        )),
+        OutputFormat::Npy => {
+            let rows = tracks
+                .iter()
+                .map(|t| fps.frame_count(t.span().0, t.span().1))
+                .sum();
+            Box::new(NpyWriter::new(
+                out,
+                style,
+                rows,
+                track_column,
+                args.velocity,
+            ))
+        }
     };
-    let reports = if let OutputFormat::Doc(format) = format {
-        let mut writer =
-            FrameWriter::new(out, format, style, opts.fps, track_column, args.velocity);
-        let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
-        writer.into_inner().finish()?.commit()?;
-        reports
-    } else {
-        let rows: u64 = tracks
-            .iter()
-            .map(|t| {
-                let (a, b) = opts
-                    .fps
-                    .frames_between(t.times[0], t.times[t.times.len() - 1]);
-                (b - a + 1).max(0) as u64
-            })
-            .sum();
-        let mut writer = NpyWriter::new(out, style, rows, track_column, args.velocity);
-        let reports = interpolate(&tracks, &settings, &mut writer, warn).map_err(locate)?;
-        writer.into_inner().finish()?.commit()?;
-        reports
-    };
+    let mut reports = Vec::new();
+    for track in tracks {
+        // Input errors found while building a curve (minaccel's grid cap) name the file too.
+        let curve = Curve::new(track, &input.opts).map_err(|e| e.at(&doc.source))?;
+        bake(&curve, fps, bake_opts, sink.as_mut(), warn)?;
+        reports.extend(curve.solver_report().map(|&r| (track.name(), r)));
+    }
+    sink.finish()?;
+    sink.into_output()?.commit()?;
     if args.verbose {
-        for (track, r) in tracks.iter().zip(&reports) {
-            let name = track.name.as_deref().unwrap_or("-");
+        for (name, r) in reports {
+            let name = name.unwrap_or("-");
             eprintln!(
                 "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
                  projected gradient {:.3e} -> {:.3e} ({}converged)",
@@ -83,4 +83,21 @@ pub fn run(
         }
     }
     Ok(())
+}
+
+/// A frame writer that hands back its output when done.
+trait Sink: FrameSink {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output>;
+}
+
+impl Sink for FrameWriter<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner().finish()
+    }
+}
+
+impl Sink for NpyWriter<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner().finish()
+    }
 }

@@ -1,27 +1,25 @@
 //! `inbetween plot`: an SVG chart of one track, schemes side by side.
 
+use super::settings::read_curves;
 use crate::cli::{PlotArgs, WhatArg};
-use crate::curve::Scheme;
-use crate::input_err;
-use crate::io::output::Output;
-use crate::plot::{What, svg};
+use inbetween::chart::{What, svg};
+use inbetween::io::output::Output;
+use inbetween::{Error, InputError, Scheme};
 use std::io::{Read, Write};
 
-pub fn run(
-    args: &PlotArgs,
-    stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
-) -> anyhow::Result<()> {
-    let (doc, _, tracks, opts) = super::read_curves(&args.input, &args.curve, stdin, warn)?;
+/// Runs `plot`: one track's chart, schemes side by side.
+pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) -> Result<(), Error> {
+    let input = read_curves(&args.input, &args.curve, Scheme::default(), stdin, warn)?;
+    let (doc, tracks) = (&input.doc, &input.tracks);
     let unit = args.input.angles;
     let track = match &args.track {
         None => &tracks[0],
         Some(name) => tracks
             .iter()
-            .find(|t| t.name.as_deref() == Some(name.as_str()))
+            .find(|t| t.name() == Some(name.as_str()))
             .ok_or_else(|| {
-                let names: Vec<&str> = tracks.iter().filter_map(|t| t.name.as_deref()).collect();
-                input_err!(
+                let names: Vec<&str> = tracks.iter().filter_map(|t| t.name()).collect();
+                InputError::new(format!(
                     "{}: --track: expected one of {}, found \"{name}\"",
                     doc.source,
                     if names.is_empty() {
@@ -29,7 +27,7 @@ pub fn run(
                     } else {
                         names.join(", ")
                     }
-                )
+                ))
             })?,
     };
     let schemes: Vec<Scheme> = args.scheme.0.iter().map(|&s| s.into()).collect();
@@ -38,7 +36,10 @@ pub fn run(
         WhatArg::Components => What::Components,
         WhatArg::Energy => What::Energy,
     };
-    let text = svg(track, &schemes, what, &opts, unit).map_err(anyhow::Error::msg)?;
+    let text = svg(track, &schemes, what, &input.opts, input.fps, unit).map_err(|e| match e {
+        Error::Input(e) => Error::Input(e.at(&doc.source)),
+        e => e,
+    })?;
     let mut out = Output::open(Some(&args.output))?;
     out.write_all(text.as_bytes())?;
     out.commit()?;

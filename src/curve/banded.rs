@@ -23,10 +23,6 @@ impl Banded {
         }
     }
 
-    pub fn n(&self) -> usize {
-        self.n
-    }
-
     /// Sets every entry to zero, keeping the allocation.
     pub fn clear(&mut self) {
         self.data.fill(0.0);

@@ -1,5 +1,5 @@
 //! `bezier`: cubic spherical Bézier curve by de Casteljau's construction with slerp (Shoemake
-//! 1985), control points from the tangents (SPEC §4.4), first-level arcs by forward differences.
+//! 1985), control points from the tangents (docs/spec.md §4.4), first-level arcs by forward differences.
 //!
 //! ```text
 //! p₀ = q_i,  p₁ = exp(w_i/3)·q_i,  p₂ = exp(−w_{i+1}/3)·q_{i+1},  p₃ = q_{i+1}   (w = V q⁻¹)
@@ -19,7 +19,7 @@ use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
-use crate::tangent::Keys;
+use crate::tangent::Knots;
 use glam::DQuat;
 
 /// One Bézier segment.
@@ -31,7 +31,7 @@ pub struct Bezier {
 }
 
 /// Bézier in-betweens: the three first-level arcs by forward differences, the three blends four
-/// frames at a time ([`super::blend4`]).
+/// frames at a time (`blend4.rs`).
 #[derive(Debug, Clone)]
 pub struct BezierFrames {
     r0: ArcSteps,
@@ -75,7 +75,7 @@ impl Iterator for BezierFrames {
 impl Segment for Bezier {
     type Frames = BezierFrames;
 
-    fn new(keys: &Keys, s: usize, _blend: Blend) -> Self {
+    fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         let r0 = Arc::leaving(keys.quats[s], keys.tangent(s, s) / 3.0);
         let r2 = Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s) / 3.0);
         let r1 = Arc::between(r0.eval(1.0), r2.eval(0.0));

@@ -1,7 +1,7 @@
 //! `hermite`: Nam & Kim's Hermite curve, two great arcs blended on S³ (Nam & Kim 1996, §2; the
-//! forward-difference generation of §3; `../shared/papers/nam-kim-hermite-great-arcs.txt`).
+//! forward-difference generation of §3; full reference in docs/spec.md, References).
 //!
-//! With segment-scaled tangents `V_i`, `V_{i+1}` (SPEC §4.1), `θ₁ = ‖V_i‖`, `θ₂ = ‖V_{i+1}‖`:
+//! With segment-scaled tangents `V_i`, `V_{i+1}` (docs/spec.md §4.1), `θ₁ = ‖V_i‖`, `θ₂ = ‖V_{i+1}‖`:
 //!
 //! ```text
 //! C₁(u) = cos(θ₁u)·q_i + sin(θ₁u)·V̂_i                 leaves q_i with velocity V_i
@@ -16,13 +16,13 @@
 //! - Cost per frame: two forward-difference steps and one geodesic blend (one `atan2`, one
 //!   `sqrt`, one `sin_cos`).
 //! - Limitations: a blend whose two arcs come near antipodal (tangents beyond about half a turn
-//!   per segment) is ill defined; the tool warns (SPEC §4.3).
+//!   per segment) is ill defined; the tool warns (docs/spec.md §4.3).
 
 use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::geodesic;
-use crate::tangent::Keys;
+use crate::tangent::Knots;
 use glam::DQuat;
 
 /// One Hermite segment.
@@ -35,7 +35,7 @@ pub struct Hermite {
 }
 
 /// Hermite in-betweens: both arcs by forward differences, the blends four frames at a time
-/// ([`super::blend4`]).
+/// (`blend4.rs`).
 #[derive(Debug, Clone)]
 pub struct HermiteFrames {
     c1: ArcSteps,
@@ -73,7 +73,7 @@ impl Iterator for HermiteFrames {
 impl Segment for Hermite {
     type Frames = HermiteFrames;
 
-    fn new(keys: &Keys, s: usize, blend: Blend) -> Self {
+    fn new(keys: &Knots, s: usize, blend: Blend) -> Self {
         Hermite {
             c1: Arc::leaving(keys.quats[s], keys.tangent(s, s)),
             c2: Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s)),

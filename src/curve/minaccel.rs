@@ -1,5 +1,5 @@
 //! `minaccel`: the minimal-tangential-acceleration spline of Barr, Currin, Gabriel & Hughes
-//! (SIGGRAPH '92, §4.2–§4.4; `../shared/papers/barr-currin-gabriel-hughes-smooth-interpolation.txt`),
+//! (SIGGRAPH '92, §4.2–§4.4, DOI 10.1145/133994.134086; docs/spec.md, References),
 //! solved by Newton's method on the product of spheres with a banded linear solve.
 //!
 //! ## The problem
@@ -22,7 +22,7 @@
 //! the unknowns are 3 per point and every iterate is exactly unit. Each term
 //! `E_p = w_p(|A_p|² − (A_p·q_p)²)`, `A_p = α q_{p−1} + β q_p + γ q_{p+1}`, touches three
 //! neighbouring points, so the exact Hessian is block-pentadiagonal (3×3 blocks, half-bandwidth
-//! 8): Newton's method, assembled and factorised in O(n) per iteration with [`super::banded`]
+//! 8): Newton's method, assembled and factorised in O(n) per iteration with `banded.rs`
 //! (a multiple of the identity is added only while the Hessian is not positive definite). A
 //! backtracking line search on `E` keeps every step a descent (where the Hessian is not positive
 //! definite, far from a minimum, the step uses the Gauss–Newton matrix instead, which is); once
@@ -42,9 +42,9 @@ use super::banded::Banded;
 use super::hermite::Hermite;
 use super::{Blend, Segment};
 use crate::error::InputResult;
-use crate::input_err;
+use crate::error::input_err;
 use crate::rotation::quat::exp;
-use crate::tangent::Keys;
+use crate::tangent::Knots;
 use glam::{DQuat, DVec3, DVec4};
 use std::f64::consts::FRAC_PI_4;
 
@@ -53,29 +53,39 @@ pub const MAX_GRID_POINTS: usize = 2_000_000;
 
 /// Iteration budget of the Newton solver.
 pub const MAX_ITERATIONS: usize = 100;
-/// Relative projected-gradient tolerance (SPEC §4.4). A gradient at the f64 rounding floor of
+/// Relative projected-gradient tolerance (docs/spec.md §4.4). A gradient at the f64 rounding floor of
 /// its own computation also counts as converged (e.g. when the start is already the optimum).
 pub const REL_TOL: f64 = 1e-9;
-/// Absolute projected-gradient tolerance (SPEC §4.4).
+/// Absolute projected-gradient tolerance (docs/spec.md §4.4).
 pub const ABS_TOL: f64 = 1e-14;
 
 /// What the solver did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Report {
+    /// Grid points.
     pub points: usize,
+    /// Newton iterations taken.
     pub iterations: usize,
+    /// Energy `E` of the starting curve.
     pub energy_start: f64,
+    /// Energy `E` of the result.
     pub energy: f64,
+    /// Norm of the projected gradient at the start.
     pub gradient_start: f64,
+    /// Norm of the projected gradient at the result.
     pub gradient: f64,
+    /// The gradient fell to [`REL_TOL`] of its start (or to the f64 floor, [`ABS_TOL`]).
     pub converged: bool,
 }
 
 /// The solved curve of one track: grid times and points.
 #[derive(Debug, Clone)]
 pub struct Solution {
+    /// Grid times, s (the keys' times among them).
     pub times: Vec<f64>,
+    /// The curve's points at the grid times, unit quaternions.
     pub points: Vec<DQuat>,
+    /// What the solver did.
     pub report: Report,
 }
 
@@ -95,7 +105,7 @@ pub struct Problem {
 
 /// Steps per segment: `max(1, ⌈Δ·fps⌉)` (1e-6 slack so that keys on the frame grid give the frame
 /// grid itself).
-fn base_steps(keys: &Keys, fps: f64) -> Vec<usize> {
+fn base_steps(keys: &Knots, fps: f64) -> Vec<usize> {
     (0..keys.segments())
         .map(|i| ((keys.delta(i) * fps - 1e-6).ceil().max(1.0)) as usize)
         .collect()
@@ -110,7 +120,7 @@ impl Problem {
     /// The grid for `keys` at `fps` frames per second, started on the hermite curve. Fails when
     /// the grid would need more than [`MAX_GRID_POINTS`] points (a very high rate, or end
     /// velocities of very many turns per segment).
-    pub fn new(keys: &Keys, fps: f64) -> InputResult<Problem> {
+    pub fn new(keys: &Knots, fps: f64) -> InputResult<Problem> {
         let too_many = |steps: &[usize]| {
             let total = steps.iter().fold(1usize, |a, &b| a.saturating_add(b));
             (total > MAX_GRID_POINTS).then(|| {
@@ -243,7 +253,7 @@ impl Problem {
 
 /// The hermite curve sampled on a grid of `steps[i]` equal steps per segment: times, points,
 /// and which points are keys.
-fn sample_hermite(keys: &Keys, steps: &[usize]) -> (Vec<f64>, Vec<DQuat>, Vec<bool>) {
+fn sample_hermite(keys: &Knots, steps: &[usize]) -> (Vec<f64>, Vec<DQuat>, Vec<bool>) {
     let total: usize = steps.iter().sum::<usize>() + 1;
     let mut times = Vec::with_capacity(total);
     let mut pts = Vec::with_capacity(total);
@@ -559,7 +569,7 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
 }
 
 /// Solves the minaccel problem for a track at `fps`.
-pub fn solve(keys: &Keys, fps: f64) -> InputResult<Solution> {
+pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
     Ok(Problem::new(keys, fps)?.solve())
 }
 
@@ -609,7 +619,10 @@ mod tests {
         };
         let k = keys(&[0.0, 1.0], &q, ends);
         let e = solve(&k, 30.0).unwrap_err();
-        assert!(e.0.starts_with("minaccel would need a grid of"), "{e}");
+        assert!(
+            e.message().starts_with("minaccel would need a grid of"),
+            "{e}"
+        );
     }
 
     #[test]

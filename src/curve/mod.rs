@@ -7,20 +7,28 @@
 //! per frame.
 //!
 //! Every blend is the geodesic of S³ between its two points, never hemisphere-flipped, so the
-//! curve is continuous in S³ (SPEC §4.3); [`antipode_gap`] finds where a blend's two points come
+//! curve is continuous in S³ (docs/spec.md §4.3); [`antipode_gap`] finds where a blend's two points come
 //! close to antipodal and the geodesic between them stops being well defined.
+//!
+//! [`Curve`] ([`piecewise`]) is a whole track's curve under any scheme, minaccel included, as a
+//! function of time; [`CurveOptions`] are what shapes it.
 
 pub mod arc;
-pub mod banded;
+pub(crate) mod banded;
 pub mod bezier;
-pub mod blend4;
+pub(crate) mod blend4;
 pub mod hermite;
 pub mod minaccel;
+pub mod piecewise;
 pub mod slerp;
 pub mod squad;
 
-use crate::tangent::Keys;
+pub use piecewise::Curve;
+
+use crate::clock::Fps;
+use crate::tangent::{EndConditions, Knots, PathMode};
 use glam::DQuat;
+use std::fmt;
 
 /// A scheme's segment (see the module documentation).
 pub trait Segment: Sized {
@@ -28,7 +36,7 @@ pub trait Segment: Sized {
     type Frames: Iterator<Item = DQuat>;
 
     /// The segment from key `s` to key `s + 1`.
-    fn new(keys: &Keys, s: usize, blend: Blend) -> Self;
+    fn new(keys: &Knots, s: usize, blend: Blend) -> Self;
 
     /// Direct evaluation at `u`.
     fn eval(&self, u: f64) -> DQuat;
@@ -49,19 +57,45 @@ pub trait Segment: Sized {
     }
 }
 
-/// Interpolation scheme (`--scheme`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// Interpolation scheme (`--scheme`). Names are the command line's: `hermite`, `squad`,
+/// `bezier`, `slerp`, `minaccel`.
+///
+/// ```
+/// use inbetween::Scheme;
+///
+/// let s: Scheme = "minaccel".parse()?;
+/// assert_eq!(s, Scheme::MinAccel);
+/// assert_eq!(s.to_string(), "minaccel");
+/// assert_eq!(Scheme::ALL.len(), 5);
+/// assert!("catmull".parse::<Scheme>().is_err());
+/// # Ok::<(), inbetween::InputError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Scheme {
+    /// Nam & Kim's Hermite by blending two great arcs ([`hermite`]); C¹.
     #[default]
     Hermite,
+    /// Shoemake's squad ([`squad`]); C¹.
     Squad,
+    /// Spherical cubic Bézier by de Casteljau's construction ([`bezier`]); C¹.
     Bezier,
+    /// Piecewise great arcs ([`slerp`]); C⁰.
     Slerp,
     /// Barr et al.'s minimal tangential acceleration on a grid ([`minaccel`]); not per segment.
     MinAccel,
 }
 
 impl Scheme {
+    /// Every scheme, in the order of the command line's help.
+    pub const ALL: [Scheme; 5] = [
+        Scheme::Hermite,
+        Scheme::Squad,
+        Scheme::Bezier,
+        Scheme::Slerp,
+        Scheme::MinAccel,
+    ];
+
+    /// The scheme's name on the command line and in output.
     pub fn name(self) -> &'static str {
         match self {
             Scheme::Hermite => "hermite",
@@ -69,6 +103,67 @@ impl Scheme {
             Scheme::Bezier => "bezier",
             Scheme::Slerp => "slerp",
             Scheme::MinAccel => "minaccel",
+        }
+    }
+}
+
+impl fmt::Display for Scheme {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for Scheme {
+    type Err = crate::InputError;
+
+    fn from_str(s: &str) -> Result<Scheme, crate::InputError> {
+        Scheme::ALL
+            .into_iter()
+            .find(|x| x.name() == s)
+            .ok_or_else(|| {
+                crate::error::input_err!(
+                    "expected a scheme from hermite, squad, bezier, slerp, minaccel, found \"{s}\""
+                )
+            })
+    }
+}
+
+/// What shapes a track's curve besides its keys.
+///
+/// ```
+/// use inbetween::{CurveOptions, Ends, Fps, Scheme};
+///
+/// let opts = CurveOptions {
+///     scheme: Scheme::Squad,
+///     ends: Ends::Rest.into(),
+///     ..CurveOptions::default()
+/// };
+/// assert_eq!(opts.grid_rate, Fps::DEFAULT);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CurveOptions {
+    /// The interpolation scheme.
+    pub scheme: Scheme,
+    /// Hermite's blending function (hermite only).
+    pub blend: Blend,
+    /// How quaternion signs of consecutive keys are treated.
+    pub path: PathMode,
+    /// End tangents: the rule, and given end velocities (which override the track's own).
+    pub ends: EndConditions,
+    /// minaccel's grid rate: the grid has at least this many points per second (interp uses
+    /// its output rate, so that every frame is a grid point or between two).
+    pub grid_rate: Fps,
+}
+
+impl Default for CurveOptions {
+    /// hermite, cubic blend, shortest path, chord ends, 30 fps grid.
+    fn default() -> CurveOptions {
+        CurveOptions {
+            scheme: Scheme::Hermite,
+            blend: Blend::Cubic,
+            path: PathMode::Shortest,
+            ends: EndConditions::default(),
+            grid_rate: Fps::DEFAULT,
         }
     }
 }
@@ -84,6 +179,7 @@ pub enum Blend {
 }
 
 impl Blend {
+    /// `f(u)`, with `f(0) = 0`, `f(1) = 1`, `f'(0) = f'(1) = 0`.
     #[inline]
     pub fn f(self, u: f64) -> f64 {
         match self {
@@ -148,33 +244,35 @@ pub(crate) mod test_support {
     //! Shared checks for every scheme's unit tests.
 
     use super::*;
-    use crate::keys::TimedTrack;
     use crate::tangent::{EndConditions, PathMode};
+    use crate::track::Track;
     use glam::DVec3;
 
-    pub fn keys(times: &[f64], quats: &[DQuat], ends: EndConditions) -> Keys {
-        let track = TimedTrack {
-            name: None,
-            times: times.to_vec(),
-            quats: quats.to_vec(),
-            start_velocity: None,
-            end_velocity: None,
-        };
-        Keys::new(&track, PathMode::Shortest, ends)
+    pub fn keys(times: &[f64], quats: &[DQuat], ends: EndConditions) -> Knots {
+        let track = Track::new(times.to_vec(), quats.to_vec()).expect("a valid track");
+        Knots::new(&track, PathMode::Shortest, ends)
     }
 
-    pub fn sample_keys() -> Keys {
+    pub fn sample_track() -> Track {
         let q = [
             DQuat::IDENTITY,
             DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 1.1),
             DQuat::from_euler(glam::EulerRot::ZYX, 0.9, -0.4, 1.3),
             DQuat::from_rotation_x(2.6),
         ];
-        keys(&[0.0, 0.5, 1.25, 2.0], &q, EndConditions::default())
+        Track::new(vec![0.0, 0.5, 1.25, 2.0], q.to_vec()).expect("a valid track")
+    }
+
+    pub fn sample_keys() -> Knots {
+        Knots::new(
+            &sample_track(),
+            PathMode::Shortest,
+            EndConditions::default(),
+        )
     }
 
     /// Keys hit, forward differences agree with direct evaluation, unit norm.
-    pub fn check_segment<S: Segment>(k: &Keys, blend: Blend) {
+    pub fn check_segment<S: Segment>(k: &Knots, blend: Blend) {
         for s in 0..k.segments() {
             let seg = S::new(k, s, blend);
             assert!(

@@ -1,5 +1,5 @@
-//! `slerp` (Shoemake 1985; Szeliski's note in `../shared/papers/`): the great arc between
-//! consecutive keys, `Q(u) = exp(u · log(q_{i+1} q_i⁻¹)) q_i`.
+//! `slerp` (Shoemake 1985; Szeliski 2010, Algorithm 2.1; docs/spec.md, References): the great
+//! arc between consecutive keys, `Q(u) = exp(u · log(q_{i+1} q_i⁻¹)) q_i`.
 //!
 //! - Interpolation: every key. Tangency: none imposed; the velocity is the chord's.
 //! - Continuity: C⁰ at keys (the angular velocity jumps there), C^∞ inside.
@@ -9,7 +9,7 @@
 
 use super::arc::{Arc, ArcSteps};
 use super::{Blend, Segment};
-use crate::tangent::Keys;
+use crate::tangent::Knots;
 use glam::DQuat;
 
 /// One slerp segment.
@@ -21,7 +21,7 @@ pub struct Slerp {
 impl Segment for Slerp {
     type Frames = ArcSteps;
 
-    fn new(keys: &Keys, s: usize, _blend: Blend) -> Self {
+    fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         Slerp {
             arc: Arc::between(keys.quats[s], keys.quats[s + 1]),
         }

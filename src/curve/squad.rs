@@ -1,4 +1,4 @@
-//! `squad` (Shoemake 1987), with the non-uniform inner points of SPEC §4.4 and its outer arcs by
+//! `squad` (Shoemake 1987), with the non-uniform inner points of docs/spec.md §4.4 and its outer arcs by
 //! forward differences (Nam & Kim 1996, §4).
 //!
 //! ```text
@@ -24,7 +24,7 @@ use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::quat::{exp, geodesic};
-use crate::tangent::{Keys, step};
+use crate::tangent::{Knots, step};
 use glam::{DQuat, DVec3};
 
 /// One squad segment.
@@ -37,7 +37,7 @@ pub struct Squad {
 }
 
 /// The exponent `X` of the inner control point `a_i = exp(X)·q_i` (leaving key `i`).
-fn a_exponent(k: &Keys, i: usize) -> DVec3 {
+fn a_exponent(k: &Knots, i: usize) -> DVec3 {
     let q = k.quats[i];
     let p = step(q, k.quats[i + 1]);
     if i == 0 {
@@ -50,7 +50,7 @@ fn a_exponent(k: &Keys, i: usize) -> DVec3 {
 }
 
 /// The exponent `X` of the inner control point `b_i = exp(X)·q_i` (arriving at key `i`).
-fn b_exponent(k: &Keys, i: usize) -> DVec3 {
+fn b_exponent(k: &Knots, i: usize) -> DVec3 {
     let q = k.quats[i];
     let m = step(q, k.quats[i - 1]);
     let n = k.quats.len();
@@ -64,17 +64,17 @@ fn b_exponent(k: &Keys, i: usize) -> DVec3 {
 }
 
 #[cfg(test)]
-fn a_point(k: &Keys, i: usize) -> DQuat {
+fn a_point(k: &Knots, i: usize) -> DQuat {
     exp(a_exponent(k, i)) * k.quats[i]
 }
 
 #[cfg(test)]
-fn b_point(k: &Keys, i: usize) -> DQuat {
+fn b_point(k: &Knots, i: usize) -> DQuat {
     exp(b_exponent(k, i)) * k.quats[i]
 }
 
 /// Squad in-betweens: both arcs by forward differences, the blends four frames at a time
-/// ([`super::blend4`]).
+/// (`blend4.rs`).
 #[derive(Debug, Clone)]
 pub struct SquadFrames {
     outer: ArcSteps,
@@ -110,7 +110,7 @@ impl Iterator for SquadFrames {
 impl Segment for Squad {
     type Frames = SquadFrames;
 
-    fn new(keys: &Keys, s: usize, _blend: Blend) -> Self {
+    fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         let (q0, q1) = (keys.quats[s], keys.quats[s + 1]);
         let (xa, xb) = (a_exponent(keys, s), b_exponent(keys, s + 1));
         let (a, b) = (exp(xa) * q0, exp(xb) * q1);

@@ -1,27 +1,33 @@
 //! Wire formats: reading keyframe documents (CSV, JSON), writing keys and frames, and where the
-//! bytes go (stdout, or a file replaced atomically).
+//! bytes go (stdout, or a file replaced atomically). Behind the `io` feature.
+//!
+//! - [`document`]: a keyframe document as read, and its validation into [`crate::Track`]s.
+//! - [`read`]: the CSV and JSON readers; [`parse_bytes`] and [`read_path`] choose between them.
+//! - [`mod@write`]: frame and key writers (CSV, JSON, npy), number formatting.
+//! - [`output`]: standard output or an atomically replaced file, and the write-behind thread.
 
-pub mod csv;
-pub mod json;
-pub mod npy;
-pub mod num;
+pub mod document;
 pub mod output;
+pub mod read;
 pub mod write;
 
 use crate::error::InputResult;
-use crate::input_err;
-use crate::keys::Document;
+use crate::error::input_err;
 use crate::rotation::{AngleUnit, QuatOrder, Repr};
+use document::Document;
 use std::path::Path;
 
 /// File format of a keyframe document or of the output.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Format {
+    /// Comma-separated values with a header row.
     Csv,
+    /// A JSON document.
     Json,
 }
 
 impl Format {
+    /// `csv` or `json`.
     pub fn parse(s: &str) -> InputResult<Format> {
         match s {
             "csv" => Ok(Format::Csv),
@@ -54,11 +60,14 @@ impl Format {
 /// Output format of a command: a document format, or NumPy `.npy` (interp's frames only).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OutputFormat {
+    /// A keyframe-document format.
     Doc(Format),
+    /// A NumPy `.npy` array of float64 rows.
     Npy,
 }
 
 impl OutputFormat {
+    /// `csv`, `json` or `npy`.
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
@@ -121,7 +130,7 @@ pub fn read_document(
     opts: &ReadOptions,
 ) -> InputResult<Document> {
     match format {
-        Format::Csv => csv::read(text, source, opts),
-        Format::Json => json::read(text, source, opts),
+        Format::Csv => read::csv::read(text, source, opts),
+        Format::Json => read::json::read(text, source, opts),
     }
 }

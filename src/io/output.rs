@@ -7,9 +7,13 @@ use std::path::{Path, PathBuf};
 /// An output destination. Call [`Output::commit`] after the last byte; dropping it uncommitted
 /// leaves an existing target untouched and removes the temporary file.
 pub enum Output {
+    /// Standard output, buffered.
     Stdout(BufWriter<io::Stdout>),
+    /// A temporary file beside `target`, renamed over it by [`Output::commit`].
     File {
+        /// The temporary file.
         writer: BufWriter<tempfile::NamedTempFile>,
+        /// The file the user named.
         target: PathBuf,
     },
 }
@@ -103,6 +107,7 @@ pub struct WriteBehind {
 const CHUNK: usize = 1 << 20;
 
 impl WriteBehind {
+    /// Starts the writing thread for `out`.
     pub fn new(mut out: Output) -> WriteBehind {
         let (tx, rx) = std::sync::mpsc::sync_channel::<Vec<u8>>(4);
         let (back, empty) = std::sync::mpsc::channel::<Vec<u8>>();

@@ -10,10 +10,32 @@
 //! and `EulerRot::XYZEx` (extrinsic) with the same angle order.
 
 use crate::error::InputResult;
-use crate::input_err;
+use crate::error::input_err;
 use glam::{DQuat, EulerRot};
 
 /// A validated Euler sequence.
+///
+/// The convention, pinned: intrinsic `ZYX` is `Rz(a)·Ry(b)·Rx(c)`, extrinsic `xyz` is the same
+/// matrix product read from the right, and the decomposition returns the angles in the order
+/// the letters are written.
+///
+/// ```
+/// use inbetween::EulerSeq;
+/// use glam::DQuat;
+///
+/// let (a, b, c) = (0.3, -0.2, 1.1);
+/// let zyx = EulerSeq::parse("ZYX")?;
+/// let q = zyx.to_quat([a, b, c]);
+/// let product = DQuat::from_rotation_z(a) * DQuat::from_rotation_y(b) * DQuat::from_rotation_x(c);
+/// assert!((q - product).length() < 1e-15 || (q + product).length() < 1e-15);
+/// // Extrinsic x-y-z with the angles reversed is the same rotation.
+/// let xyz = EulerSeq::parse("xyz")?.to_quat([c, b, a]);
+/// assert!((q - xyz).length() < 1e-15 || (q + xyz).length() < 1e-15);
+/// let back = zyx.from_quat(q);
+/// assert!((back[0] - a).abs() < 1e-14 && (back[1] - b).abs() < 1e-14 && (back[2] - c).abs() < 1e-14);
+/// assert!(EulerSeq::parse("ZYx").is_err());
+/// # Ok::<(), inbetween::InputError>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct EulerSeq {
     /// The three letters as the user writes them (case carries intrinsic/extrinsic).

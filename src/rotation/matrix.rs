@@ -7,10 +7,10 @@
 //! ```
 
 use crate::error::InputResult;
-use crate::input_err;
+use crate::error::input_err;
 use glam::{DMat3, DQuat, DVec3};
 
-/// Largest accepted Frobenius norm of `RᵀR − I` before projection (SPEC §2).
+/// Largest accepted Frobenius norm of `RᵀR − I` before projection (docs/spec.md §2).
 pub const ORTHONORMAL_TOL: f64 = 1e-3;
 
 /// Builds the matrix from row-major entries.
@@ -102,8 +102,13 @@ mod tests {
     #[test]
     fn reflection_and_shear_rejected() {
         let refl = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]];
-        assert!(to_quat(refl).unwrap_err().0.contains("reflection"));
+        assert!(to_quat(refl).unwrap_err().message().contains("reflection"));
         let shear = [[1.0, 0.1, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-        assert!(to_quat(shear).unwrap_err().0.contains("orthonormal"));
+        assert!(
+            to_quat(shear)
+                .unwrap_err()
+                .message()
+                .contains("orthonormal")
+        );
     }
 }

@@ -1,4 +1,4 @@
-//! Rotation representations (SPEC §2) and their conversions to and from unit quaternions.
+//! Rotation representations (docs/spec.md §2) and their conversions to and from unit quaternions.
 //!
 //! Every representation converts to a unit [`DQuat`]; only quaternion input keeps its sign
 //! (which `--path as-given` honours), the others give `w ≥ 0`. On output, quaternions are written
@@ -9,7 +9,7 @@ pub mod matrix;
 pub mod quat;
 
 use crate::error::InputResult;
-use crate::input_err;
+use crate::error::input_err;
 pub use euler::EulerSeq;
 use glam::{DMat3, DQuat, DVec3};
 use std::fmt;
@@ -17,22 +17,30 @@ use std::fmt;
 /// A rotation representation, as named by `--from`/`--to`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Repr {
+    /// A unit quaternion `w, x, y, z` (`quat`).
     Quat,
+    /// Euler angles in a sequence (`euler:ZYX` intrinsic, `euler:zyx` extrinsic).
     Euler(EulerSeq),
+    /// A 3×3 rotation matrix, row-major (`matrix`).
     Matrix,
+    /// A unit axis and an angle (`axis-angle`).
     AxisAngle,
+    /// A rotation vector, axis × angle (`rotvec`).
     RotVec,
 }
 
 /// Unit of every angle read or written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum AngleUnit {
+    /// Degrees.
     #[default]
     Deg,
+    /// Radians.
     Rad,
 }
 
 impl AngleUnit {
+    /// `deg` or `rad`.
     pub fn parse(s: &str) -> InputResult<AngleUnit> {
         match s {
             "deg" => Ok(AngleUnit::Deg),
@@ -41,6 +49,7 @@ impl AngleUnit {
         }
     }
 
+    /// `deg` or `rad`.
     pub fn as_str(self) -> &'static str {
         match self {
             AngleUnit::Deg => "deg",
@@ -68,12 +77,15 @@ impl AngleUnit {
 /// Component order of quaternions written as JSON arrays.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum QuatOrder {
+    /// Scalar first: `[w, x, y, z]` (scipy's `scalar_first=True`).
     #[default]
     Wxyz,
+    /// Scalar last: `[x, y, z, w]` (scipy's default, glTF).
     Xyzw,
 }
 
 impl QuatOrder {
+    /// `wxyz` or `xyzw`.
     pub fn parse(s: &str) -> InputResult<QuatOrder> {
         match s {
             "wxyz" => Ok(QuatOrder::Wxyz),

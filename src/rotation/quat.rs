@@ -1,7 +1,7 @@
 //! Quaternion helpers that glam does not have: the half-angle `log`/`exp` of the papers, and the
 //! geodesic blend on S³ without hemisphere flipping.
 //!
-//! Convention (SPEC §2, §4): `q = w + xi + yj + zk`, Hamilton product, `v' = q v q*`. A unit
+//! Convention (docs/spec.md §2, §4): `q = w + xi + yj + zk`, Hamilton product, `v' = q v q*`. A unit
 //! quaternion `q = (cos θ, sin θ·a)` rotates by `2θ` about `a`; `log q = θ·a` is returned as a
 //! [`DVec3`] (the pure quaternion's vector part) and `exp` is its inverse. So a rotation vector
 //! (axis × angle) is `2·log(q)`, and a world-frame angular velocity ω corresponds to the tangent
@@ -13,6 +13,17 @@ use glam::{DQuat, DVec3};
 ///
 /// Exact for tiny angles (uses `atan2(|v|, w)/|v|`, no small-angle series needed). For `q = −1`
 /// (θ = π, the axis is undefined) it returns `π·x̂`: the world x axis, a documented choice.
+///
+/// ```
+/// use inbetween::rotation::quat::{exp, log};
+/// use glam::{DQuat, DVec3};
+///
+/// // A 90° turn about z: half-angle 45°, so log is (0, 0, π/4) and 2·log is the rotation vector.
+/// let q = DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2);
+/// assert!((log(q) - DVec3::new(0.0, 0.0, std::f64::consts::FRAC_PI_4)).length() < 1e-15);
+/// assert!((exp(log(q)) - q).length() < 1e-15);
+/// assert_eq!(log(-DQuat::IDENTITY), DVec3::new(std::f64::consts::PI, 0.0, 0.0));
+/// ```
 pub fn log(q: DQuat) -> DVec3 {
     let v = DVec3::new(q.x, q.y, q.z);
     let s = v.length();
@@ -50,10 +61,21 @@ pub fn tangent_to_pure(tangent: DQuat, q: DQuat) -> DVec3 {
 /// The point `f` of the way along the great arc of S³ from unit `a` to unit `b`:
 /// `exp(f · log(b a⁻¹)) a`, computed in R⁴ as `cos(fΩ) a + sin(fΩ) ê` with `Ω = ∠(a, b)` and `ê`
 /// the unit direction of `b − (a·b) a`. No hemisphere flip: when `a·b < 0` the arc is longer
-/// than 90° on S³ (the long way round in SO(3)), as SPEC §4.3 requires.
+/// than 90° on S³ (the long way round in SO(3)), as docs/spec.md §4.3 requires.
 ///
 /// When `a` and `b` are antipodal the arc is undefined; this returns the arc through the
 /// direction [`log`] chooses for `−1`, and [`near_antipode`] lets callers warn.
+///
+/// ```
+/// use inbetween::rotation::quat::geodesic;
+/// use glam::DQuat;
+///
+/// let (a, b) = (DQuat::IDENTITY, DQuat::from_rotation_x(3.0));
+/// assert!((geodesic(a, b, 0.5) - DQuat::from_rotation_x(1.5)).length() < 1e-15);
+/// // No hemisphere flip: towards −b is the long way round (2π − 3 rad), half of it here.
+/// let long = geodesic(a, -b, 0.5);
+/// assert!((long - DQuat::from_rotation_x(1.5 - std::f64::consts::PI)).length() < 1e-15);
+/// ```
 #[inline]
 pub fn geodesic(a: DQuat, b: DQuat, f: f64) -> DQuat {
     let d = a.dot(b);

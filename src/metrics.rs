@@ -11,55 +11,54 @@
 //! | `c2_jump` | largest `|α(t_k⁺) − α(t_k⁻)|` over interior keys (C² defect) | angle/s² |
 //! | `energy` | Barr's discrete `E = Σ w_p |q_p'' ∖ q_p|²` over the frames at `--fps` | (S³ units)²/s³ |
 //!
-//! ω and α are world-frame angular velocity and acceleration ([`crate::motion`]); "angle" is
+//! ω and α are world-frame angular velocity and acceleration ([`crate::Curve`]); "angle" is
 //! `--angles` (degrees by default).
 
 use crate::clock::Fps;
+use crate::curve::Curve;
+use crate::curve::Scheme;
 use crate::curve::minaccel::{Report, energy};
-use crate::curve::{Blend, Scheme};
-use crate::error::InputResult;
-use crate::keys::TimedTrack;
-use crate::motion::{Side, TrackCurve};
+use crate::curve::piecewise::Side;
 use crate::rotation::AngleUnit;
-use crate::tangent::{EndConditions, Keys, PathMode};
 use glam::DQuat;
 use std::fmt::Write as _;
 
 /// The figures of one track and scheme (angles in radians).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Metrics {
+    /// The track's name.
     pub track: Option<String>,
+    /// The scheme measured.
     pub scheme: Scheme,
+    /// `t_n − t_1`, s.
     pub duration: f64,
+    /// Total angle travelled `∫|ω| dt`, rad.
     pub angle: f64,
+    /// Largest `|ω|`, rad/s.
     pub max_speed: f64,
+    /// `angle / duration`, rad/s.
     pub mean_speed: f64,
+    /// Largest `|α|`, rad/s².
     pub max_accel: f64,
+    /// Largest jump of `ω` at an interior key, rad/s.
     pub c1_jump: f64,
+    /// Largest jump of `α` at an interior key, rad/s².
     pub c2_jump: f64,
+    /// Barr's discrete energy over the frames.
     pub energy: f64,
     /// minaccel's solver report.
     pub solver: Option<Report>,
 }
 
-/// Options that shape the curve.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct CurveOptions {
-    pub blend: Blend,
-    pub path: PathMode,
-    pub ends: EndConditions,
-    pub fps: Fps,
-}
-
 /// Samples per frame interval for the integrals and maxima.
 const SAMPLES_PER_FRAME: f64 = 8.0;
 
-/// Computes the figures of `track` under `scheme`.
-pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> InputResult<Metrics> {
-    let keys = Keys::new(track, opts.path, opts.ends);
-    let (curve, solver) = TrackCurve::new(keys, scheme, opts.blend, opts.fps)?;
+/// Computes the figures of `curve`, sampled at least 8 times per frame interval of `fps`; the
+/// energy is that of its frames at `fps`.
+pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
+    let rate = fps;
     let b = curve.breaks().to_vec();
-    let fps = opts.fps.as_f64();
+    let fps = rate.as_f64();
     let (mut angle, mut max_speed, mut max_accel) = (0.0, 0.0f64, 0.0f64);
     for i in 0..b.len() - 1 {
         let (t0, t1) = (b[i], b[i + 1]);
@@ -93,17 +92,17 @@ pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Input
         c1 = c1.max((curve.omega(tk, Side::Right) - curve.omega(tk, Side::Left)).length());
         c2 = c2.max((curve.alpha(tk, Side::Right) - curve.alpha(tk, Side::Left)).length());
     }
-    let (first, last) = opts.fps.frames_between(keys[0], keys[keys.len() - 1]);
+    let (first, last) = rate.frames_between(keys[0], keys[keys.len() - 1]);
     let (times, pts): (Vec<f64>, Vec<DQuat>) = (first..=last)
         .map(|k| {
-            let t = opts.fps.time_of(k);
+            let t = rate.time_of(k);
             (t, curve.eval(t))
         })
         .unzip();
     let duration = keys[keys.len() - 1] - keys[0];
-    Ok(Metrics {
-        track: track.name.clone(),
-        scheme,
+    Metrics {
+        track: curve.name().map(str::to_string),
+        scheme: curve.scheme(),
         duration,
         angle,
         max_speed,
@@ -116,8 +115,8 @@ pub fn analyze(track: &TimedTrack, scheme: Scheme, opts: &CurveOptions) -> Input
         } else {
             0.0
         },
-        solver,
-    })
+        solver: curve.solver_report().copied(),
+    }
 }
 
 /// Column names of the csv and json output, in order.

@@ -1,4 +1,4 @@
-//! JSON keyframe documents (SPEC §3).
+//! JSON keyframe documents (docs/spec.md §3).
 //!
 //! ```json
 //! {"fps": 30, "rotation": "euler:ZYX", "angles": "deg",
@@ -11,11 +11,11 @@
 //! `rotation`. A document's `angles` describes its own values; `fps` is the rate its `frame`
 //! values are numbered at.
 
-use super::ReadOptions;
 use crate::clock::Fps;
+use crate::error::input_err;
 use crate::error::{InputError, InputResult};
-use crate::input_err;
-use crate::keys::{Document, Key, KeyTime, Loc, Track};
+use crate::io::ReadOptions;
+use crate::io::document::{DocTrack, Document, Key, KeyTime, Loc};
 use crate::rotation::{AngleUnit, Repr};
 use glam::DVec3;
 use serde::Deserialize;
@@ -177,7 +177,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     match (wire.keys, wire.tracks) {
         (Some(keys), None) => {
             let keys = ctx.keys(keys, None, &mut doc)?;
-            doc.tracks.push(Track {
+            doc.tracks.push(DocTrack {
                 name: None,
                 keys,
                 start_velocity: doc_start,
@@ -195,7 +195,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                         "{source}: tracks[{ti}].name: track \"{name}\" appears twice"
                     ));
                 }
-                doc.tracks.push(Track {
+                doc.tracks.push(DocTrack {
                     name: Some(name),
                     keys,
                     start_velocity: start.or(doc_start),
@@ -330,7 +330,7 @@ mod tests {
             r#"{"keys": [{"time": 0, "quat": [1,0,0,0]}, {"time": 1, "quaternion": [1,0,0,0]}]}"#;
         let err = read(text, "k.json", &ReadOptions::default()).unwrap_err();
         assert!(
-            err.0
+            err.message()
                 .starts_with("k.json: keys[1]: unknown field `quaternion`"),
             "{err}"
         );
@@ -339,6 +339,6 @@ mod tests {
     #[test]
     fn syntax_error_has_line_and_column() {
         let err = read("{\n \"keys\": [,]}", "k.json", &ReadOptions::default()).unwrap_err();
-        assert!(err.0.starts_with("k.json:2:"), "{err}");
+        assert!(err.message().starts_with("k.json:2:"), "{err}");
     }
 }

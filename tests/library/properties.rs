@@ -1,79 +1,17 @@
-//! Property tests of the interpolation (SPEC §5): over random keys, every frame is unit length,
+//! Property tests of the interpolation (docs/spec.md §5): over random keys, every frame is unit length,
 //! keys are hit exactly, hermite/squad/bezier are C¹ at interior keys, hermite and bezier end
 //! tangents equal `V`, the end conditions hold, forward differences agree with direct
 //! evaluation, and `--path shortest` never takes a segment longer than 180°.
 
-use crate::support::rot_angle;
+use crate::support::{curve, interpolate, rot_angle, settings, track};
 use glam::{DQuat, DVec3};
-use inbetween::clock::Fps;
-use inbetween::curve::{Blend, Scheme};
-use inbetween::interp::{Settings, eval_at, run};
-use inbetween::io::write::FrameSink;
-use inbetween::keys::TimedTrack;
 use inbetween::rotation::quat::pure_mul;
-use inbetween::tangent::{EndConditions, Ends, Keys, PathMode};
+use inbetween::tangent::Knots;
+use inbetween::{EndConditions, Ends, Fps, PathMode, Scheme, Track};
 use proptest::prelude::*;
-use std::io;
 
 /// Relative agreement of one-sided derivatives at interior keys.
 const C1_TOL: f64 = 1e-6;
-
-/// Frames collected in memory.
-#[derive(Default)]
-pub struct Collect {
-    pub frames: Vec<(i64, f64, DQuat)>,
-}
-
-impl FrameSink for Collect {
-    fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
-        Ok(())
-    }
-    fn frame(&mut self, k: i64, time: f64, q: DQuat, _omega: Option<DVec3>) -> io::Result<()> {
-        self.frames.push((k, time, q));
-        Ok(())
-    }
-    fn end_track(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-    fn finish(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-}
-
-pub fn track(times: Vec<f64>, quats: Vec<DQuat>) -> TimedTrack {
-    TimedTrack {
-        name: None,
-        times,
-        quats,
-        start_velocity: None,
-        end_velocity: None,
-    }
-}
-
-pub fn interpolate(t: &TimedTrack, settings: &Settings) -> (Vec<(i64, f64, DQuat)>, Vec<String>) {
-    let mut sink = Collect::default();
-    let mut warnings = Vec::new();
-    run(
-        std::slice::from_ref(t),
-        settings,
-        &mut sink,
-        &mut |w: &str| warnings.push(w.to_string()),
-    )
-    .unwrap();
-    (sink.frames, warnings)
-}
-
-pub fn settings(scheme: Scheme, fps: &str, ends: EndConditions) -> Settings {
-    Settings {
-        fps: Fps::parse(fps).unwrap(),
-        scheme,
-        blend: Blend::Cubic,
-        path: PathMode::Shortest,
-        ends,
-        velocity: false,
-        parallel: true,
-    }
-}
 
 fn unit_quat() -> impl Strategy<Value = DQuat> {
     prop::array::uniform4(-1.0f64..1.0)
@@ -84,7 +22,7 @@ fn unit_quat() -> impl Strategy<Value = DQuat> {
 }
 
 /// 2–7 keys, gaps 0.05–1 s, starting anywhere in [−1, 1] s.
-fn random_track() -> impl Strategy<Value = TimedTrack> {
+fn random_track() -> impl Strategy<Value = Track> {
     (2usize..8).prop_flat_map(|n| {
         (
             -1.0f64..1.0,
@@ -126,20 +64,20 @@ fn ends() -> impl Strategy<Value = EndConditions> {
 
 /// Mean speed of the keys (S³ chord length per second): the scale for "relative" where a
 /// derivative itself is near zero.
-fn mean_speed(keys: &Keys) -> f64 {
-    let n = keys.times.len();
+fn mean_speed(keys: &Knots) -> f64 {
+    let n = keys.times().len();
     let total: f64 = (0..n - 1)
-        .map(|i| (keys.quats[i + 1] - keys.quats[i]).length())
+        .map(|i| (keys.quats()[i + 1] - keys.quats()[i]).length())
         .sum();
-    total / (keys.times[n - 1] - keys.times[0])
+    total / (keys.times()[n - 1] - keys.times()[0])
 }
 
 /// Largest `‖(Δ_i m_i − P)/2‖`, `‖(−M − Δ_{i−1} m_i)/2‖` over interior keys: squad's inner points
 /// as exponents. Beyond π the inner point's log aliases and squad is no longer C¹ there
 /// (documented in docs/schemes.md; see `squad_limit_inner_point_beyond_half_turn`).
-fn squad_inner_exponents(keys: &Keys) -> f64 {
+fn squad_inner_exponents(keys: &Knots) -> f64 {
     use inbetween::tangent::step;
-    let q = &keys.quats;
+    let q = keys.quats();
     (1..q.len() - 1)
         .map(|i| {
             let p = step(q[i], q[i + 1]);
@@ -152,13 +90,14 @@ fn squad_inner_exponents(keys: &Keys) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// dQ/dt at `t` from the right (`dir = 1`) or the left (`dir = −1`), second order.
-fn one_sided(keys: &Keys, scheme: Scheme, t: f64, dir: f64) -> DQuat {
+/// dQ/dt at key time `tk` from the right (`dir = 1`) or the left (`dir = −1`), second order,
+/// from three points inside the segment on that side (`tk + dir·{1,2,3}·h`; the key itself is
+/// not used, since a time within 1e-9 s of a key is the key).
+fn one_sided(t: &Track, ends: EndConditions, scheme: Scheme, tk: f64, dir: f64) -> DQuat {
+    let c = curve(t, scheme, PathMode::Shortest, ends);
     let h = 1e-6 * dir;
-    let q = |t| eval_at(keys, scheme, Blend::Cubic, t).unwrap();
-    // Evaluate inside the segment on the chosen side (eval_at picks the segment by t).
-    let t0 = t + 1e-12 * dir;
-    (q(t0 + h) * 4.0 - q(t0 + 2.0 * h) - q(t0) * 3.0) / (2.0 * h)
+    let q = |k: f64| c.rotation(tk + k * h);
+    (q(1.0) * -2.5 + q(2.0) * 4.0 - q(3.0) * 1.5) / h
 }
 
 proptest! {
@@ -169,38 +108,39 @@ proptest! {
                               fps in prop::sample::select(vec!["24", "30", "29.97", "60"])) {
         let s = settings(scheme, fps, ends);
         let (frames, _) = interpolate(&t, &s);
-        let keys = Keys::new(&t, PathMode::Shortest, ends);
+        let keys = Knots::new(&t, PathMode::Shortest, ends);
+        let c = curve(&t, scheme, PathMode::Shortest, ends);
         for (k, time, q) in &frames {
             prop_assert!((q.length() - 1.0).abs() < 1e-12, "frame {k}: |q| = {}", q.length());
             prop_assert!(q.is_finite());
             // Direct evaluation agrees with the forward differences.
-            let direct = eval_at(&keys, scheme, Blend::Cubic, *time).unwrap();
+            let direct = c.rotation(*time);
             prop_assert!((*q - direct).length() < 1e-12, "frame {k} at {time}: {q} vs {direct}");
         }
         // Every key on the grid is reproduced exactly.
         let fps = Fps::parse(fps).unwrap();
-        for (i, &tk) in keys.times.iter().enumerate() {
+        for (i, &tk) in keys.times().iter().enumerate() {
             let on_grid = frames.iter().find(|(_, time, _)| (time - tk).abs() <= 1e-9);
             if let Some((_, _, q)) = on_grid {
-                prop_assert!((*q - keys.quats[i]).length() < 1e-12, "key {i}");
+                prop_assert!((*q - keys.quats()[i]).length() < 1e-12, "key {i}");
             }
         }
         // The grid: consecutive frame numbers from the first to the last within the span.
-        let (first, last) = fps.frames_between(keys.times[0], *keys.times.last().unwrap());
+        let (first, last) = fps.frames_between(keys.times()[0], *keys.times().last().unwrap());
         prop_assert_eq!(frames.len() as i64, (last - first + 1).max(0));
     }
 
     #[test]
     fn c1_at_interior_keys(t in random_track(), ends in ends(),
                            scheme in prop::sample::select(vec![Scheme::Hermite, Scheme::Squad, Scheme::Bezier])) {
-        let keys = Keys::new(&t, PathMode::Shortest, ends);
+        let keys = Knots::new(&t, PathMode::Shortest, ends);
         if scheme == Scheme::Squad {
             prop_assume!(squad_inner_exponents(&keys) < std::f64::consts::PI);
         }
-        for i in 1..keys.times.len() - 1 {
-            let tk = keys.times[i];
-            let left = one_sided(&keys, scheme, tk, -1.0);
-            let right = one_sided(&keys, scheme, tk, 1.0);
+        for i in 1..keys.times().len() - 1 {
+            let tk = keys.times()[i];
+            let left = one_sided(&t, ends, scheme, tk, -1.0);
+            let right = one_sided(&t, ends, scheme, tk, 1.0);
             let scale = left.length().max(right.length()).max(mean_speed(&keys));
             prop_assert!((left - right).length() <= C1_TOL * scale,
                 "{scheme:?} key {i}: {left} vs {right}");
@@ -210,11 +150,11 @@ proptest! {
     #[test]
     fn end_conditions_hold(t in random_track(), ends in ends(),
                            scheme in prop::sample::select(vec![Scheme::Hermite, Scheme::Squad, Scheme::Bezier])) {
-        let keys = Keys::new(&t, PathMode::Shortest, ends);
-        let n = keys.times.len();
-        let q = &keys.quats;
-        let d0 = one_sided(&keys, scheme, keys.times[0], 1.0);
-        let d1 = one_sided(&keys, scheme, keys.times[n - 1], -1.0);
+        let keys = Knots::new(&t, PathMode::Shortest, ends);
+        let n = keys.times().len();
+        let q = keys.quats();
+        let d0 = one_sided(&t, ends, scheme, keys.times()[0], 1.0);
+        let d1 = one_sided(&t, ends, scheme, keys.times()[n - 1], -1.0);
         let chord0 = inbetween::tangent::step(q[0], q[1]) / keys.delta(0);
         let chord1 = inbetween::tangent::step(q[n - 2], q[n - 1]) / keys.delta(n - 2);
         let want0 = match (ends.start, ends.ends) {
@@ -238,10 +178,10 @@ proptest! {
     fn shortest_never_longer_than_180(t in random_track()) {
         let s = settings(Scheme::Slerp, "60", EndConditions::default());
         let (frames, _) = interpolate(&t, &s);
-        let keys = Keys::new(&t, PathMode::Shortest, EndConditions::default());
-        for i in 0..keys.times.len() - 1 {
-            prop_assert!(keys.quats[i].dot(keys.quats[i + 1]) >= 0.0);
-            prop_assert!(rot_angle(keys.quats[i], keys.quats[i + 1]) <= std::f64::consts::PI + 1e-12);
+        let keys = Knots::new(&t, PathMode::Shortest, EndConditions::default());
+        for i in 0..keys.times().len() - 1 {
+            prop_assert!(keys.quats()[i].dot(keys.quats()[i + 1]) >= 0.0);
+            prop_assert!(rot_angle(keys.quats()[i], keys.quats()[i + 1]) <= std::f64::consts::PI + 1e-12);
         }
         // Frames of a slerp segment move monotonically away from its first key.
         for w in frames.windows(2) {
@@ -250,7 +190,7 @@ proptest! {
     }
 }
 
-/// The limit of SPEC §4.4's squad: a key where the motion reverses next to a much shorter
+/// The limit of docs/spec.md §4.4's squad: a key where the motion reverses next to a much shorter
 /// segment puts the inner point more than half a turn away, and the speed jumps at that key.
 /// (Found by `c1_at_interior_keys`; the independent reference shows the same.)
 #[test]
@@ -260,14 +200,15 @@ fn squad_limit_inner_point_beyond_half_turn() {
         vec![0.0, 0.05, 0.853174141776249, 0.903174141776249],
         vec![-DQuat::IDENTITY, k, -DQuat::IDENTITY, k],
     );
-    let keys = Keys::new(&t, PathMode::Shortest, EndConditions::default());
+    let ends = EndConditions::default();
+    let keys = Knots::new(&t, PathMode::Shortest, ends);
     assert!(squad_inner_exponents(&keys) > std::f64::consts::PI);
-    let left = one_sided(&keys, Scheme::Squad, keys.times[1], -1.0);
-    let right = one_sided(&keys, Scheme::Squad, keys.times[1], 1.0);
+    let left = one_sided(&t, ends, Scheme::Squad, keys.times()[1], -1.0);
+    let right = one_sided(&t, ends, Scheme::Squad, keys.times()[1], 1.0);
     assert!((left - right).length() > 1.0, "{left} {right}");
     // Hermite handles the same keys C¹.
-    let left = one_sided(&keys, Scheme::Hermite, keys.times[1], -1.0);
-    let right = one_sided(&keys, Scheme::Hermite, keys.times[1], 1.0);
+    let left = one_sided(&t, ends, Scheme::Hermite, keys.times()[1], -1.0);
+    let right = one_sided(&t, ends, Scheme::Hermite, keys.times()[1], 1.0);
     assert!((left - right).length() < 1e-6 * left.length().max(1.0));
 }
 
@@ -291,12 +232,10 @@ fn forward_differences_within_documented_bound_at_1e4_inbetweens() {
         // 10 000 fps: 10⁴ in-betweens in the first segment, 1.5·10⁴ in the second.
         let s = settings(scheme, "10000", EndConditions::default());
         let (frames, _) = interpolate(&t, &s);
-        let keys = Keys::new(&t, PathMode::Shortest, EndConditions::default());
+        let c = curve(&t, scheme, PathMode::Shortest, EndConditions::default());
         let worst = frames
             .iter()
-            .map(|(_, time, q)| {
-                (*q - eval_at(&keys, scheme, Blend::Cubic, *time).unwrap()).length()
-            })
+            .map(|(_, time, q)| (*q - c.rotation(*time)).length())
             .fold(0.0, f64::max);
         assert!(worst < 2e-13, "{scheme:?}: drift {worst:e}");
         eprintln!(

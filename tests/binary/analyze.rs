@@ -1,12 +1,10 @@
 //! `analyze` and `interp --velocity` (issue 5).
 
-use crate::support::fixtures;
+use crate::support::{curve, fixtures};
 use assert_cmd::Command;
 use glam::{DQuat, DVec3};
-use inbetween::curve::{Blend, Scheme};
-use inbetween::interp::eval_at;
 use inbetween::io::{Format, ReadOptions, read_document};
-use inbetween::tangent::{EndConditions, Keys, PathMode};
+use inbetween::{EndConditions, Fps, PathMode, Scheme};
 use serde_json::Value;
 
 fn analyze_json(args: &[&str]) -> Vec<Value> {
@@ -107,10 +105,7 @@ fn velocity_matches_finite_differences() {
     let path = fixtures().join("interp/nonuniform.csv");
     let text = std::fs::read_to_string(&path).unwrap();
     let doc = read_document(&text, "k", Format::Csv, &ReadOptions::default()).unwrap();
-    let track = &doc
-        .timed_tracks(inbetween::clock::Fps::new(30, 1).unwrap())
-        .unwrap()[0];
-    let keys = Keys::new(track, PathMode::Shortest, EndConditions::default());
+    let track = &doc.tracks(Fps::DEFAULT).unwrap()[0];
     for scheme in ["hermite", "squad", "bezier", "slerp"] {
         let out = Command::cargo_bin("inbetween")
             .unwrap()
@@ -132,16 +127,17 @@ fn velocity_matches_finite_differences() {
             "bezier" => Scheme::Bezier,
             _ => Scheme::Slerp,
         };
-        let q = |t: f64| eval_at(&keys, s, Blend::Cubic, t).unwrap();
+        let c = curve(track, s, PathMode::Shortest, EndConditions::default());
+        let q = |t: f64| c.rotation(t);
         let mut rdr = csv::Reader::from_reader(out.stdout.as_slice());
-        let t_last = *keys.times.last().unwrap();
+        let t_last = *track.times().last().unwrap();
         let mut n = 0;
         for rec in rdr.records() {
             let rec = rec.unwrap();
             let v: Vec<f64> = rec.iter().map(|x| x.parse().unwrap()).collect();
             let (t, w) = (v[1], DVec3::new(v[6], v[7], v[8]));
             let h = 1e-6;
-            let dq: DQuat = if keys.times.contains(&t) && t < t_last {
+            let dq: DQuat = if track.times().contains(&t) && t < t_last {
                 // one-sided (right), second order
                 (q(t + h) * 4.0 - q(t + 2.0 * h) - q(t) * 3.0) / (2.0 * h)
             } else if t >= t_last {

@@ -1,8 +1,8 @@
-//! CSV keyframes (SPEC §3): a header row, one key per row, columns found by name in any order.
+//! CSV keyframes (docs/spec.md §3): a header row, one key per row, columns found by name in any order.
 //!
 //! ```text
 //! track,time,w,x,y,z          track optional; time (seconds) or frame; rotation columns of one
-//! hip,0.0,1,0,0,0             representation (SPEC §2). Rows of several tracks may interleave;
+//! hip,0.0,1,0,0,0             representation (docs/spec.md §2). Rows of several tracks may interleave;
 //! hip,0.5,0.7071,0,0.7071,0   each track keeps its row order.
 //! ```
 //! Accepted as a user would expect: a UTF-8 BOM, CRLF line ends, blank lines, spaces around
@@ -10,10 +10,10 @@
 //! rotation column, a row with a different number of fields than the header, a field that is
 //! not a finite number.
 
-use super::ReadOptions;
 use crate::error::InputResult;
-use crate::input_err;
-use crate::keys::{Document, Key, KeyTime, Loc, Track};
+use crate::error::input_err;
+use crate::io::ReadOptions;
+use crate::io::document::{DocTrack, Document, Key, KeyTime, Loc};
 use crate::rotation::{MAX_WIDTH, Repr};
 
 /// Column sets that name a representation, with their aliases.
@@ -146,7 +146,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         let track = match doc.tracks.iter().position(|t| t.name == name) {
             Some(i) => &mut doc.tracks[i],
             None => {
-                doc.tracks.push(Track {
+                doc.tracks.push(DocTrack {
                     name,
                     keys: Vec::new(),
                     start_velocity: None,
@@ -277,7 +277,7 @@ mod tests {
     fn euler_needs_a_sequence() {
         let text = "time,e1,e2,e3\n0,0,0,0\n1,90,0,0\n";
         let err = read(text, "k.csv", &opts()).unwrap_err();
-        assert!(err.0.contains("--from euler:SEQ"), "{err}");
+        assert!(err.message().contains("--from euler:SEQ"), "{err}");
         let o = ReadOptions {
             from: Some(Repr::parse("euler:ZYX").unwrap()),
             angles: AngleUnit::Deg,
@@ -293,7 +293,7 @@ mod tests {
         let text = "time,w,x,y,z\n0,1,0,0,0\n1,abc,0,0,0\n";
         let err = read(text, "k.csv", &opts()).unwrap_err();
         assert_eq!(
-            err.0,
+            err.message(),
             "k.csv:3: column \"w\": expected a number, found \"abc\""
         );
     }

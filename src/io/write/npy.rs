@@ -10,7 +10,8 @@
 //! returns an `(n_frames, n_columns)` array. The header must state the shape, so the writer is
 //! given the exact number of frames; it checks it at the end.
 
-use super::write::{FrameSink, Style};
+use super::Style;
+use crate::bake::FrameSink;
 use crate::rotation::{MAX_WIDTH, Repr};
 use glam::{DQuat, DVec3};
 use std::io::{self, Write};
@@ -48,6 +49,8 @@ pub fn header(rows: u64, cols: usize) -> Vec<u8> {
 }
 
 impl<W: Write> NpyWriter<W> {
+    /// A writer of exactly `rows` frames (checked at the end); `track_column` adds the track
+    /// index column, `velocity` the angular velocity columns.
     pub fn new(w: W, style: Style, rows: u64, track_column: bool, velocity: bool) -> Self {
         let mut buf = Vec::with_capacity(1 << 16);
         buf.extend_from_slice(&header(rows, columns(style.repr, track_column, velocity)));
@@ -63,6 +66,7 @@ impl<W: Write> NpyWriter<W> {
         }
     }
 
+    /// The writer, after [`FrameSink::finish`].
     pub fn into_inner(self) -> W {
         self.w
     }

@@ -2,15 +2,12 @@
 //! grid, agreement with an independent dense optimiser (offline scipy, `fixtures/minaccel/`),
 //! convergence, end velocities, and two full turns.
 
-use crate::properties::{interpolate, settings, track};
-use crate::support::{fixtures, rot_angle};
+use crate::support::{curve, fixtures, interpolate, rot_angle, settings, track};
 use glam::{DQuat, DVec3};
-use inbetween::clock::Fps;
 use inbetween::curve::minaccel::{Problem, solve};
-use inbetween::curve::{Blend, Scheme};
-use inbetween::interp::eval_at;
 use inbetween::io::{Format, ReadOptions, read_document};
-use inbetween::tangent::{EndConditions, Ends, Keys, PathMode};
+use inbetween::tangent::Knots;
+use inbetween::{EndConditions, Ends, Fps, PathMode, Scheme, Track};
 use serde::Deserialize;
 
 #[derive(Deserialize)]
@@ -39,9 +36,12 @@ fn minaccel_matches_dense_reference() {
     assert_eq!(cases.len(), 4);
     for c in cases {
         let quats: Vec<DQuat> = c.quats.iter().map(|q| wxyz(*q).normalize()).collect();
-        let mut t = track(c.times.clone(), quats);
-        t.start_velocity = c.start_velocity.map(DVec3::from_array);
-        t.end_velocity = c.end_velocity.map(DVec3::from_array);
+        let t = track(c.times.clone(), quats)
+            .with_end_velocities(
+                c.start_velocity.map(DVec3::from_array),
+                c.end_velocity.map(DVec3::from_array),
+            )
+            .unwrap();
         let ends = EndConditions {
             ends: if c.ends == "rest" {
                 Ends::Rest
@@ -56,7 +56,7 @@ fn minaccel_matches_dense_reference() {
         } else {
             PathMode::AsGiven
         };
-        let keys = Keys::new(&t, path, ends);
+        let keys = Knots::new(&t, path, ends);
         let sol = solve(&keys, c.fps).unwrap();
         let r = sol.report;
         assert!(r.converged, "{}: {r:?}", c.name);
@@ -107,12 +107,12 @@ fn two_keys_without_velocities_give_slerp() {
             b.2
         );
     }
-    let keys = Keys::new(&t, PathMode::Shortest, EndConditions::default());
+    let keys = Knots::new(&t, PathMode::Shortest, EndConditions::default());
     assert!(solve(&keys, 30.0).unwrap().report.energy < 1e-18);
 }
 
 /// Every track of the interp fixtures, with the document's velocities.
-fn fixture_tracks() -> Vec<(String, inbetween::keys::TimedTrack)> {
+fn fixture_tracks() -> Vec<(String, Track)> {
     let mut out = Vec::new();
     for name in [
         "uniform.json",
@@ -125,9 +125,9 @@ fn fixture_tracks() -> Vec<(String, inbetween::keys::TimedTrack)> {
         let text = std::fs::read_to_string(&path).unwrap();
         let format = Format::from_path(&path).unwrap();
         let doc = read_document(&text, name, format, &ReadOptions::default()).unwrap();
-        let fps = doc.fps.unwrap_or(Fps::new(30, 1).unwrap());
-        for t in doc.timed_tracks(fps).unwrap() {
-            out.push((format!("{name} {:?}", t.name), t));
+        let fps = doc.fps.unwrap_or(Fps::DEFAULT);
+        for t in doc.tracks(fps).unwrap() {
+            out.push((format!("{name} {:?}", t.name()), t));
         }
     }
     out
@@ -151,7 +151,7 @@ fn energy_below_every_other_scheme_on_every_fixture() {
     for (name, t) in fixture_tracks() {
         for ends in variants {
             for path in [PathMode::Shortest, PathMode::AsGiven] {
-                let keys = Keys::new(&t, path, ends);
+                let keys = Knots::new(&t, path, ends);
                 let problem = Problem::new(&keys, 30.0).unwrap();
                 let grid = problem.grid_times().to_vec();
                 let sol = problem.clone().solve();
@@ -171,10 +171,8 @@ fn energy_below_every_other_scheme_on_every_fixture() {
                     Scheme::Bezier,
                     Scheme::Slerp,
                 ] {
-                    let pts: Vec<DQuat> = grid
-                        .iter()
-                        .map(|&tg| eval_at(&keys, scheme, Blend::Cubic, tg).unwrap())
-                        .collect();
+                    let c = curve(&t, scheme, path, ends);
+                    let pts: Vec<DQuat> = grid.iter().map(|&tg| c.rotation(tg)).collect();
                     let e = problem.energy_of(&pts);
                     assert!(
                         // 1e-20: below that both energies are f64 rounding of a geodesic.
@@ -206,8 +204,8 @@ fn end_velocity_holds_to_the_discretisation_order() {
         start: Some(omega),
         end: None,
     };
-    let keys = Keys::new(&t, PathMode::Shortest, ends);
-    let want = inbetween::rotation::quat::pure_mul(omega * 0.5, keys.quats[0]);
+    let keys = Knots::new(&t, PathMode::Shortest, ends);
+    let want = inbetween::rotation::quat::pure_mul(omega * 0.5, keys.quats()[0]);
     let mut errors = Vec::new();
     for fps in [25.0, 50.0, 100.0, 200.0] {
         let sol = solve(&keys, fps).unwrap();
@@ -244,7 +242,7 @@ fn two_full_turns_between_keys() {
         (travelled - 4.0 * std::f64::consts::PI).abs() < 1e-9,
         "{travelled}"
     );
-    let keys = Keys::new(&t, PathMode::AsGiven, ends);
+    let keys = Knots::new(&t, PathMode::AsGiven, ends);
     let sol = solve(&keys, 60.0).unwrap();
     assert!(sol.report.energy < 1e-12, "{:?}", sol.report);
 }

@@ -1,12 +1,10 @@
 //! Hard cases (issue 3): identical keys, 179.9° and exactly 180° steps, the log of −1, keys 1 µs
-//! apart, 100 full turns, and the antipodal-blend warning of SPEC §4.3.
+//! apart, 100 full turns, and the antipodal-blend warning of docs/spec.md §4.3.
 
-use crate::properties::{interpolate, settings, track};
-use crate::support::rot_angle;
+use crate::support::{interpolate, rot_angle, settings, track};
 use assert_cmd::Command;
 use glam::{DQuat, DVec3};
-use inbetween::curve::Scheme;
-use inbetween::tangent::{EndConditions, Ends, PathMode};
+use inbetween::{EndConditions, Ends, PathMode, Scheme};
 use std::f64::consts::PI;
 
 const SCHEMES: [Scheme; 4] = [

@@ -1,8 +1,8 @@
 //! `plot` (issue 5): the SVG parses as XML, holds one series per scheme, and marks the keys.
 
 use assert_cmd::Command;
-use inbetween::curve::Scheme;
-use inbetween::plot::colour;
+use inbetween::Scheme;
+use inbetween::chart::colour;
 
 fn plot(args: &[&str]) -> String {
     let dir = tempfile::tempdir().unwrap();

@@ -9,21 +9,24 @@
 //! Keys are marked by grey vertical lines with a dot on the time axis. Colours are the
 //! Okabe–Ito palette (readable with colour-blindness), one per scheme.
 
-use crate::analyze::CurveOptions;
-use crate::curve::Scheme;
+use crate::clock::Fps;
 use crate::curve::minaccel::energy;
-use crate::keys::TimedTrack;
-use crate::motion::{Side, TrackCurve};
+use crate::curve::piecewise::Side;
+use crate::curve::{Curve, CurveOptions, Scheme};
+use crate::error::Error;
 use crate::rotation::AngleUnit;
-use crate::tangent::Keys;
+use crate::track::Track;
 use glam::DVec3;
 use plotters::prelude::*;
 
 /// What to draw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum What {
+    /// `|ω|` over time.
     Speed,
+    /// `ωx`, `ωy`, `ωz` over time.
     Components,
+    /// Accumulated energy over time.
     Energy,
 }
 
@@ -43,12 +46,13 @@ pub fn colour(s: Scheme) -> RGBColor {
 
 /// `(t, ω)` samples of a curve: each key segment sampled from its start (right side) to its end
 /// (left side), so jumps at keys are kept; minaccel at its grid points.
-fn velocity_samples(curve: &TrackCurve) -> Vec<(f64, DVec3)> {
+fn velocity_samples(curve: &Curve) -> Vec<(f64, DVec3)> {
     let mut out = Vec::new();
-    match curve {
-        TrackCurve::Segments { keys, .. } => {
-            for i in 0..keys.times.len() - 1 {
-                let (t0, t1) = (keys.times[i], keys.times[i + 1]);
+    let key_times = curve.key_times();
+    match curve.scheme() {
+        Scheme::Hermite | Scheme::Squad | Scheme::Bezier | Scheme::Slerp => {
+            for i in 0..key_times.len() - 1 {
+                let (t0, t1) = (key_times[i], key_times[i + 1]);
                 for j in 0..=SAMPLES {
                     let t = t0 + (t1 - t0) * j as f64 / SAMPLES as f64;
                     let side = if j == SAMPLES {
@@ -60,9 +64,8 @@ fn velocity_samples(curve: &TrackCurve) -> Vec<(f64, DVec3)> {
                 }
             }
         }
-        TrackCurve::Grid {
-            times, key_times, ..
-        } => {
+        Scheme::MinAccel => {
+            let times = curve.breaks();
             for &t in times {
                 let is_key = key_times.binary_search_by(|k| k.total_cmp(&t)).is_ok();
                 if is_key && t != times[0] {
@@ -85,19 +88,21 @@ struct Line {
     dash: u8,
 }
 
-/// Draws the chart of `track` for `schemes` and returns the SVG text.
+/// Draws the chart of `track` for `schemes` (each with the rest of `opts`) and returns the SVG
+/// text; energy is accumulated over the frames at `fps`. Fails when minaccel cannot solve (an
+/// input error) or plotters cannot draw.
 pub fn svg(
-    track: &TimedTrack,
+    track: &Track,
     schemes: &[Scheme],
     what: What,
     opts: &CurveOptions,
+    fps: Fps,
     unit: AngleUnit,
-) -> Result<String, String> {
+) -> Result<String, Error> {
     let u = unit.as_str();
     let mut lines = Vec::new();
     for &s in schemes {
-        let keys = Keys::new(track, opts.path, opts.ends);
-        let (curve, _) = TrackCurve::new(keys, s, opts.blend, opts.fps).map_err(|e| e.0)?;
+        let curve = Curve::new(track, &CurveOptions { scheme: s, ..*opts })?;
         let c = colour(s);
         match what {
             What::Speed => lines.push(Line {
@@ -124,9 +129,9 @@ pub fn svg(
                 }
             }
             What::Energy => {
-                let (t0, t1) = (track.times[0], track.times[track.times.len() - 1]);
-                let (first, last) = opts.fps.frames_between(t0, t1);
-                let times: Vec<f64> = (first..=last).map(|k| opts.fps.time_of(k)).collect();
+                let (t0, t1) = track.span();
+                let (first, last) = fps.frames_between(t0, t1);
+                let times: Vec<f64> = (first..=last).map(|k| fps.time_of(k)).collect();
                 let pts: Vec<_> = times.iter().map(|&t| curve.eval(t)).collect();
                 let mut acc = 0.0;
                 // A track may span no frame at all (keys closer than a frame period).
@@ -157,10 +162,9 @@ pub fn svg(
         ),
     };
     let name = track
-        .name
-        .as_deref()
+        .name()
         .map_or(String::new(), |n| format!(" — track {n}"));
-    let (t0, t1) = (track.times[0], track.times[track.times.len() - 1]);
+    let (t0, t1) = track.span();
     let ys = lines.iter().flat_map(|l| l.points.iter().map(|p| p.1));
     let (mut y0, mut y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
         (a.min(y), b.max(y))
@@ -183,7 +187,9 @@ pub fn svg(
         // plotters' SVG backend works in whole pixels: a large canvas keeps lines smooth (the
         // SVG scales to any size).
         let root = SVGBackend::with_string(&mut text, (1440, 810)).into_drawing_area();
-        let err = |e: &dyn std::fmt::Display| format!("cannot draw the chart: {e}");
+        let err = |e: &dyn std::fmt::Display| {
+            Error::Io(std::io::Error::other(format!("cannot draw the chart: {e}")))
+        };
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(format!("{title}{name}"), ("sans-serif", 34))
@@ -203,7 +209,7 @@ pub fn svg(
             .draw()
             .map_err(|e| err(&e))?;
         let grey = RGBColor(0xB0, 0xB0, 0xB0);
-        for &tk in &track.times {
+        for &tk in track.times() {
             chart
                 .draw_series(std::iter::once(PathElement::new(
                     vec![(tk, y0), (tk, y1)],
@@ -214,7 +220,7 @@ pub fn svg(
         chart
             .draw_series(
                 track
-                    .times
+                    .times()
                     .iter()
                     .map(|&tk| Circle::new((tk, y0), 6, grey.filled())),
             )

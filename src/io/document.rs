@@ -1,16 +1,16 @@
-//! Keyframe documents: tracks of keys, as read (with their source locations), and validated
-//! tracks ready for interpolation (times in seconds, strictly increasing, at least two keys).
+//! Keyframe documents as read: tracks of keys with their source locations, before validation.
+//!
+//! The readers ([`super::read`]) build a [`Document`]; [`Document::tracks`] validates it into
+//! [`Track`]s by the one time rule of [`crate::track`], with messages that name the file, the
+//! line or key, and the field.
 
 use crate::clock::Fps;
-use crate::error::{InputResult, num};
-use crate::input_err;
+use crate::error::InputResult;
+use crate::error::input_err;
 use crate::rotation::Repr;
+use crate::track::{Track, TrackError, check_times};
 use glam::{DQuat, DVec3};
 use std::fmt;
-
-/// Smallest accepted time between consecutive keys: closer keys would make the chord tangent
-/// `log(q_{i+1} q_i⁻¹)/Δ` overflow (at denormal Δ) or meaningless; the frame tolerance is 1e-9 s.
-pub const MIN_KEY_GAP: f64 = 1e-12;
 
 /// Where a key came from, for error messages.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -18,7 +18,12 @@ pub enum Loc {
     /// A CSV line (1-based; the header is line 1).
     Line(u64),
     /// A JSON key: `keys[i]`, or `tracks[t].keys[i]`.
-    Json { track: Option<usize>, key: usize },
+    Json {
+        /// The track's index in `tracks`, when the document has `tracks`.
+        track: Option<usize>,
+        /// The key's index in its `keys`.
+        key: usize,
+    },
 }
 
 impl fmt::Display for Loc {
@@ -42,22 +47,29 @@ pub fn at(source: &str, loc: Loc) -> String {
 /// When a key is: seconds, or a frame number at the document's rate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum KeyTime {
+    /// A time in seconds (`time`).
     Seconds(f64),
+    /// A frame number at the document's rate (`frame`), possibly fractional.
     Frame(f64),
 }
 
 /// One keyframe as read.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Key {
+    /// When the key is.
     pub when: KeyTime,
+    /// Its rotation, a unit quaternion (converted from the input representation).
     pub rot: DQuat,
+    /// Where it was read.
     pub loc: Loc,
 }
 
 /// One track as read.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Track {
+pub struct DocTrack {
+    /// The track's name, if the input gave one.
     pub name: Option<String>,
+    /// Its keys, in input order.
     pub keys: Vec<Key>,
     /// World-frame angular velocity at the first key, rad/s.
     pub start_velocity: Option<DVec3>,
@@ -74,31 +86,21 @@ pub struct Document {
     pub fps: Option<Fps>,
     /// The representation the input used (the first key's, for JSON).
     pub rotation: Option<Repr>,
-    pub tracks: Vec<Track>,
+    /// The tracks, in input order.
+    pub tracks: Vec<DocTrack>,
     /// The input named its tracks (CSV `track` column, JSON `tracks`).
     pub named_tracks: bool,
     /// Non-fatal findings, already located (e.g. a quaternion norm off 1).
     pub warnings: Vec<String>,
 }
 
-/// A track ready for interpolation.
-#[derive(Debug, Clone, PartialEq)]
-pub struct TimedTrack {
-    pub name: Option<String>,
-    /// Key times in seconds, finite and strictly increasing; at least two.
-    pub times: Vec<f64>,
-    /// Unit quaternions, signs as read.
-    pub quats: Vec<DQuat>,
-    pub start_velocity: Option<DVec3>,
-    pub end_velocity: Option<DVec3>,
-}
-
 impl Document {
-    /// Key times in seconds for one track, frames read at `frame_fps`; validated finite and
-    /// strictly increasing, with at least `min_keys` keys.
+    /// Key times in seconds for one track, frames read at `frame_fps`; validated by
+    /// [`check_times`] (finite, strictly increasing, at least 1e-12 s apart), with at least
+    /// `min_keys` keys. Errors name the track, the line or key and the field.
     pub fn track_times(
         &self,
-        track: &Track,
+        track: &DocTrack,
         frame_fps: Fps,
         min_keys: usize,
     ) -> InputResult<Vec<f64>> {
@@ -112,47 +114,36 @@ impl Document {
                 track.keys.len()
             ));
         }
-        let mut times = Vec::with_capacity(track.keys.len());
-        for (i, key) in track.keys.iter().enumerate() {
-            let t = match key.when {
+        let times: Vec<f64> = track
+            .keys
+            .iter()
+            .map(|key| match key.when {
                 KeyTime::Seconds(t) => t,
                 KeyTime::Frame(f) => frame_fps.frame_to_time(f),
-            };
+            })
+            .collect();
+        check_times(&times).map_err(|e| {
+            let i = e.index().unwrap_or(0);
+            let key = &track.keys[i];
             let (field, raw) = match key.when {
                 KeyTime::Seconds(t) => ("time", t),
                 KeyTime::Frame(f) => ("frame", f),
             };
-            if !t.is_finite() {
-                return Err(input_err!("expected a finite number, found {raw}")
-                    .at(format!("{}: {field}", at(&self.source, key.loc))));
-            }
-            if i > 0 && t <= times[i - 1] {
-                let prev = times[i - 1];
-                return Err(input_err!(
-                    "expected times strictly increasing within a track, found {} s after {} s",
-                    num(t),
-                    num(prev)
-                )
-                .at(format!("{}: {field}", at(&self.source, key.loc))));
-            }
-            if i > 0 && t - times[i - 1] < MIN_KEY_GAP {
-                let prev = times[i - 1];
-                return Err(input_err!(
-                    "expected keys at least 1e-12 s apart, found {} s only {:e} s after {} s \
-                     (merge the two keys)",
-                    num(t),
-                    t - prev,
-                    num(prev)
-                )
-                .at(format!("{}: {field}", at(&self.source, key.loc))));
-            }
-            times.push(t);
-        }
+            // A non-finite time is reported as written (a frame number, not its seconds).
+            let e = match e {
+                TrackError::NonFiniteTime { index, .. } => {
+                    TrackError::NonFiniteTime { index, time: raw }
+                }
+                e => e,
+            };
+            input_err!("{e}").at(format!("{}: {field}", at(&self.source, key.loc)))
+        })?;
         Ok(times)
     }
 
-    /// Validated tracks for interpolation: `frame` keys at `frame_fps`, at least two keys.
-    pub fn timed_tracks(&self, frame_fps: Fps) -> InputResult<Vec<TimedTrack>> {
+    /// Validated tracks for interpolation: `frame` keys read at `frame_fps`, at least two keys
+    /// per track, at least one track.
+    pub fn tracks(&self, frame_fps: Fps) -> InputResult<Vec<Track>> {
         if self.tracks.is_empty() {
             return Err(input_err!(
                 "{}: expected at least one track, found none",
@@ -162,12 +153,20 @@ impl Document {
         self.tracks
             .iter()
             .map(|track| {
-                Ok(TimedTrack {
-                    name: track.name.clone(),
-                    times: self.track_times(track, frame_fps, 2)?,
-                    quats: track.keys.iter().map(|k| k.rot).collect(),
-                    start_velocity: track.start_velocity,
-                    end_velocity: track.end_velocity,
+                let times = self.track_times(track, frame_fps, 2)?;
+                let quats = track.keys.iter().map(|k| k.rot).collect();
+                let located = |e: TrackError| {
+                    let loc = e
+                        .index()
+                        .map_or(self.source.clone(), |i| at(&self.source, track.keys[i].loc));
+                    input_err!("{e}").at(loc)
+                };
+                let t = Track::new(times, quats)
+                    .and_then(|t| t.with_end_velocities(track.start_velocity, track.end_velocity))
+                    .map_err(located)?;
+                Ok(match &track.name {
+                    Some(n) => t.with_name(n.clone()),
+                    None => t,
                 })
             })
             .collect()

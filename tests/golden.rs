@@ -4,10 +4,12 @@
 //! golden files from the current binary. How each was checked independently:
 //! `fixtures/README.md`.
 
-use crate::support::fixtures;
+mod support;
+
 use assert_cmd::Command;
 use serde::Deserialize;
 use std::path::Path;
+use support::fixtures;
 
 const TOL: f64 = 1e-9;
 

@@ -29,6 +29,7 @@ impl Clone for NumWriter {
 }
 
 impl NumWriter {
+    /// A writer in `format`.
     pub fn new(format: NumFormat) -> Self {
         NumWriter {
             format,
@@ -49,6 +50,7 @@ impl NumWriter {
         }
     }
 
+    /// Appends an integer.
     #[inline]
     pub fn int(&mut self, out: &mut Vec<u8>, k: i64) {
         out.extend_from_slice(self.itoa.format(k).as_bytes());

@@ -1,0 +1,299 @@
+//! Baking: a curve's frames on a frame grid, streamed into a [`FrameSink`] (docs/spec.md §3).
+//!
+//! Which frames a track has, which segment each belongs to, and when a frame is a key is the
+//! frame clock's rule ([`Fps::pieces`]). A frame on a key is the key exactly; the others run the
+//! scheme's forward differences from the segment's first frame with step `δ = 1/(fps·Δ_s)`
+//! ([`Segment::frames`]); minaccel's frames are great arcs between the grid points either side.
+//!
+//! ```
+//! use inbetween::{BakeOptions, Curve, CurveOptions, FrameSink, Fps, Track, bake};
+//! use glam::{DQuat, DVec3};
+//!
+//! /// Collects the frames of one track.
+//! #[derive(Default)]
+//! struct Frames(Vec<(i64, f64, DQuat)>);
+//!
+//! impl FrameSink for Frames {
+//!     fn begin_track(&mut self, _name: Option<&str>) -> std::io::Result<()> { Ok(()) }
+//!     fn frame(&mut self, k: i64, t: f64, q: DQuat, _w: Option<DVec3>) -> std::io::Result<()> {
+//!         self.0.push((k, t, q));
+//!         Ok(())
+//!     }
+//!     fn end_track(&mut self) -> std::io::Result<()> { Ok(()) }
+//!     fn finish(&mut self) -> std::io::Result<()> { Ok(()) }
+//! }
+//!
+//! let track = Track::new(
+//!     vec![0.0, 0.5, 1.0],
+//!     vec![DQuat::IDENTITY, DQuat::from_rotation_x(1.0), DQuat::from_rotation_y(1.0)],
+//! )?;
+//! let curve = Curve::new(&track, &CurveOptions::default())?;
+//! let mut frames = Frames::default();
+//! bake(&curve, Fps::new(24, 1)?, BakeOptions::default(), &mut frames, &mut |_| {})?;
+//! assert_eq!(frames.0.len(), 25); // frames 0..=24
+//! assert_eq!(frames.0[12].2, track.rotations()[1]); // frame 12 is the middle key, exactly
+//! assert!((frames.0[5].2 - curve.rotation(5.0 / 24.0)).length() < 1e-13);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::clock::{Fps, PieceFrames};
+use crate::curve::bezier::Bezier;
+use crate::curve::hermite::Hermite;
+use crate::curve::piecewise::{Side, segment_omega};
+use crate::curve::slerp::Slerp;
+use crate::curve::squad::Squad;
+use crate::curve::{Curve, Scheme, Segment, antipode_gap};
+use crate::rotation::quat::geodesic;
+use glam::{DQuat, DVec3};
+use std::io;
+
+/// Receives a curve's frames, track by track: [`bake()`] calls `begin_track`, `frame` for every
+/// frame in order, then `end_track`; the caller calls `finish` after the last track.
+pub trait FrameSink {
+    /// A track starts (`name` when it has one).
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()>;
+    /// One frame: its number `k` on the grid, its time `k/fps` in seconds, the rotation, and
+    /// the world-frame angular velocity in rad/s when it was asked for.
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()>;
+    /// The track's last frame has been given.
+    fn end_track(&mut self) -> io::Result<()>;
+    /// The last track has ended: write what closes the output and flush it.
+    fn finish(&mut self) -> io::Result<()>;
+}
+
+/// What [`bake()`] computes besides the rotations, and how.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct BakeOptions {
+    /// Compute each frame's world-frame angular velocity (`interp --velocity`).
+    pub velocity: bool,
+    /// Generate long tracks on two threads (same frames, in order). Pays when the sink is cheap
+    /// (npy output); with text output the formatting thread already uses the second core.
+    pub parallel: bool,
+}
+
+/// Tolerance for "a blend comes within 1e-9 of an antipode" (docs/spec.md §4.3).
+pub const ANTIPODE_TOL: f64 = 1e-9;
+
+/// Streams every frame of `curve` on the grid of `fps` (frames `k` with `k/fps` in the curve's
+/// span, ±1e-9 s) into `sink`, between `begin_track` and `end_track`. Warnings (a blend near an
+/// antipode, squad's aliased inner points, a minaccel solve that did not converge) go to `warn`.
+/// The only errors are the sink's.
+pub fn bake(
+    curve: &Curve,
+    fps: Fps,
+    opts: BakeOptions,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    sink.begin_track(curve.name())?;
+    match curve.scheme() {
+        Scheme::Slerp => track_frames::<Slerp>(curve, fps, opts, sink, warn)?,
+        Scheme::Hermite => track_frames::<Hermite>(curve, fps, opts, sink, warn)?,
+        Scheme::Squad => track_frames::<Squad>(curve, fps, opts, sink, warn)?,
+        Scheme::Bezier => track_frames::<Bezier>(curve, fps, opts, sink, warn)?,
+        Scheme::MinAccel => grid_frames(curve, fps, opts.velocity, sink, warn)?,
+    }
+    sink.end_track()
+}
+
+/// `minaccel`: every frame by slerp of its neighbouring grid points (a frame on a grid point is
+/// that point, so keys are exact).
+fn grid_frames(
+    curve: &Curve,
+    fps: Fps,
+    velocity: bool,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    if let Some(r) = curve.solver_report()
+        && !r.converged
+    {
+        let name = curve
+            .name()
+            .map_or(String::new(), |n| format!("track \"{n}\": "));
+        warn(&format!(
+            "{name}minaccel did not converge in {} iterations (projected gradient {:.1e}, {:.1e} \
+             of its start); the frames are the best curve found",
+            r.iterations,
+            r.gradient,
+            r.gradient / r.gradient_start
+        ));
+    }
+    let (times, pts) = (curve.breaks(), curve.grid_points());
+    let last = fps.frames_between(times[0], times[times.len() - 1]).1;
+    for p in fps.pieces(times) {
+        let j = p.piece;
+        for k in p.from..p.to {
+            let t = fps.time_of(k);
+            // A frame that snaps is the grid point, at the grid point's own time.
+            let snapped = if k == p.from && p.snap_start {
+                Some(j)
+            } else if k == p.to - 1 && p.snap_end {
+                Some(j + 1)
+            } else {
+                None
+            };
+            let q = match snapped {
+                Some(g) => pts[g],
+                None => {
+                    let u = ((t - times[j]) / (times[j + 1] - times[j])).clamp(0.0, 1.0);
+                    geodesic(pts[j], pts[j + 1], u)
+                }
+            };
+            let omega = velocity.then(|| {
+                let side = if k == last { Side::Left } else { Side::Right };
+                curve.omega(snapped.map_or(t, |g| times[g]), side)
+            });
+            sink.frame(k, t, q, omega)?;
+        }
+    }
+    Ok(())
+}
+
+/// One generated frame: number, time, rotation, angular velocity.
+type Frame = (i64, f64, DQuat, Option<DVec3>);
+
+/// Generates the frames of one segment into `emit`; warnings about it go to `warn`.
+fn segment_frames<S: Segment>(
+    curve: &Curve,
+    fps: Fps,
+    velocity: bool,
+    p: PieceFrames,
+    warn: &mut dyn FnMut(&str),
+    emit: &mut dyn FnMut(Frame) -> io::Result<()>,
+) -> io::Result<()> {
+    let keys = curve.knots();
+    let times = &keys.times;
+    let n = times.len();
+    let s = p.piece;
+    let (t0, t1) = (times[s], times[s + 1]);
+    let period = fps.den() as f64 / fps.num() as f64;
+    let seg = S::new(keys, s, curve.blend());
+    let name = || {
+        curve
+            .name()
+            .map_or(String::new(), |n| format!("track \"{n}\", "))
+    };
+    if let Some(note) = seg.limitation() {
+        warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));
+    }
+    if let Some((gap, u)) = antipode_gap(&seg)
+        && gap < ANTIPODE_TOL
+    {
+        warn(&format!(
+            "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
+             {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
+             use --scheme minaccel",
+            name(),
+            curve.scheme().name()
+        ));
+    }
+    let delta = t1 - t0;
+    let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta));
+    let mut k = p.from;
+    if p.snap_start {
+        emit((k, fps.time_of(k), keys.quats[s], omega(0.0)))?;
+        k += 1;
+    }
+    let stop = if p.snap_end { p.to - 1 } else { p.to };
+    if stop > k {
+        let u0 = (fps.time_of(k) - t0) / delta;
+        let du = period / delta;
+        for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
+            let kj = k + j as i64;
+            let w = omega((fps.time_of(kj) - t0) / delta);
+            emit((kj, fps.time_of(kj), q, w))?;
+        }
+        k = stop;
+    }
+    if p.snap_end {
+        emit((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)))?;
+    }
+    Ok(())
+}
+
+/// Tracks with at least this many frames are generated on two threads.
+const PARALLEL_FRAMES: i64 = 1 << 17;
+/// About this many frames per chunk of segments handed to the second thread.
+const CHUNK_FRAMES: i64 = 1 << 14;
+
+/// Every frame of a track into `sink`, in order. A long track is generated on two threads:
+/// chunks of segments alternate between this thread (straight into the sink) and a worker whose
+/// frames come back through a one-slot channel, so memory stays bounded and the sink sees the
+/// frames in order (and the same frames: each segment is generated the same way either way).
+fn track_frames<S: Segment>(
+    curve: &Curve,
+    fps: Fps,
+    opts: BakeOptions,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    let velocity = opts.velocity;
+    let plans: Vec<PieceFrames> = fps.pieces(&curve.knots().times).collect();
+    let total: i64 = plans.iter().map(|p| p.to - p.from).sum();
+    let mut to_sink = |(k, t, q, w): Frame| sink.frame(k, t, q, w);
+    let parallel = opts.parallel
+        && total >= PARALLEL_FRAMES
+        && plans.len() >= 2
+        && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
+    if !parallel {
+        for &p in &plans {
+            segment_frames::<S>(curve, fps, velocity, p, warn, &mut to_sink)?;
+        }
+        return Ok(());
+    }
+    // Chunks of consecutive segments of about CHUNK_FRAMES frames.
+    let mut chunks = Vec::new();
+    let (mut start, mut frames) = (0, 0);
+    for (i, p) in plans.iter().enumerate() {
+        frames += p.to - p.from;
+        if frames >= CHUNK_FRAMES || i + 1 == plans.len() {
+            chunks.push(start..i + 1);
+            (start, frames) = (i + 1, 0);
+        }
+    }
+    std::thread::scope(|scope| {
+        let (tx, rx) = std::sync::mpsc::sync_channel::<(Vec<Frame>, Vec<String>)>(1);
+        let (plans, chunks) = (&plans, &chunks);
+        scope.spawn(move || {
+            for c in chunks.iter().skip(1).step_by(2) {
+                let mut frames = Vec::with_capacity(CHUNK_FRAMES as usize + 4096);
+                let mut notes = Vec::new();
+                for &p in &plans[c.clone()] {
+                    let _ = segment_frames::<S>(
+                        curve,
+                        fps,
+                        velocity,
+                        p,
+                        &mut |m| notes.push(m.to_string()),
+                        &mut |f| {
+                            frames.push(f);
+                            Ok(())
+                        },
+                    );
+                }
+                if tx.send((frames, notes)).is_err() {
+                    return;
+                }
+            }
+        });
+        for (i, c) in chunks.iter().enumerate() {
+            if i % 2 == 0 {
+                for &p in &plans[c.clone()] {
+                    segment_frames::<S>(curve, fps, velocity, p, warn, &mut to_sink)?;
+                }
+            } else {
+                let (frames, notes) = rx
+                    .recv()
+                    .map_err(|_| io::Error::other("the generating thread stopped"))?;
+                for m in &notes {
+                    warn(m);
+                }
+                for f in frames {
+                    to_sink(f)?;
+                }
+            }
+        }
+        Ok(())
+    })
+}

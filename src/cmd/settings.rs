@@ -1,0 +1,134 @@
+//! What the subcommands share: reading the input, the rate rule (a document's `fps` numbers its
+//! own `frame` values; `--fps` sets the output rate, else the document's, else 30), and the
+//! curve options from the command line.
+
+use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, PathArg, SchemeArg};
+use glam::DVec3;
+use inbetween::error::num;
+use inbetween::io::document::Document;
+use inbetween::io::{Format, ReadOptions};
+use inbetween::rotation::AngleUnit;
+use inbetween::{
+    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Track,
+};
+use std::io::Read;
+
+impl From<SchemeArg> for Scheme {
+    fn from(s: SchemeArg) -> Scheme {
+        match s {
+            SchemeArg::Hermite => Scheme::Hermite,
+            SchemeArg::Squad => Scheme::Squad,
+            SchemeArg::Bezier => Scheme::Bezier,
+            SchemeArg::Slerp => Scheme::Slerp,
+            SchemeArg::Minaccel => Scheme::MinAccel,
+        }
+    }
+}
+
+/// The rates of a document: `(frame_fps, output_fps)`. A document's own `fps` numbers its
+/// `frame` values; `--fps` sets the output rate. Each falls back to the other, then to 30.
+pub fn rates(doc: &Document, fps_arg: Option<Fps>) -> (Fps, Fps) {
+    let frame_fps = doc.fps.or(fps_arg).unwrap_or(Fps::DEFAULT);
+    let output_fps = fps_arg.or(doc.fps).unwrap_or(Fps::DEFAULT);
+    (frame_fps, output_fps)
+}
+
+/// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
+/// Warnings found while reading go to `warn`.
+pub fn read_input(
+    args: &InputArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<(Document, Format), InputError> {
+    let opts = ReadOptions {
+        from: args.from,
+        angles: args.angles,
+        quat_order: args.quat_order,
+    };
+    let (doc, format) = match args.input.as_deref() {
+        Some(p) if p.as_os_str() != "-" => inbetween::io::read_path(p, args.input_format, &opts)?,
+        _ => {
+            let mut bytes = Vec::new();
+            stdin
+                .read_to_end(&mut bytes)
+                .map_err(|e| InputError::new(format!("<stdin>: cannot read: {e}")))?;
+            inbetween::io::parse_bytes(bytes, "<stdin>", None, args.input_format, &opts)?
+        }
+    };
+    for w in &doc.warnings {
+        warn(w);
+    }
+    Ok((doc, format))
+}
+
+/// The input of interp, analyze and plot, read and validated.
+pub struct Curves {
+    /// The document as read.
+    pub doc: Document,
+    /// Its format.
+    pub format: Format,
+    /// Its tracks, validated (frames at the document's rate).
+    pub tracks: Vec<Track>,
+    /// The output rate (and minaccel's grid rate).
+    pub fps: Fps,
+    /// The curve options of the command line (scheme: `scheme`).
+    pub opts: CurveOptions,
+}
+
+/// Reads the input and validates it into tracks, with the output rate and the curve options.
+pub fn read_curves(
+    input: &InputArgs,
+    curve: &CurveArgs,
+    scheme: Scheme,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Curves, InputError> {
+    let (doc, format) = read_input(input, stdin, warn)?;
+    let (frame_fps, fps) = rates(&doc, curve.fps);
+    let tracks = doc.tracks(frame_fps)?;
+    for t in &tracks {
+        let (t0, t1) = t.span();
+        for time in [t0, t1] {
+            if !fps.in_range(time) {
+                return Err(InputError::new(format!(
+                    "{}: time {} s is beyond the frame numbers --fps {fps} supports (2^53)",
+                    doc.source,
+                    num(time)
+                )));
+            }
+        }
+    }
+    let opts = curve_options(curve, scheme, fps, input.angles);
+    Ok(Curves {
+        doc,
+        format,
+        tracks,
+        fps,
+        opts,
+    })
+}
+
+/// The curve options of the command line; given velocities are in `unit` per second.
+fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) -> CurveOptions {
+    let omega = |v: Option<[f64; 3]>| v.map(|a| DVec3::from_array(a.map(|x| unit.to_rad(x))));
+    CurveOptions {
+        scheme,
+        blend: match args.blend {
+            BlendArg::Cubic => Blend::Cubic,
+            BlendArg::Quadratic => Blend::Quadratic,
+        },
+        path: match args.path {
+            PathArg::Shortest => PathMode::Shortest,
+            PathArg::AsGiven => PathMode::AsGiven,
+        },
+        ends: EndConditions {
+            ends: match args.ends {
+                EndsArg::Chord => Ends::Chord,
+                EndsArg::Rest => Ends::Rest,
+            },
+            start: omega(args.start_velocity),
+            end: omega(args.end_velocity),
+        },
+        grid_rate: fps,
+    }
+}

@@ -1,0 +1,459 @@
+//! [`Curve`]: a track's curve under any scheme as a function of time, with its world-frame
+//! angular velocity and acceleration: what a program samples, and what `interp --velocity`,
+//! `analyze` and `plot` measure.
+//!
+//! The curve is piecewise: a segment between keys for hermite, squad, bezier and slerp; a grid
+//! interval (slerp between grid points) for minaccel. Derivatives are one-sided at the pieces'
+//! ends: each is taken from one piece's own formula (continued a little past its end), so a jump
+//! at a key shows as the difference of the two sides.
+//!
+//! - `ω = 2·(dQ/dt)·Q⁻¹` (vector part), world frame, rad/s. For a segment scheme `dQ/du` is the
+//!   fourth-order central difference of the exact segment formula with `h = 1e-3` in `u`
+//!   (truncation ~h⁴·Q⁽⁵⁾/30, rounding ~ε/h: about 1e-12 relative for ordinary motion); for
+//!   minaccel's slerp pieces it is exact, `2·log(q_{j+1} q_j⁻¹)/h_j`.
+//! - `α = dω/dt` by the same difference of `ω` within the piece (about 1e-9 relative).
+//! - At a time that is a piece boundary, [`Side::Right`] takes the piece that starts there
+//!   (except at the last point, which has only a left piece).
+
+use crate::clock::TIME_TOL;
+use crate::curve::bezier::Bezier;
+use crate::curve::hermite::Hermite;
+use crate::curve::minaccel::{self, Report};
+use crate::curve::slerp::Slerp;
+use crate::curve::squad::Squad;
+use crate::curve::{Blend, CurveOptions, Scheme, Segment};
+use crate::error::InputResult;
+use crate::rotation::quat::{geodesic, log};
+use crate::tangent::Knots;
+use crate::track::Track;
+use glam::{DQuat, DVec3};
+
+/// Which piece to use at a piece boundary.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// The piece that ends there.
+    Left,
+    /// The piece that starts there (at the last point: the last piece).
+    Right,
+}
+
+/// Step in `u` of the finite differences.
+const H: f64 = 1e-3;
+
+/// A track's curve: every scheme, minaccel included, evaluable at any time in its span.
+///
+/// Built once from a [`Track`] and [`CurveOptions`] (the tangents, or minaccel's solve, happen
+/// here), then sampled at any time: [`Curve::rotation`], [`Curve::angular_velocity`] (world
+/// frame, rad/s) and [`Curve::angular_acceleration`] (rad/s²). Times outside the keys' span are
+/// clamped to it. A time within 1e-9 s of a key (or of one of minaccel's grid points) is that
+/// key, as in the frame clock, so that a sample at a frame time is the frame `interp` writes. At
+/// a key the derivatives are those of the piece that starts there (at the last key, of the last
+/// piece).
+///
+/// For hermite, squad, bezier and slerp the rotation is the scheme's closed form; minaccel's
+/// curve is the solved grid, joined by great arcs (its grid rate is [`CurveOptions::grid_rate`]).
+///
+/// ```
+/// use inbetween::rotation::quat::rotation_angle_between as angle;
+/// use inbetween::{Curve, CurveOptions, Scheme, Track};
+/// use glam::{DQuat, DVec3};
+///
+/// let track = Track::new(
+///     vec![0.0, 1.0, 2.0],
+///     vec![DQuat::IDENTITY, DQuat::from_rotation_z(1.0), DQuat::from_rotation_z(2.0)],
+/// )?;
+/// let curve = Curve::new(&track, &CurveOptions { scheme: Scheme::Slerp, ..Default::default() })?;
+/// // Half-way through the first second: half a radian about z, at 1 rad/s.
+/// let q = curve.rotation(0.5);
+/// assert!(angle(q, DQuat::from_rotation_z(0.5)) < 1e-12);
+/// assert!((curve.angular_velocity(0.5) - DVec3::Z).length() < 1e-9);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Curve {
+    name: Option<String>,
+    scheme: Scheme,
+    pieces: Pieces,
+    report: Option<Report>,
+}
+
+/// The pieces of a curve.
+#[derive(Debug, Clone)]
+enum Pieces {
+    /// One segment per pair of keys.
+    Segments { keys: Knots, blend: Blend },
+    /// minaccel's solution: slerp between grid points.
+    Grid {
+        times: Vec<f64>,
+        points: Vec<DQuat>,
+        keys: Knots,
+    },
+}
+
+/// `ω = 2·Q'·Q⁻¹` from a derivative `dq` at `q`.
+#[inline]
+fn omega_of(q: DQuat, dq: DQuat) -> DVec3 {
+    let p = dq * q.conjugate();
+    DVec3::new(p.x, p.y, p.z) * 2.0
+}
+
+/// Fourth-order central difference of `f` at `x` with step `h`.
+#[inline]
+fn d4<T, F>(f: F, x: f64, h: f64) -> T
+where
+    F: Fn(f64) -> T,
+    T: std::ops::Sub<Output = T> + std::ops::Mul<f64, Output = T> + std::ops::Add<Output = T>,
+{
+    (f(x - 2.0 * h) - f(x + 2.0 * h) + (f(x + h) - f(x - h)) * 8.0) * (1.0 / (12.0 * h))
+}
+
+/// Angular velocity (rad/s) of a segment at parameter `u`, for a segment `delta` seconds long:
+/// fourth-order difference of its exact formula.
+pub(crate) fn segment_omega<S: Segment>(seg: &S, u: f64, delta: f64) -> DVec3 {
+    let dq = d4(|x| seg.eval(x), u, H) * (1.0 / delta);
+    omega_of(seg.eval(u), dq)
+}
+
+/// Angular velocity (rad/s) of the slerp from `a` to `b` over `h` seconds.
+pub(crate) fn chord_omega(a: DQuat, b: DQuat, h: f64) -> DVec3 {
+    log(b * a.conjugate()) * (2.0 / h)
+}
+
+impl Curve {
+    /// Builds the curve of `track` under `opts`: tangents for the segment schemes, the solve on
+    /// its grid for minaccel (which fails only for a grid larger than
+    /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
+    pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
+        let keys = Knots::new(track, opts.path, opts.ends);
+        let name = track.name().map(str::to_string);
+        let (pieces, report) = match opts.scheme {
+            Scheme::MinAccel => {
+                let sol =
+                    minaccel::solve(&keys, opts.grid_rate.as_f64()).map_err(|e| match &name {
+                        Some(n) => e.at(format!("track \"{n}\"")),
+                        None => e,
+                    })?;
+                let pieces = Pieces::Grid {
+                    times: sol.times,
+                    points: sol.points,
+                    keys,
+                };
+                (pieces, Some(sol.report))
+            }
+            _ => (
+                Pieces::Segments {
+                    keys,
+                    blend: opts.blend,
+                },
+                None,
+            ),
+        };
+        Ok(Curve {
+            name,
+            scheme: opts.scheme,
+            pieces,
+            report,
+        })
+    }
+
+    /// The track's name.
+    pub fn name(&self) -> Option<&str> {
+        self.name.as_deref()
+    }
+
+    /// The scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
+    /// First and last key time, s.
+    pub fn span(&self) -> (f64, f64) {
+        let t = self.key_times();
+        (t[0], t[t.len() - 1])
+    }
+
+    /// minaccel's solver report (`None` for the other schemes).
+    pub fn solver_report(&self) -> Option<&Report> {
+        self.report.as_ref()
+    }
+
+    /// The knots: keys after the path rule, with their tangents.
+    pub fn knots(&self) -> &Knots {
+        match &self.pieces {
+            Pieces::Segments { keys, .. } | Pieces::Grid { keys, .. } => keys,
+        }
+    }
+
+    /// The blending function of the segment schemes.
+    pub(crate) fn blend(&self) -> Blend {
+        match self.pieces {
+            Pieces::Segments { blend, .. } => blend,
+            Pieces::Grid { .. } => Blend::Cubic,
+        }
+    }
+
+    /// The piece boundaries: key times, or minaccel's grid times.
+    pub fn breaks(&self) -> &[f64] {
+        match &self.pieces {
+            Pieces::Segments { keys, .. } => &keys.times,
+            Pieces::Grid { times, .. } => times,
+        }
+    }
+
+    /// minaccel's grid points (empty for the other schemes).
+    pub fn grid_points(&self) -> &[DQuat] {
+        match &self.pieces {
+            Pieces::Segments { .. } => &[],
+            Pieces::Grid { points, .. } => points,
+        }
+    }
+
+    /// The key times.
+    pub fn key_times(&self) -> &[f64] {
+        &self.knots().times
+    }
+
+    /// `t` clamped to the span and, within 1e-9 s of a break, moved onto it.
+    fn snap(&self, t: f64) -> f64 {
+        let b = self.breaks();
+        let t = t.clamp(b[0], b[b.len() - 1]);
+        let i = b.partition_point(|&x| x < t);
+        let near = |j: usize| b.get(j).filter(|&&x| (x - t).abs() <= TIME_TOL);
+        match (i.checked_sub(1).and_then(near), near(i)) {
+            (Some(&a), Some(&c)) => {
+                if t - a < c - t {
+                    a
+                } else {
+                    c
+                }
+            }
+            (Some(&x), None) | (None, Some(&x)) => x,
+            (None, None) => t,
+        }
+    }
+
+    /// The rotation at time `t` (s), a unit quaternion.
+    pub fn rotation(&self, t: f64) -> DQuat {
+        let t = self.snap(t);
+        match self.breaks().binary_search_by(|x| x.total_cmp(&t)) {
+            // On a break: the key (or grid point) itself, as the frame clock writes it.
+            Ok(g) => match &self.pieces {
+                Pieces::Segments { keys, .. } => keys.quats[g],
+                Pieces::Grid { points, .. } => points[g],
+            },
+            Err(_) => self.eval(t),
+        }
+    }
+
+    /// World-frame angular velocity at `t`, rad/s.
+    pub fn angular_velocity(&self, t: f64) -> DVec3 {
+        self.omega(self.snap(t), Side::Right)
+    }
+
+    /// World-frame angular acceleration at `t`, rad/s².
+    pub fn angular_acceleration(&self, t: f64) -> DVec3 {
+        self.alpha(self.snap(t), Side::Right)
+    }
+
+    /// The piece containing `t` on `side`, and `t`'s parameter `u` in it.
+    fn piece(&self, t: f64, side: Side) -> (usize, f64) {
+        let b = self.breaks();
+        let n = b.len();
+        let i = match side {
+            Side::Right => b.partition_point(|&x| x <= t).saturating_sub(1),
+            Side::Left => b.partition_point(|&x| x < t).saturating_sub(1),
+        }
+        .min(n - 2);
+        (i, (t - b[i]) / (b[i + 1] - b[i]))
+    }
+
+    /// Evaluates piece `i` at parameter `u` (continued past [0, 1] by its own formula).
+    fn eval_piece(&self, i: usize, u: f64) -> DQuat {
+        match &self.pieces {
+            Pieces::Segments { keys, blend } => match self.scheme {
+                Scheme::Slerp => Slerp::new(keys, i, *blend).eval(u),
+                Scheme::Hermite => Hermite::new(keys, i, *blend).eval(u),
+                Scheme::Squad => Squad::new(keys, i, *blend).eval(u),
+                Scheme::Bezier => Bezier::new(keys, i, *blend).eval(u),
+                Scheme::MinAccel => unreachable!("minaccel is a Grid curve"),
+            },
+            Pieces::Grid { points, .. } => geodesic(points[i], points[i + 1], u),
+        }
+    }
+
+    /// The curve at time `t` (the right piece at a boundary), without snapping.
+    pub(crate) fn eval(&self, t: f64) -> DQuat {
+        let (i, u) = self.piece(t, Side::Right);
+        self.eval_piece(i, u)
+    }
+
+    /// Angular velocity in piece `i` at parameter `u`, rad/s.
+    fn omega_piece(&self, i: usize, u: f64) -> DVec3 {
+        let b = self.breaks();
+        let delta = b[i + 1] - b[i];
+        match &self.pieces {
+            Pieces::Grid { points, .. } => chord_omega(points[i], points[i + 1], delta),
+            Pieces::Segments { .. } => {
+                let dq = d4(|x| self.eval_piece(i, x), u, H) * (1.0 / delta);
+                omega_of(self.eval_piece(i, u), dq)
+            }
+        }
+    }
+
+    /// World-frame angular velocity at `t`, rad/s.
+    ///
+    /// For minaccel's grid curve: inside a piece, the piece's own (exact) velocity; at a grid
+    /// point, the velocity of the smooth curve the grid discretises — the mean of the two
+    /// neighbouring pieces (second order), or, at a key or an end, the one-sided second-order
+    /// extrapolation `1.5·ω_near − 0.5·ω_next` from `side`, so that a jump at a key measures the
+    /// curve and not its discretisation.
+    pub(crate) fn omega(&self, t: f64, side: Side) -> DVec3 {
+        let (i, u) = self.piece(t, side);
+        let Pieces::Grid { times, .. } = &self.pieces else {
+            return self.omega_piece(i, u);
+        };
+        let Some((g, one_sided)) = self.grid_point(t) else {
+            return self.omega_piece(i, u);
+        };
+        let n = times.len() - 1; // pieces
+        let c = |j: usize| self.omega_piece(j, 0.5);
+        match (one_sided, side) {
+            (false, _) => (c(g - 1) + c(g)) * 0.5,
+            (true, Side::Right) if g < n => {
+                if g + 1 < n {
+                    c(g) * 1.5 - c(g + 1) * 0.5
+                } else {
+                    c(g)
+                }
+            }
+            (true, _) if g >= 1 => {
+                if g >= 2 {
+                    c(g - 1) * 1.5 - c(g - 2) * 0.5
+                } else {
+                    c(g - 1)
+                }
+            }
+            _ => c(g.min(n - 1)),
+        }
+    }
+
+    /// For a grid curve and a time on one of its points: the point's index, and whether only
+    /// one-sided estimates make sense there (a key or an end).
+    fn grid_point(&self, t: f64) -> Option<(usize, bool)> {
+        let Pieces::Grid { times, keys, .. } = &self.pieces else {
+            return None;
+        };
+        let key_times = &keys.times;
+        let g = times.partition_point(|&x| x < t);
+        if g >= times.len() || times[g] != t {
+            return None;
+        }
+        let edge = g == 0
+            || g == times.len() - 1
+            || key_times.binary_search_by(|k| k.total_cmp(&t)).is_ok();
+        Some((g, edge))
+    }
+
+    /// World-frame angular acceleration at `t`, rad/s². For minaccel's grid curve, the
+    /// difference of neighbouring pieces' velocities over the distance of their midpoints:
+    /// centred inside, one-sided (on `side`) at a key or an end.
+    pub(crate) fn alpha(&self, t: f64, side: Side) -> DVec3 {
+        let (i, u) = self.piece(t, side);
+        match &self.pieces {
+            Pieces::Grid { times, .. } => {
+                let n = times.len() - 1;
+                if n < 2 {
+                    return DVec3::ZERO;
+                }
+                let mid = |j: usize| 0.5 * (times[j] + times[j + 1]);
+                let slope = |a: usize, b: usize| {
+                    (self.omega_piece(b, 0.5) - self.omega_piece(a, 0.5)) / (mid(b) - mid(a))
+                };
+                match self.grid_point(t) {
+                    Some((g, true)) => match side {
+                        Side::Right if g + 1 < n => slope(g, g + 1),
+                        Side::Left if g >= 2 => slope(g - 2, g - 1),
+                        _ => slope(i.min(n - 2), i.min(n - 2) + 1),
+                    },
+                    Some((g, false)) => slope(g - 1, g),
+                    None => slope(i.saturating_sub(1).min(n - 2), (i + 1).min(n - 1).max(1)),
+                }
+            }
+            Pieces::Segments { .. } => {
+                let b = self.breaks();
+                d4(|x| self.omega_piece(i, x), u, H) * (1.0 / (b[i + 1] - b[i]))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::curve::test_support::{sample_keys, sample_track};
+
+    fn curve(scheme: Scheme) -> Curve {
+        let opts = CurveOptions {
+            scheme,
+            ..CurveOptions::default()
+        };
+        Curve::new(&sample_track(), &opts).unwrap()
+    }
+
+    #[test]
+    fn slerp_velocity_is_the_chord() {
+        let k = sample_keys();
+        let c = curve(Scheme::Slerp);
+        let w = log(k.quats[2] * k.quats[1].conjugate()) * (2.0 / k.delta(1));
+        for t in [0.5, 0.7, 1.0, 1.2] {
+            assert!((c.omega(t, Side::Right) - w).length() < 1e-10 * w.length());
+        }
+        // At key 1 the left side is the previous chord.
+        let w0 = log(k.quats[1] * k.quats[0].conjugate()) * (2.0 / k.delta(0));
+        assert!((c.omega(0.5, Side::Left) - w0).length() < 1e-10 * w0.length());
+        assert!(c.alpha(0.7, Side::Right).length() < 1e-6);
+    }
+
+    #[test]
+    fn hermite_velocity_at_keys_is_the_tangent() {
+        let k = sample_keys();
+        let c = curve(Scheme::Hermite);
+        for i in 0..k.times.len() {
+            let want = k.w[i] * 2.0;
+            for side in [Side::Left, Side::Right] {
+                let got = c.omega(k.times[i], side);
+                assert!(
+                    (got - want).length() < 1e-9 * want.length().max(1.0),
+                    "{i} {side:?}"
+                );
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod snapping {
+    use super::*;
+    use crate::curve::test_support::{sample_keys, sample_track};
+
+    #[test]
+    fn times_near_a_key_are_the_key_and_outside_the_span_are_clamped() {
+        let k = sample_keys();
+        for scheme in Scheme::ALL {
+            let opts = CurveOptions {
+                scheme,
+                ..CurveOptions::default()
+            };
+            let c = Curve::new(&sample_track(), &opts).unwrap();
+            assert_eq!(c.rotation(k.times[1] + 5e-10), k.quats[1], "{scheme}");
+            assert_eq!(c.rotation(k.times[2] - 5e-10), k.quats[2], "{scheme}");
+            assert_eq!(c.rotation(-1.0), k.quats[0], "{scheme}");
+            assert_eq!(c.rotation(99.0), k.quats[3], "{scheme}");
+            assert_eq!(c.span(), (0.0, 2.0));
+            assert_eq!(
+                c.angular_velocity(k.times[1] + 5e-10),
+                c.angular_velocity(k.times[1])
+            );
+        }
+    }
+}

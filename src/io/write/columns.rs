@@ -1,0 +1,89 @@
+//! One rotation's values in the representation of a [`Style`]: CSV cells or a JSON array.
+
+use super::Style;
+use super::num::NumWriter;
+use crate::rotation::{MAX_WIDTH, Repr};
+use glam::DQuat;
+
+/// Formats one rotation's values (CSV: comma-separated; JSON: an array) into `out`.
+#[derive(Clone)]
+pub struct RotationFormatter {
+    style: Style,
+    nums: NumWriter,
+    vals: [f64; MAX_WIDTH],
+}
+
+impl RotationFormatter {
+    /// A formatter for `style`.
+    pub fn new(style: Style) -> Self {
+        RotationFormatter {
+            style,
+            nums: NumWriter::new(style.num),
+            vals: [0.0; MAX_WIDTH],
+        }
+    }
+
+    /// The values of `q` in the style's representation (JSON component order for quaternions).
+    #[inline]
+    pub fn values(&mut self, q: DQuat) -> &[f64] {
+        let repr = self.style.repr;
+        repr.from_quat(q, self.style.angles, &mut self.vals);
+        let w = repr.width();
+        if repr == Repr::Quat {
+            let o = self.style.quat_order.from_wxyz([
+                self.vals[0],
+                self.vals[1],
+                self.vals[2],
+                self.vals[3],
+            ]);
+            self.vals[..4].copy_from_slice(&o);
+        }
+        &self.vals[..w]
+    }
+
+    /// Appends `q` as CSV cells, each preceded by a comma (quaternions always `w,x,y,z`).
+    #[inline]
+    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat) {
+        // CSV columns are named, so quaternions are always w,x,y,z.
+        let repr = self.style.repr;
+        repr.from_quat(q, self.style.angles, &mut self.vals);
+        for i in 0..repr.width() {
+            out.push(b',');
+            self.nums.float(out, self.vals[i]);
+        }
+    }
+
+    /// Appends `q` as a JSON member: `"quat": [w, x, y, z]`, a matrix as rows, etc.
+    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat) {
+        let key = self.style.repr.json_key();
+        let mut vals = [0.0; MAX_WIDTH];
+        let n = {
+            let v = self.values(q);
+            vals[..v.len()].copy_from_slice(v);
+            v.len()
+        };
+        out.extend_from_slice(b"\"");
+        out.extend_from_slice(key.as_bytes());
+        out.extend_from_slice(b"\": [");
+        if self.style.repr == Repr::Matrix {
+            for r in 0..3 {
+                out.extend_from_slice(if r == 0 { b"[" } else { b", [" });
+                for c in 0..3 {
+                    if c > 0 {
+                        out.extend_from_slice(b", ");
+                    }
+                    self.nums.float(out, vals[3 * r + c]);
+                }
+                out.push(b']');
+            }
+        } else {
+            for (i, v) in vals[..n].iter().enumerate() {
+                if i > 0 {
+                    out.extend_from_slice(b", ");
+                }
+                self.nums.float(out, *v);
+            }
+        }
+        out.push(b']');
+    }
+}

@@ -1,0 +1,355 @@
+//! A validated track: keyframe times and rotations that every scheme can interpolate.
+//!
+//! The constructor is the only way in, so a [`Track`] is known to hold at least two keys whose
+//! times are finite, strictly increasing and at least [`MIN_KEY_GAP`] apart, with finite unit
+//! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
+//! documents ([`check_times`]), so a file and a program are held to one contract.
+
+use glam::{DQuat, DVec3};
+use std::fmt;
+
+/// Smallest accepted time between consecutive keys, in seconds: closer keys would make the chord
+/// tangent `log(q_{i+1} q_i⁻¹)/Δ` overflow (at denormal Δ) or meaningless; the frame tolerance
+/// is 1e-9 s.
+pub const MIN_KEY_GAP: f64 = 1e-12;
+
+/// How far a rotation's norm may be from 1 (it is used as given, not renormalised).
+pub const UNIT_TOL: f64 = 1e-6;
+
+/// Why a [`Track`] could not be built. Indices count keys from 0.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TrackError {
+    /// Fewer than two keys.
+    TooFewKeys {
+        /// The number of keys given.
+        found: usize,
+    },
+    /// `times` and `rotations` differ in length.
+    LengthMismatch {
+        /// Number of times.
+        times: usize,
+        /// Number of rotations.
+        rotations: usize,
+    },
+    /// A time is NaN or infinite.
+    NonFiniteTime {
+        /// The key.
+        index: usize,
+        /// Its time.
+        time: f64,
+    },
+    /// A time is not after its predecessor (unsorted or duplicate).
+    NotIncreasing {
+        /// The key.
+        index: usize,
+        /// Its time, s.
+        time: f64,
+        /// The previous key's time, s.
+        previous: f64,
+    },
+    /// A time is after its predecessor by less than [`MIN_KEY_GAP`].
+    TooClose {
+        /// The key.
+        index: usize,
+        /// Its time, s.
+        time: f64,
+        /// The previous key's time, s.
+        previous: f64,
+    },
+    /// A rotation is not a finite unit quaternion (norm within [`UNIT_TOL`] of 1).
+    NotUnit {
+        /// The key.
+        index: usize,
+        /// The quaternion's norm.
+        norm: f64,
+    },
+    /// A given end velocity is not finite.
+    NonFiniteVelocity,
+}
+
+impl TrackError {
+    /// The key the error is about, if it is about one.
+    pub fn index(&self) -> Option<usize> {
+        match *self {
+            TrackError::NonFiniteTime { index, .. }
+            | TrackError::NotIncreasing { index, .. }
+            | TrackError::TooClose { index, .. }
+            | TrackError::NotUnit { index, .. } => Some(index),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for TrackError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        use crate::error::num;
+        match *self {
+            TrackError::TooFewKeys { found } => {
+                write!(f, "expected at least 2 keys, found {found}")
+            }
+            TrackError::LengthMismatch { times, rotations } => write!(
+                f,
+                "expected as many rotations as times, found {rotations} rotations for {times} times"
+            ),
+            TrackError::NonFiniteTime { time, .. } => {
+                write!(f, "expected a finite number, found {time}")
+            }
+            TrackError::NotIncreasing { time, previous, .. } => write!(
+                f,
+                "expected times strictly increasing within a track, found {} s after {} s",
+                num(time),
+                num(previous)
+            ),
+            TrackError::TooClose { time, previous, .. } => write!(
+                f,
+                "expected keys at least 1e-12 s apart, found {} s only {:e} s after {} s \
+                 (merge the two keys)",
+                num(time),
+                time - previous,
+                num(previous)
+            ),
+            TrackError::NotUnit { norm, .. } => write!(
+                f,
+                "expected a unit quaternion (norm within {UNIT_TOL:e} of 1), found norm {}",
+                num(norm)
+            ),
+            TrackError::NonFiniteVelocity => {
+                write!(f, "expected a finite end velocity")
+            }
+        }
+    }
+}
+
+impl std::error::Error for TrackError {}
+
+/// Checks key times: finite, strictly increasing, consecutive keys at least [`MIN_KEY_GAP`]
+/// apart (any number of keys). The time rule of [`Track::new`], for readers that also accept
+/// one-key tracks.
+pub fn check_times(times: &[f64]) -> Result<(), TrackError> {
+    for (index, &time) in times.iter().enumerate() {
+        if !time.is_finite() {
+            return Err(TrackError::NonFiniteTime { index, time });
+        }
+        if index == 0 {
+            continue;
+        }
+        let previous = times[index - 1];
+        if time <= previous {
+            return Err(TrackError::NotIncreasing {
+                index,
+                time,
+                previous,
+            });
+        }
+        if time - previous < MIN_KEY_GAP {
+            return Err(TrackError::TooClose {
+                index,
+                time,
+                previous,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Keyframes ready for interpolation: times in seconds and unit quaternions, validated.
+///
+/// Quaternion signs are kept as given; `--path`-style hemisphere handling happens when a curve is
+/// built ([`crate::PathMode`]). End velocities, when given, are world-frame angular velocities in
+/// rad/s and take precedence over the curve options' end rule only when those give none.
+///
+/// ```
+/// use inbetween::{Track, TrackError};
+/// use glam::DQuat;
+///
+/// let q = [DQuat::IDENTITY, DQuat::from_rotation_z(1.0), DQuat::from_rotation_x(0.5)];
+/// let track = Track::new(vec![0.0, 0.5, 1.25], q.to_vec())?.with_name("hip");
+/// assert_eq!(track.span(), (0.0, 1.25));
+/// assert_eq!(track.name(), Some("hip"));
+///
+/// // Unsorted times are refused, with the key and the numbers.
+/// let err = Track::new(vec![0.0, 1.0, 0.5], q.to_vec()).unwrap_err();
+/// assert_eq!(
+///     err,
+///     TrackError::NotIncreasing { index: 2, time: 0.5, previous: 1.0 }
+/// );
+/// # Ok::<(), TrackError>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Track {
+    name: Option<String>,
+    times: Vec<f64>,
+    rotations: Vec<DQuat>,
+    start_velocity: Option<DVec3>,
+    end_velocity: Option<DVec3>,
+}
+
+impl Track {
+    /// A track from key times (seconds) and rotations (unit quaternions), one per key.
+    ///
+    /// Refuses fewer than two keys, mismatched lengths, non-finite, unsorted, duplicate or
+    /// closer-than-[`MIN_KEY_GAP`] times, and quaternions that are not finite and of unit norm
+    /// (within [`UNIT_TOL`]).
+    pub fn new(times: Vec<f64>, rotations: Vec<DQuat>) -> Result<Track, TrackError> {
+        if times.len() != rotations.len() {
+            return Err(TrackError::LengthMismatch {
+                times: times.len(),
+                rotations: rotations.len(),
+            });
+        }
+        if times.len() < 2 {
+            return Err(TrackError::TooFewKeys { found: times.len() });
+        }
+        check_times(&times)?;
+        for (index, q) in rotations.iter().enumerate() {
+            let norm = q.length();
+            if !q.is_finite() || (norm - 1.0).abs() > UNIT_TOL {
+                return Err(TrackError::NotUnit { index, norm });
+            }
+        }
+        Ok(Track {
+            name: None,
+            times,
+            rotations,
+            start_velocity: None,
+            end_velocity: None,
+        })
+    }
+
+    /// Names the track (used in warnings and in multi-track output).
+    pub fn with_name(mut self, name: impl Into<String>) -> Track {
+        self.name = Some(name.into());
+        self
+    }
+
+    /// Sets the world-frame angular velocities (rad/s) at the first and last key; `None` leaves
+    /// an end to the curve options' rule.
+    pub fn with_end_velocities(
+        mut self,
+        start: Option<DVec3>,
+        end: Option<DVec3>,
+    ) -> Result<Track, TrackError> {
+        if start.is_some_and(|v| !v.is_finite()) || end.is_some_and(|v| !v.is_finite()) {
+            return Err(TrackError::NonFiniteVelocity);
+        }
+        self.start_velocity = start;
+        self.end_velocity = end;
+        Ok(self)
+    }
+
+    /// The track's name, if it has one.
+    pub fn name(&self) -> Option<&str> {
+        self.name.as_deref()
+    }
+
+    /// Key times in seconds: finite, strictly increasing, at least two.
+    pub fn times(&self) -> &[f64] {
+        &self.times
+    }
+
+    /// Key rotations, unit quaternions with their signs as given.
+    pub fn rotations(&self) -> &[DQuat] {
+        &self.rotations
+    }
+
+    /// Number of keys (at least two).
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    /// Always false: a track has at least two keys.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// First and last key time, s.
+    pub fn span(&self) -> (f64, f64) {
+        (self.times[0], self.times[self.times.len() - 1])
+    }
+
+    /// The given angular velocity at the first key, rad/s, world frame.
+    pub fn start_velocity(&self) -> Option<DVec3> {
+        self.start_velocity
+    }
+
+    /// The given angular velocity at the last key, rad/s, world frame.
+    pub fn end_velocity(&self) -> Option<DVec3> {
+        self.end_velocity
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn quats(n: usize) -> Vec<DQuat> {
+        (0..n).map(|i| DQuat::from_rotation_y(i as f64)).collect()
+    }
+
+    #[test]
+    fn refuses_bad_times_with_typed_errors() {
+        let new = |t: &[f64]| Track::new(t.to_vec(), quats(t.len()));
+        assert_eq!(new(&[0.0]), Err(TrackError::TooFewKeys { found: 1 }));
+        assert_eq!(new(&[]), Err(TrackError::TooFewKeys { found: 0 }));
+        assert!(matches!(
+            new(&[0.0, f64::NAN]),
+            Err(TrackError::NonFiniteTime { index: 1, .. })
+        ));
+        assert_eq!(
+            new(&[f64::NEG_INFINITY, 1.0]),
+            Err(TrackError::NonFiniteTime {
+                index: 0,
+                time: f64::NEG_INFINITY
+            })
+        );
+        assert_eq!(
+            new(&[0.0, 1.0, 1.0]),
+            Err(TrackError::NotIncreasing {
+                index: 2,
+                time: 1.0,
+                previous: 1.0
+            })
+        );
+        assert_eq!(
+            new(&[0.0, 1.0, 1.0 + 4e-13]),
+            Err(TrackError::TooClose {
+                index: 2,
+                time: 1.0 + 4e-13,
+                previous: 1.0
+            })
+        );
+        assert!(new(&[0.0, 1e-12]).is_ok());
+        assert_eq!(
+            Track::new(vec![0.0, 1.0], quats(3)),
+            Err(TrackError::LengthMismatch {
+                times: 2,
+                rotations: 3
+            })
+        );
+    }
+
+    #[test]
+    fn refuses_non_unit_rotations() {
+        let mut q = quats(3);
+        q[1] *= 2.0;
+        assert!(matches!(
+            Track::new(vec![0.0, 1.0, 2.0], q),
+            Err(TrackError::NotUnit { index: 1, .. })
+        ));
+        let q = vec![DQuat::IDENTITY, DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0)];
+        assert!(matches!(
+            Track::new(vec![0.0, 1.0], q),
+            Err(TrackError::NotUnit { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn messages_name_the_numbers() {
+        let e = Track::new(vec![0.0, 1.0, 0.5], quats(3)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "expected times strictly increasing within a track, found 0.5 s after 1 s"
+        );
+        assert_eq!(e.index(), Some(2));
+    }
+}

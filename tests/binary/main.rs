@@ -1,0 +1,11 @@
+//! The binary's tests: it is run as a user runs it (exit codes, messages, files, pipes).
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod analyze;
+mod errors;
+mod hard_cases;
+mod plot;
+mod reliability;
+mod roundtrip;

@@ -1,0 +1,230 @@
+//! The crate-root API as a game engine would use it — no CSV, no `io` — checked against the
+//! binary: at frame times a [`Curve`] gives the rotations and angular velocities `interp`
+//! writes; off the grid its velocity and acceleration agree with finite differences of itself.
+
+use crate::support::{assert_rot_close, assert_vec_close, bin};
+use glam::{DQuat, DVec3, EulerRot};
+use inbetween::{
+    BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, FrameSink, Scheme, Track,
+    TrackError, bake,
+};
+
+/// Five keys, unevenly spaced, turning about every axis (one step over 90°).
+fn keys() -> (Vec<f64>, Vec<DQuat>) {
+    let times = vec![0.0, 0.37, 0.9, 1.55, 2.0];
+    let quats = [
+        (0.0, 0.0, 0.0),
+        (0.9, -0.3, 0.2),
+        (1.4, 0.5, -0.6),
+        (2.9, 0.1, 0.4),
+        (3.3, -0.2, 1.1),
+    ]
+    .iter()
+    .map(|&(a, b, c)| DQuat::from_euler(EulerRot::ZYX, a, b, c))
+    .collect();
+    (times, quats)
+}
+
+fn track() -> Track {
+    let (t, q) = keys();
+    Track::new(t, q).unwrap()
+}
+
+fn options(scheme: Scheme, fps: Fps) -> CurveOptions {
+    CurveOptions {
+        scheme,
+        ends: EndConditions {
+            ends: Ends::Chord,
+            start: Some(DVec3::new(0.0, 0.5, -1.0)),
+            end: None,
+        },
+        grid_rate: fps,
+        ..CurveOptions::default()
+    }
+}
+
+/// `interp` on the same keys: `(time, rotation, angular velocity in rad/s)` per frame.
+fn interp(scheme: Scheme, fps: &str) -> Vec<(f64, DQuat, DVec3)> {
+    let (times, quats) = keys();
+    let mut csv = String::from("time,w,x,y,z\n");
+    for (t, q) in times.iter().zip(&quats) {
+        // `{:?}` is Rust's shortest round-trip form: the binary reads the same f64.
+        csv += &format!("{t:?},{:?},{:?},{:?},{:?}\n", q.w, q.x, q.y, q.z);
+    }
+    let out = bin()
+        .args(["interp", "-", "--velocity", "--angles", "rad"])
+        .args(["--scheme", &scheme.to_string(), "--fps", fps])
+        .args(["--start-velocity", "0,0.5,-1"])
+        .write_stdin(csv)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some("frame,time,w,x,y,z,wx,wy,wz"));
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            let q = DQuat::from_xyzw(v[3], v[4], v[5], v[2]);
+            (v[1], q, DVec3::new(v[6], v[7], v[8]))
+        })
+        .collect()
+}
+
+#[test]
+fn curves_at_frame_times_are_what_interp_writes() {
+    let track = track();
+    for fps in ["30", "29.97"] {
+        let rate: Fps = fps.parse().unwrap();
+        for scheme in Scheme::ALL {
+            let curve = Curve::new(&track, &options(scheme, rate)).unwrap();
+            let frames = interp(scheme, fps);
+            assert_eq!(
+                frames.len() as u64,
+                rate.frame_count(0.0, 2.0),
+                "{scheme} {fps}"
+            );
+            for (t, q, w) in frames {
+                let what = format!("{scheme} at {fps} fps, t = {t}");
+                assert_rot_close(curve.rotation(t), q, 1e-12, &what);
+                assert_vec_close(curve.angular_velocity(t), w, 1e-9, &what);
+            }
+        }
+    }
+}
+
+#[test]
+fn off_the_grid_derivatives_agree_with_finite_differences() {
+    let track = track();
+    // Irrational-ish times: off every frame grid and every key.
+    let times: Vec<f64> = (1..60).map(|i| i as f64 * 0.0333 * 1.0041).collect();
+    for scheme in Scheme::ALL {
+        let curve = Curve::new(&track, &options(scheme, Fps::new(120, 1).unwrap())).unwrap();
+        // minaccel is great arcs between grid points: smooth only within a grid interval.
+        let h = if scheme == Scheme::MinAccel {
+            1e-6
+        } else {
+            1e-5
+        };
+        for &t in &times {
+            let what = format!("{scheme} at t = {t}");
+            let q = curve.rotation(t);
+            assert!(
+                (q.length() - 1.0).abs() < 1e-12,
+                "{what}: |q| = {}",
+                q.length()
+            );
+            // ω = 2·(dq/dt)·q⁻¹, dq/dt by central differences of the rotation itself.
+            let (a, b) = (curve.rotation(t - h), curve.rotation(t + h));
+            let b = if a.dot(b) < 0.0 { -b } else { b };
+            let p = (b - a) * (1.0 / (2.0 * h)) * q.conjugate();
+            let fd = DVec3::new(p.x, p.y, p.z) * 2.0;
+            assert_vec_close(curve.angular_velocity(t), fd, 1e-6, &what);
+            if scheme != Scheme::MinAccel {
+                let fd =
+                    (curve.angular_velocity(t + h) - curve.angular_velocity(t - h)) / (2.0 * h);
+                assert_vec_close(curve.angular_acceleration(t), fd, 1e-5, &what);
+            }
+        }
+        // Through every key, exactly.
+        for (tk, qk) in track.times().iter().zip(track.rotations()) {
+            assert_eq!(curve.rotation(*tk), *qk, "{scheme} key at {tk}");
+        }
+    }
+}
+
+/// Frames collected in memory.
+#[derive(Default)]
+struct Frames(Vec<(i64, f64, DQuat, Option<DVec3>)>);
+
+impl FrameSink for Frames {
+    fn begin_track(&mut self, _: Option<&str>) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn frame(&mut self, k: i64, t: f64, q: DQuat, w: Option<DVec3>) -> std::io::Result<()> {
+        self.0.push((k, t, q, w));
+        Ok(())
+    }
+    fn end_track(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+    fn finish(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn bake_streams_the_frames_interp_writes() {
+    let track = track();
+    let fps: Fps = "29.97".parse().unwrap();
+    for scheme in Scheme::ALL {
+        let curve = Curve::new(&track, &options(scheme, fps)).unwrap();
+        let mut sink = Frames::default();
+        let opts = BakeOptions {
+            velocity: true,
+            parallel: false,
+        };
+        bake(&curve, fps, opts, &mut sink, &mut |w| panic!("{w}")).unwrap();
+        let want = interp(scheme, "29.97");
+        assert_eq!(sink.0.len(), want.len());
+        for ((k, t, q, w), (tw, qw, ww)) in sink.0.iter().zip(&want) {
+            assert_eq!((t, fps.time_of(*k)), (tw, *t), "{scheme} frame {k}");
+            // The binary normalises the keys it reads: the same curve up to the last bits.
+            let what = format!("{scheme} frame {k}");
+            assert_rot_close(*q, *qw, 1e-14, &what);
+            assert_vec_close(w.unwrap(), *ww, 1e-12, &what);
+        }
+    }
+}
+
+#[test]
+fn tracks_refuse_bad_times_with_typed_errors() {
+    let (_, q) = keys();
+    let q3 = q[..3].to_vec();
+    let new = |t: &[f64]| Track::new(t.to_vec(), q3.clone()).unwrap_err();
+    assert_eq!(
+        new(&[0.0, 1.0, 0.5]),
+        TrackError::NotIncreasing {
+            index: 2,
+            time: 0.5,
+            previous: 1.0
+        }
+    );
+    assert_eq!(
+        new(&[0.0, 0.5, 0.5]),
+        TrackError::NotIncreasing {
+            index: 2,
+            time: 0.5,
+            previous: 0.5
+        }
+    );
+    assert!(matches!(
+        new(&[0.0, f64::NAN, 1.0]),
+        TrackError::NonFiniteTime { index: 1, .. }
+    ));
+    assert!(matches!(
+        new(&[0.0, f64::INFINITY, 1.0]),
+        TrackError::NonFiniteTime { index: 1, .. }
+    ));
+    assert_eq!(
+        new(&[0.0, 0.5, 0.5 + 1e-13]),
+        TrackError::TooClose {
+            index: 2,
+            time: 0.5 + 1e-13,
+            previous: 0.5
+        }
+    );
+    assert_eq!(
+        Track::new(vec![0.0], vec![q[0]]).unwrap_err(),
+        TrackError::TooFewKeys { found: 1 }
+    );
+    // The library's message is the binary's.
+    assert_eq!(
+        new(&[0.0, 1.0, 0.5]).to_string(),
+        "expected times strictly increasing within a track, found 0.5 s after 1 s"
+    );
+}
