@@ -151,6 +151,11 @@ pub struct InterpArgs {
     /// projected gradient).
     #[arg(short, long)]
     pub verbose: bool,
+
+    /// Refuse, before writing anything, a run that would write more frames than this (all
+    /// tracks together).
+    #[arg(long, value_name = "N", default_value_t = 1_000_000_000)]
+    pub max_frames: u64,
 }
 
 /// Options that shape the curve (shared by interp, analyze and plot).

@@ -3,6 +3,7 @@
 
 mod cli;
 mod cmd;
+mod warnings;
 
 use clap::Parser;
 use cli::{Cli, Command};
@@ -12,13 +13,21 @@ use std::process::ExitCode;
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let mut stdin = std::io::stdin().lock();
-    let mut warn = |msg: &str| eprintln!("inbetween: warning: {msg}");
+    let mut warnings = warnings::Warnings::default();
+    let mut warn = |msg: &str| {
+        if let Some(line) = warnings.note(msg) {
+            eprintln!("{line}");
+        }
+    };
     let result = match &cli.command {
         Command::Convert(args) => cmd::convert::run(args, &mut stdin, &mut warn),
         Command::Interp(args) => cmd::interp::run(args, &mut stdin, &mut warn),
         Command::Analyze(args) => cmd::analyze::run(args, &mut stdin, &mut warn),
         Command::Plot(args) => cmd::plot::run(args, &mut stdin, &mut warn),
     };
+    for line in warnings.summary() {
+        eprintln!("{line}");
+    }
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

@@ -100,10 +100,12 @@ fn golden_files() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("cases.json")).unwrap()).unwrap();
     let bless = std::env::var_os("INBETWEEN_BLESS").is_some();
     let mut failures = Vec::new();
+    let mut previous = Vec::new();
     for case in &cases {
         let got = run_case(case);
         let path = dir.join(&case.name);
         if bless {
+            previous.push((path.clone(), std::fs::read(&path).ok()));
             std::fs::write(&path, &got).unwrap();
             continue;
         }
@@ -113,12 +115,50 @@ fn golden_files() {
             failures.push(format!("{}: {e}", case.name));
         }
     }
+    if bless {
+        keep_only_if_checked(&previous);
+    }
     assert!(
         failures.is_empty(),
         "golden mismatches:\n{}",
         failures.join("\n")
     );
     assert!(cases.len() >= 10);
+}
+
+/// Blessing writes golden files only the independent checker accepts: it runs
+/// `fixtures/golden/check.py` (Python from `INBETWEEN_PYTHON`, else `target/ci-venv`, the
+/// environment `.ci/run` builds from `fixtures/requirements.txt`) and, if the checker fails or
+/// cannot run, puts every file back as it was.
+fn keep_only_if_checked(previous: &[(std::path::PathBuf, Option<Vec<u8>>)]) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let python = std::env::var_os("INBETWEEN_PYTHON")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| root.join("target/ci-venv/bin/python"));
+    let checked = std::process::Command::new(&python)
+        .arg(root.join("fixtures/golden/check.py"))
+        .current_dir(root)
+        .output();
+    let verdict = match &checked {
+        Ok(out) if out.status.success() => return,
+        Ok(out) => format!(
+            "the independent checker rejected them:\n{}",
+            String::from_utf8_lossy(&out.stdout)
+        ),
+        Err(e) => format!(
+            "the independent checker could not run ({}: {e}); create its environment with \
+             `python3 -m venv target/ci-venv && target/ci-venv/bin/pip install -r \
+             fixtures/requirements.txt`, or set INBETWEEN_PYTHON",
+            python.display()
+        ),
+    };
+    for (path, old) in previous {
+        match old {
+            Some(bytes) => std::fs::write(path, bytes).unwrap(),
+            None => std::fs::remove_file(path).unwrap(),
+        }
+    }
+    panic!("golden files not blessed (restored as they were): {verdict}");
 }
 
 #[test]

@@ -5,10 +5,14 @@ use crate::cli::InterpArgs;
 use inbetween::io::OutputFormat;
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter, Style};
-use inbetween::{BakeOptions, Curve, Error, FrameSink, bake};
+use inbetween::{BakeOptions, Curve, Error, FrameSink, InputError, bake};
 use std::io::Read;
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
+///
+/// Everything the input can get wrong is found before the first byte is written: the tracks,
+/// the frame count (`--max-frames`), and every curve (minaccel's grid cap), so that only I/O can
+/// fail once output has started.
 pub fn run(
     args: &InterpArgs,
     stdin: &mut dyn Read,
@@ -16,6 +20,22 @@ pub fn run(
 ) -> Result<(), Error> {
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    let rows: u64 = tracks
+        .iter()
+        .map(|t| fps.frame_count(t.span().0, t.span().1))
+        .fold(0, u64::saturating_add);
+    if rows > args.max_frames {
+        return Err(InputError::new(format!(
+            "{}: interp would write {rows} frames at {fps} fps, more than --max-frames {}",
+            doc.source, args.max_frames
+        ))
+        .into());
+    }
+    // Input errors found while building a curve (minaccel's grid cap) name the file too.
+    let curves = tracks
+        .iter()
+        .map(|t| Curve::new(t, &input.opts).map_err(|e| e.at(&doc.source)))
+        .collect::<Result<Vec<_>, _>>()?;
     let bake_opts = BakeOptions {
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
@@ -43,32 +63,22 @@ pub fn run(
             track_column,
             args.velocity,
         )),
-        OutputFormat::Npy => {
-            let rows = tracks
-                .iter()
-                .map(|t| fps.frame_count(t.span().0, t.span().1))
-                .sum();
-            Box::new(NpyWriter::new(
-                out,
-                style,
-                rows,
-                track_column,
-                args.velocity,
-            ))
-        }
+        OutputFormat::Npy => Box::new(NpyWriter::new(
+            out,
+            style,
+            rows,
+            track_column,
+            args.velocity,
+        )),
     };
-    let mut reports = Vec::new();
-    for track in tracks {
-        // Input errors found while building a curve (minaccel's grid cap) name the file too.
-        let curve = Curve::new(track, &input.opts).map_err(|e| e.at(&doc.source))?;
-        bake(&curve, fps, bake_opts, sink.as_mut(), warn)?;
-        reports.extend(curve.solver_report().map(|&r| (track.name(), r)));
+    for curve in &curves {
+        bake(curve, fps, bake_opts, sink.as_mut(), warn)?;
     }
     sink.finish()?;
     sink.into_output()?.commit()?;
     if args.verbose {
-        for (name, r) in reports {
-            let name = name.unwrap_or("-");
+        for (curve, r) in curves.iter().filter_map(|c| Some((c, c.solver_report()?))) {
+            let name = curve.name().unwrap_or("-");
             eprintln!(
                 "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
                  projected gradient {:.3e} -> {:.3e} ({}converged)",

@@ -9,3 +9,4 @@ mod hard_cases;
 mod plot;
 mod reliability;
 mod roundtrip;
+mod validation;

@@ -176,18 +176,39 @@ proptest! {
 
     #[test]
     fn shortest_never_longer_than_180(t in random_track()) {
+        // Keys moved onto the 60 fps grid, so that the first and last frames are keys.
+        let on_grid = t.times().iter().map(|x| (x * 60.0).round() / 60.0).collect();
+        let t = track(on_grid, t.rotations().to_vec());
         let s = settings(Scheme::Slerp, "60", EndConditions::default());
         let (frames, _) = interpolate(&t, &s);
         let keys = Knots::new(&t, PathMode::Shortest, EndConditions::default());
-        for i in 0..keys.times().len() - 1 {
-            prop_assert!(keys.quats()[i].dot(keys.quats()[i + 1]) >= 0.0);
-            prop_assert!(rot_angle(keys.quats()[i], keys.quats()[i + 1]) <= std::f64::consts::PI + 1e-12);
+        let q = keys.quats();
+        for i in 0..q.len() - 1 {
+            // The signed step as the curve takes it (q and −q not identified): at most 180°.
+            prop_assert!(signed_step(q[i], q[i + 1]) <= std::f64::consts::PI + 1e-12, "step {i}");
         }
-        // Frames of a slerp segment move monotonically away from its first key.
-        for w in frames.windows(2) {
-            prop_assert!(w[0].2.dot(w[1].2) > 0.0);
-        }
+        // The frames travel exactly the shortest rotation between consecutive input keys.
+        let travelled: f64 = frames.windows(2).map(|w| signed_step(w[0].2, w[1].2)).sum();
+        let shortest: f64 = t.rotations().windows(2).map(|w| rot_angle(w[0], w[1])).sum();
+        prop_assert!((travelled - shortest).abs() < 1e-9, "{travelled} vs {shortest}");
     }
+}
+
+/// The rotation angle of the step from `a` to `b` as signed quaternions: `2·‖log(b a⁻¹)‖`, in
+/// [0, 2π] (above π when `b` is in the other hemisphere: the long way round).
+fn signed_step(a: DQuat, b: DQuat) -> f64 {
+    2.0 * inbetween::rotation::quat::log(b * a.conjugate()).length()
+}
+
+/// The measure of `shortest_never_longer_than_180` sees the long way round when signs are kept.
+#[test]
+fn signed_step_sees_the_long_way_round() {
+    let (a, b) = (DQuat::IDENTITY, DQuat::from_rotation_z(1.0));
+    assert!((signed_step(a, b) - 1.0).abs() < 1e-15);
+    assert!((signed_step(a, -b) - (2.0 * std::f64::consts::PI - 1.0)).abs() < 1e-14);
+    let t = track(vec![0.0, 1.0], vec![a, -b]);
+    let keys = Knots::new(&t, PathMode::AsGiven, EndConditions::default());
+    assert!(signed_step(keys.quats()[0], keys.quats()[1]) > std::f64::consts::PI);
 }
 
 /// The limit of docs/spec.md §4.4's squad: a key where the motion reverses next to a much shorter
