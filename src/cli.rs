@@ -188,6 +188,11 @@ pub struct CurveArgs {
     /// as-given: keep quaternion signs (a flipped key is reached the long way round).
     #[arg(long, value_enum, default_value = "shortest")]
     pub path: PathArg,
+
+    /// Move every key within EPS frame periods of a frame of the output grid onto that frame
+    /// before interpolating (for key times rounded by their writer, e.g. 0.0333333 s).
+    #[arg(long, value_name = "EPS", value_parser = parse_snap)]
+    pub snap_keys: Option<f64>,
 }
 
 #[derive(Debug, Args)]
@@ -339,6 +344,15 @@ fn parse_format(s: &str) -> Result<Format, String> {
 
 fn parse_fps(s: &str) -> Result<Fps, String> {
     Fps::parse(s).map_err(|e| e.message().to_string())
+}
+
+fn parse_snap(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if (0.0..=0.5).contains(&x) => Ok(x),
+        _ => Err(format!(
+            "expected a number of frame periods from 0 to 0.5, such as 0.001, found \"{s}\""
+        )),
+    }
 }
 
 fn parse_precision(s: &str) -> Result<usize, String> {

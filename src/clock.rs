@@ -208,6 +208,47 @@ impl Fps {
     }
 }
 
+/// How close, in frame periods, a key must be to a frame it misses for a warning (§3).
+pub const NEAR_MISS: f64 = 1e-3;
+
+impl Fps {
+    /// The frame nearest time `t`.
+    pub fn nearest_frame(&self, t: f64) -> i64 {
+        let k = (t * self.as_f64()).round() as i64;
+        // The rounding of t·fps can be off by one near a half: compare the neighbours' times.
+        (k - 1..=k + 1)
+            .min_by(|&a, &b| {
+                (self.time_of(a) - t)
+                    .abs()
+                    .total_cmp(&(self.time_of(b) - t).abs())
+            })
+            .unwrap_or(k)
+    }
+
+    /// `t` moved onto the grid when it is within `eps` frame periods of a frame, else `t`.
+    pub fn snap(&self, t: f64, eps: f64) -> f64 {
+        let k = self.nearest_frame(t);
+        let tk = self.time_of(k);
+        if (tk - t).abs() <= eps / self.as_f64() {
+            tk
+        } else {
+            t
+        }
+    }
+
+    /// The frames a span `[t0, t1]` just misses: the frame before `t0` and the frame after `t1`
+    /// when they are within [`NEAR_MISS`] frame periods of the key (and so not written, being more
+    /// than 1e-9 s outside). Keys computed from a rounded frame time (`0.0333333` s) land there.
+    pub fn near_misses(&self, t0: f64, t1: f64) -> (Option<i64>, Option<i64>) {
+        let (first, last) = self.frames_between(t0, t1);
+        let near = |k: i64, t: f64| (self.time_of(k) - t).abs() <= NEAR_MISS / self.as_f64();
+        (
+            Some(first - 1).filter(|&k| near(k, t0)),
+            Some(last + 1).filter(|&k| near(k, t1)),
+        )
+    }
+}
+
 /// The frames `from..to` of piece `piece` (between breaks `piece` and `piece + 1`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PieceFrames {
@@ -376,6 +417,23 @@ mod tests {
         assert!(p[3].snap_end && !p[0].snap_end);
         // A track shorter than a frame: no frames.
         assert_eq!(fps.pieces(&[0.101, 0.132]).count(), 0);
+    }
+
+    #[test]
+    fn near_misses_and_snapping() {
+        let fps = Fps::new(30, 1).unwrap();
+        // Motion capture's rounded frame time: 194 × 0.0333333 = 6.4666602 s, 6.5e-6 s (2e-4
+        // frame periods) before frame 194.
+        let t1 = 194.0 * 0.0333333;
+        assert_eq!(fps.frames_between(0.0, t1), (0, 193));
+        assert_eq!(fps.near_misses(0.0, t1), (None, Some(194)));
+        assert_eq!(fps.near_misses(0.0, 6.4), (None, None));
+        // A first key 1e-6 s after frame 3.
+        assert_eq!(fps.near_misses(0.1 + 1e-6, 1.0), (Some(3), None));
+        assert_eq!(fps.snap(t1, 1e-3), fps.time_of(194));
+        assert_eq!(fps.snap(t1, 1e-4), t1);
+        assert_eq!(fps.snap(0.5, 1e-3), 0.5);
+        assert_eq!(fps.nearest_frame(-0.51 / 30.0), -1);
     }
 
     #[test]

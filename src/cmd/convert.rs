@@ -1,6 +1,6 @@
 //! `inbetween convert`: keys in, the same keys out in another representation and/or format.
 
-use super::settings::{rates, read_input};
+use super::settings::{output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
@@ -20,14 +20,17 @@ pub fn run(
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
     }
-    let format = match args.output.output_format {
-        None => in_format,
-        Some(OutputFormat::Doc(f)) => f,
-        Some(OutputFormat::Npy) => {
-            return Err(InputError::new(
-                "--output-format npy: convert writes keyframe documents (csv or json); npy is \
-                 for interp's frames",
-            )
+    let format = match output_format(&args.output, in_format) {
+        OutputFormat::Doc(f) => f,
+        OutputFormat::Npy => {
+            let what = match (&args.output.output_format, &args.output.output) {
+                (None, Some(path)) => format!("-o {}", path.display()),
+                _ => "--output-format npy".to_string(),
+            };
+            return Err(InputError::new(format!(
+                "{what}: convert writes keyframe documents (csv or json); npy is for interp's \
+                 frames"
+            ))
             .into());
         }
     };

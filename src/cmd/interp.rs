@@ -1,7 +1,8 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
-use super::settings::read_curves;
+use super::settings::{output_format, read_curves, track_label};
 use crate::cli::InterpArgs;
+use inbetween::error::num;
 use inbetween::io::OutputFormat;
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter, Style};
@@ -20,6 +21,26 @@ pub fn run(
 ) -> Result<(), Error> {
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    for t in tracks {
+        let (t0, t1) = t.span();
+        let (before, after) = fps.near_misses(t0, t1);
+        let label = track_label(&doc.source, t);
+        for (k, key, which, side) in [
+            (before, t0, "first", "after"),
+            (after, t1, "last", "before"),
+        ] {
+            if let Some(k) = k {
+                warn(&format!(
+                    "{label}: the {which} key, at {} s, is {:.1e} s {side} frame {k} ({} s), which \
+                     is therefore not written; --snap-keys 0.001 moves keys that close onto the \
+                     grid",
+                    num(key),
+                    (key - fps.time_of(k)).abs(),
+                    num(fps.time_of(k))
+                ));
+            }
+        }
+    }
     let rows: u64 = tracks
         .iter()
         .map(|t| fps.frame_count(t.span().0, t.span().1))
@@ -36,16 +57,13 @@ pub fn run(
         .iter()
         .map(|t| Curve::new(t, &input.opts).map_err(|e| e.at(&doc.source)))
         .collect::<Result<Vec<_>, _>>()?;
+    let format = output_format(&args.output, input.format);
     let bake_opts = BakeOptions {
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
         // formatting already uses the second core (measured: docs/performance.md).
-        parallel: args.output.output_format == Some(OutputFormat::Npy),
+        parallel: format == OutputFormat::Npy,
     };
-    let format = args
-        .output
-        .output_format
-        .unwrap_or(OutputFormat::Doc(input.format));
     let style = Style {
         repr: args.output.to,
         angles: args.input.angles,

@@ -2,11 +2,11 @@
 //! own `frame` values; `--fps` sets the output rate, else the document's, else 30), and the
 //! curve options from the command line.
 
-use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, PathArg, SchemeArg};
+use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
 use glam::DVec3;
 use inbetween::error::num;
 use inbetween::io::document::Document;
-use inbetween::io::{Format, ReadOptions};
+use inbetween::io::{Format, OutputFormat, ReadOptions};
 use inbetween::rotation::AngleUnit;
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Track,
@@ -85,7 +85,12 @@ pub fn read_curves(
 ) -> Result<Curves, InputError> {
     let (doc, format) = read_input(input, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
-    let tracks = doc.tracks(frame_fps)?;
+    let mut tracks = doc.tracks(frame_fps)?;
+    if let Some(eps) = curve.snap_keys {
+        for t in &mut tracks {
+            *t = snap_keys(t, fps, eps).map_err(|e| e.at(track_label(&doc.source, t)))?;
+        }
+    }
     for t in &tracks {
         let (t0, t1) = t.span();
         for time in [t0, t1] {
@@ -105,6 +110,49 @@ pub fn read_curves(
         tracks,
         fps,
         opts,
+    })
+}
+
+/// The output format: `--output-format`, else the extension of `-o` (`.csv`, `.json`, `.npy`,
+/// any case), else the input's format.
+pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
+    let by_extension = || {
+        let path = args.output.as_deref()?;
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        OutputFormat::parse(&ext).ok()
+    };
+    args.output_format
+        .or_else(by_extension)
+        .unwrap_or(OutputFormat::Doc(input))
+}
+
+/// `file` or `file: track "name"`, for messages about a whole track.
+pub fn track_label(source: &str, t: &Track) -> String {
+    match t.name() {
+        Some(n) => format!("{source}: track \"{n}\""),
+        None => source.to_string(),
+    }
+}
+
+/// The track with every key within `eps` frame periods of a frame moved onto it (`--snap-keys`).
+fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
+    let times: Vec<f64> = t.times().iter().map(|&x| fps.snap(x, eps)).collect();
+    if let Some(i) = (1..times.len()).find(|&i| times[i] <= times[i - 1]) {
+        return Err(InputError::new(format!(
+            "--snap-keys {eps}: keys at {} s and {} s would both move to frame {} ({} s); lower \
+             EPS or merge the keys",
+            num(t.times()[i - 1]),
+            num(t.times()[i]),
+            fps.nearest_frame(times[i]),
+            num(times[i])
+        )));
+    }
+    let snapped = Track::new(times, t.rotations().to_vec())
+        .and_then(|s| s.with_end_velocities(t.start_velocity(), t.end_velocity()))
+        .map_err(InputError::from)?;
+    Ok(match t.name() {
+        Some(n) => snapped.with_name(n),
+        None => snapped,
     })
 }
 

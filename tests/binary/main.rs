@@ -4,6 +4,7 @@
 mod support;
 
 mod analyze;
+mod animator;
 mod errors;
 mod hard_cases;
 mod plot;

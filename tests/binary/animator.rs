@@ -1,0 +1,145 @@
+//! Animator-safe conventions (issue 12): keys rounded off the frame grid, the output format
+//! chosen by `-o`'s extension.
+
+use crate::support::bin;
+
+/// 195 keys at motion capture's rounded frame time 0.0333333 s: the last key is 6.5e-6 s short
+/// of frame 194 at 30 fps.
+fn rounded_keys(dir: &std::path::Path) -> std::path::PathBuf {
+    let path = dir.join("mocap.csv");
+    let mut text = String::from("time,w,x,y,z\n");
+    for i in 0..195 {
+        let a = i as f64 * 0.01;
+        text += &format!("{:.7},{},0,0,{}\n", i as f64 * 0.0333333, a.cos(), a.sin());
+    }
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn a_frame_missed_by_a_rounded_key_time_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = rounded_keys(dir.path());
+    let out = bin()
+        .args(["interp", "--fps", "30"])
+        .arg(&keys)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.lines().last().unwrap().starts_with("193,"));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        format!(
+            "inbetween: warning: {}: the last key, at 6.4666602 s, is 6.5e-6 s before frame 194 \
+             (6.466666666666667 s), which is therefore not written; --snap-keys 0.001 moves keys \
+             that close onto the grid\n",
+            keys.display()
+        )
+    );
+}
+
+#[test]
+fn snap_keys_moves_rounded_keys_onto_the_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = rounded_keys(dir.path());
+    let out = bin()
+        .args(["interp", "--fps", "30", "--snap-keys", "0.001"])
+        .arg(&keys)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let last = stdout.lines().last().unwrap();
+    // Frame 194 is the last key itself, the quaternion (cos 1.94, 0, 0, sin 1.94).
+    let v: Vec<f64> = last.split(',').map(|x| x.parse().unwrap()).collect();
+    assert_eq!(v[0], 194.0);
+    assert!((v[2] - 1.94f64.cos()).abs() < 1e-12 && (v[5] - 1.94f64.sin()).abs() < 1e-12);
+    // Too large an EPS merges keys: an error naming both.
+    let two = dir.path().join("two.csv");
+    std::fs::write(
+        &two,
+        "time,w,x,y,z\n0,1,0,0,0\n0.01,1,0,0,0\n0.02,1,0,0,0\n",
+    )
+    .unwrap();
+    let out = bin()
+        .args(["interp", "--fps", "30", "--snap-keys", "0.5"])
+        .arg(&two)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        format!(
+            "inbetween: error: {}: --snap-keys 0.5: keys at 0 s and 0.01 s would both move to \
+             frame 0 (0 s); lower EPS or merge the keys\n",
+            two.display()
+        )
+    );
+}
+
+#[test]
+fn the_output_format_follows_the_extension_of_o() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("keys.json");
+    let ok = bin()
+        .args(["convert", "fixtures/convert/matrix.csv", "-o"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert!(ok.status.success());
+    let text = std::fs::read_to_string(&json).unwrap();
+    assert!(
+        serde_json::from_str::<serde_json::Value>(&text).is_ok(),
+        "{text}"
+    );
+    // --output-format wins over the extension.
+    let ok = bin()
+        .args([
+            "convert",
+            "fixtures/convert/matrix.csv",
+            "--output-format",
+            "csv",
+            "-o",
+        ])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert!(ok.status.success());
+    assert!(
+        std::fs::read_to_string(&json)
+            .unwrap()
+            .starts_with("time,w,x,y,z\n")
+    );
+    // interp: .npy by extension.
+    let npy = dir.path().join("frames.NPY");
+    let ok = bin()
+        .args(["interp", "fixtures/interp/uniform.json", "-o"])
+        .arg(&npy)
+        .output()
+        .unwrap();
+    assert!(ok.status.success());
+    assert!(std::fs::read(&npy).unwrap().starts_with(b"\x93NUMPY"));
+    // convert cannot write npy: the error names -o.
+    let bad = dir.path().join("keys.npy");
+    let out = bin()
+        .args(["convert", "fixtures/convert/matrix.csv", "-o"])
+        .arg(&bad)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        format!(
+            "inbetween: error: -o {}: convert writes keyframe documents (csv or json); npy is for \
+             interp's frames\n",
+            bad.display()
+        )
+    );
+    assert!(!bad.exists());
+}
