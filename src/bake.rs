@@ -85,13 +85,43 @@ pub fn bake(
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&str),
 ) -> io::Result<()> {
+    bake_over(curve, fps, curve.span(), opts, sink, warn)
+}
+
+/// [`bake()`] over a longer span `[lo, hi]` (widened to contain the curve's own): the frames
+/// before the first key hold the first key and those after the last key hold the last key, at
+/// rest (glTF's clamp). This is how several tracks are written over one clip.
+pub fn bake_over(
+    curve: &Curve,
+    fps: Fps,
+    (lo, hi): (f64, f64),
+    opts: BakeOptions,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
     sink.begin_track(curve.name())?;
+    let (t0, t1) = curve.span();
+    let (span_first, span_last) = fps.frames_between(lo.min(t0), hi.max(t1));
+    let (first, last) = fps.frames_between(t0, t1);
+    let rest = opts.velocity.then_some(DVec3::ZERO);
+    let (q0, q1) = (curve.rotation(t0), curve.rotation(t1));
+    for k in span_first..first {
+        sink.frame(k, fps.time_of(k), q0, rest)?;
+    }
     match curve.scheme() {
+        _ if curve.is_constant() => {
+            for k in first..=last {
+                sink.frame(k, fps.time_of(k), q0, rest)?;
+            }
+        }
         Scheme::Slerp => track_frames::<Slerp>(curve, fps, opts, sink, warn)?,
         Scheme::Hermite => track_frames::<Hermite>(curve, fps, opts, sink, warn)?,
         Scheme::Squad => track_frames::<Squad>(curve, fps, opts, sink, warn)?,
         Scheme::Bezier => track_frames::<Bezier>(curve, fps, opts, sink, warn)?,
         Scheme::MinAccel => grid_frames(curve, fps, opts.velocity, sink, warn)?,
+    }
+    for k in last.max(first - 1) + 1..=span_last {
+        sink.frame(k, fps.time_of(k), q1, rest)?;
     }
     sink.end_track()
 }

@@ -164,7 +164,11 @@ pub fn svg(
     let name = track
         .name()
         .map_or(String::new(), |n| format!(" — track {n}"));
-    let (t0, t1) = track.span();
+    let (t0, t1) = match track.span() {
+        // A one-key track: a second around its key.
+        (a, b) if a == b => (a - 0.5, b + 0.5),
+        span => span,
+    };
     let ys = lines.iter().flat_map(|l| l.points.iter().map(|p| p.1));
     let (mut y0, mut y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
         (a.min(y), b.max(y))

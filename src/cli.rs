@@ -152,6 +152,12 @@ pub struct InterpArgs {
     #[arg(short, long)]
     pub verbose: bool,
 
+    /// clip: every track over the union of all tracks' key ranges, holding its first key before
+    /// its first time and its last key after its last (glTF's clamp); track: each track over its
+    /// own keys' range.
+    #[arg(long, value_enum, default_value = "clip")]
+    pub span: SpanArg,
+
     /// Refuse, before writing anything, a run that would write more frames than this (all
     /// tracks together).
     #[arg(long, value_name = "N", default_value_t = 1_000_000_000)]
@@ -239,6 +245,12 @@ pub struct PlotArgs {
     /// The SVG file to write (replaced atomically), or - for standard output.
     #[arg(short = 'o', long = "output", value_name = "FILE.svg")]
     pub output: PathBuf,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SpanArg {
+    Clip,
+    Track,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]

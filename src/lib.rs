@@ -36,8 +36,8 @@
 //! Layout: [`track`] (validated keys), [`tangent`] (path rule, tangents, end conditions),
 //! [`curve`] (one module per scheme, and [`Curve`]), [`clock`] (exact rates and the frame-clock
 //! rule), [`mod@bake`] (the frame loop), [`rotation`] (representations, Euler conventions, `log`/
-//! `exp`), [`metrics`] (smoothness figures); with the `io` feature [`io`] (CSV, JSON and npy in
-//! and out), with `chart` [`chart`] (SVG). The command line (`cli`, on by default) is the
+//! `exp`), [`metrics`] (smoothness figures); with the `io` feature `io` (CSV, JSON and npy in
+//! and out), with `chart` `chart` (SVG). The command line (`cli`, on by default) is the
 //! binary's own and not part of this API.
 
 #![warn(missing_docs)]
@@ -55,7 +55,7 @@ pub mod rotation;
 pub mod tangent;
 pub mod track;
 
-pub use bake::{BakeOptions, FrameSink, bake};
+pub use bake::{BakeOptions, FrameSink, bake, bake_over};
 pub use clock::Fps;
 pub use curve::{Blend, Curve, CurveOptions, Scheme};
 pub use error::{Error, InputError};

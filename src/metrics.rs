@@ -88,7 +88,7 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
     }
     let keys = curve.key_times().to_vec();
     let (mut c1, mut c2) = (0.0f64, 0.0f64);
-    for &tk in &keys[1..keys.len() - 1] {
+    for &tk in keys.iter().skip(1).take(keys.len().saturating_sub(2)) {
         c1 = c1.max((curve.omega(tk, Side::Right) - curve.omega(tk, Side::Left)).length());
         c2 = c2.max((curve.alpha(tk, Side::Right) - curve.alpha(tk, Side::Left)).length());
     }
@@ -106,7 +106,12 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
         duration,
         angle,
         max_speed,
-        mean_speed: angle / duration,
+        // A one-key track (a constant) has no duration and no speed.
+        mean_speed: if duration > 0.0 {
+            angle / duration
+        } else {
+            0.0
+        },
         max_accel,
         c1_jump: c1,
         c2_jump: c2,

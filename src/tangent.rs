@@ -109,7 +109,16 @@ impl Knots {
         apply_path(&mut quats, path);
         let t = track.times();
         let n = quats.len();
-        debug_assert!(n >= 2);
+        if n == 1 {
+            // A constant: no motion, whatever the ends say.
+            return Knots {
+                times: t.to_vec(),
+                quats,
+                w: vec![DVec3::ZERO],
+                start_given: true,
+                end_given: true,
+            };
+        }
         let mut w = vec![DVec3::ZERO; n];
         for i in 1..n - 1 {
             let lm = step(quats[i - 1], quats[i]);

@@ -1,6 +1,7 @@
 //! A validated track: keyframe times and rotations that every scheme can interpolate.
 //!
-//! The constructor is the only way in, so a [`Track`] is known to hold at least two keys whose
+//! The constructor is the only way in, so a [`Track`] is known to hold at least one key (one key
+//! is a constant: a joint that does not move), whose
 //! times are finite, strictly increasing and at least [`MIN_KEY_GAP`] apart, with finite unit
 //! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
 //! documents ([`check_times`]), so a file and a program are held to one contract.
@@ -19,7 +20,7 @@ pub const UNIT_TOL: f64 = 1e-6;
 /// Why a [`Track`] could not be built. Indices count keys from 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TrackError {
-    /// Fewer than two keys.
+    /// No key at all.
     TooFewKeys {
         /// The number of keys given.
         found: usize,
@@ -85,7 +86,7 @@ impl fmt::Display for TrackError {
         use crate::error::num;
         match *self {
             TrackError::TooFewKeys { found } => {
-                write!(f, "expected at least 2 keys, found {found}")
+                write!(f, "expected at least 1 key, found {found}")
             }
             TrackError::LengthMismatch { times, rotations } => write!(
                 f,
@@ -187,7 +188,7 @@ pub struct Track {
 impl Track {
     /// A track from key times (seconds) and rotations (unit quaternions), one per key.
     ///
-    /// Refuses fewer than two keys, mismatched lengths, non-finite, unsorted, duplicate or
+    /// One key is a constant. Refuses no key at all, mismatched lengths, non-finite, unsorted, duplicate or
     /// closer-than-[`MIN_KEY_GAP`] times, and quaternions that are not finite and of unit norm
     /// (within [`UNIT_TOL`]).
     pub fn new(times: Vec<f64>, rotations: Vec<DQuat>) -> Result<Track, TrackError> {
@@ -197,8 +198,8 @@ impl Track {
                 rotations: rotations.len(),
             });
         }
-        if times.len() < 2 {
-            return Err(TrackError::TooFewKeys { found: times.len() });
+        if times.is_empty() {
+            return Err(TrackError::TooFewKeys { found: 0 });
         }
         check_times(&times)?;
         for (index, q) in rotations.iter().enumerate() {
@@ -242,7 +243,7 @@ impl Track {
         self.name.as_deref()
     }
 
-    /// Key times in seconds: finite, strictly increasing, at least two.
+    /// Key times in seconds: finite, strictly increasing, at least one.
     pub fn times(&self) -> &[f64] {
         &self.times
     }
@@ -252,12 +253,12 @@ impl Track {
         &self.rotations
     }
 
-    /// Number of keys (at least two).
+    /// Number of keys (at least one).
     pub fn len(&self) -> usize {
         self.times.len()
     }
 
-    /// Always false: a track has at least two keys.
+    /// Always false: a track has at least one key.
     pub fn is_empty(&self) -> bool {
         false
     }
@@ -289,7 +290,7 @@ mod tests {
     #[test]
     fn refuses_bad_times_with_typed_errors() {
         let new = |t: &[f64]| Track::new(t.to_vec(), quats(t.len()));
-        assert_eq!(new(&[0.0]), Err(TrackError::TooFewKeys { found: 1 }));
+        assert!(new(&[0.0]).is_ok(), "one key: a constant");
         assert_eq!(new(&[]), Err(TrackError::TooFewKeys { found: 0 }));
         assert!(matches!(
             new(&[0.0, f64::NAN]),

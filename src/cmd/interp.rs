@@ -1,12 +1,12 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
 use super::settings::{output_format, read_curves, track_label};
-use crate::cli::InterpArgs;
+use crate::cli::{InterpArgs, SpanArg};
 use inbetween::error::num;
 use inbetween::io::OutputFormat;
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter, Style};
-use inbetween::{BakeOptions, Curve, Error, FrameSink, InputError, bake};
+use inbetween::{BakeOptions, Curve, Error, FrameSink, InputError, Track, bake_over};
 use std::io::Read;
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
@@ -21,13 +21,26 @@ pub fn run(
 ) -> Result<(), Error> {
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    // The span each track is written over: the clip (the union of the tracks' key ranges, ends
+    // held), or its own.
+    let clip = tracks
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+            (lo.min(t.span().0), hi.max(t.span().1))
+        });
+    let span = |t: &Track| match args.span {
+        SpanArg::Clip => clip,
+        SpanArg::Track => t.span(),
+    };
     for t in tracks {
         let (t0, t1) = t.span();
+        let (lo, hi) = span(t);
         let (before, after) = fps.near_misses(t0, t1);
         let label = track_label(&doc.source, t);
+        // Only an end of the written span can miss a frame; inside the clip the key is held.
         for (k, key, which, side) in [
-            (before, t0, "first", "after"),
-            (after, t1, "last", "before"),
+            (before.filter(|_| t0 == lo), t0, "first", "after"),
+            (after.filter(|_| t1 == hi), t1, "last", "before"),
         ] {
             if let Some(k) = k {
                 warn(&format!(
@@ -43,7 +56,7 @@ pub fn run(
     }
     let rows: u64 = tracks
         .iter()
-        .map(|t| fps.frame_count(t.span().0, t.span().1))
+        .map(|t| fps.frame_count(span(t).0, span(t).1))
         .fold(0, u64::saturating_add);
     if rows > args.max_frames {
         return Err(InputError::new(format!(
@@ -89,8 +102,8 @@ pub fn run(
             args.velocity,
         )),
     };
-    for curve in &curves {
-        bake(curve, fps, bake_opts, sink.as_mut(), warn)?;
+    for (curve, track) in curves.iter().zip(tracks) {
+        bake_over(curve, fps, span(track), bake_opts, sink.as_mut(), warn)?;
     }
     sink.finish()?;
     sink.into_output()?.commit()?;

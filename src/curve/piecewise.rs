@@ -22,7 +22,7 @@ use crate::curve::minaccel::{self, Report};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Blend, CurveOptions, Scheme, Segment};
-use crate::error::InputResult;
+use crate::error::{InputError, InputResult};
 use crate::rotation::quat::{geodesic, log};
 use crate::tangent::Knots;
 use crate::track::Track;
@@ -124,9 +124,24 @@ impl Curve {
     /// its grid for minaccel (which fails only for a grid larger than
     /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
     pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
+        for (end, v) in [("start", opts.ends.start), ("end", opts.ends.end)] {
+            if let Some(v) = v.filter(|v| !v.is_finite()) {
+                return Err(InputError::new(format!(
+                    "{end} velocity: expected three finite numbers, found {v}"
+                )));
+            }
+        }
         let keys = Knots::new(track, opts.path, opts.ends);
         let name = track.name().map(str::to_string);
         let (pieces, report) = match opts.scheme {
+            // One key: a constant, whatever the scheme.
+            _ if track.len() == 1 => (
+                Pieces::Segments {
+                    keys,
+                    blend: opts.blend,
+                },
+                None,
+            ),
             Scheme::MinAccel => {
                 let sol =
                     minaccel::solve(&keys, opts.grid_rate.as_f64()).map_err(|e| match &name {
@@ -232,7 +247,9 @@ impl Curve {
         }
     }
 
-    /// The rotation at time `t` (s), a unit quaternion.
+    /// The rotation at time `t` (s), a unit quaternion. Before the first key it is the first
+    /// key, after the last the last (held); within 1e-9 s of a key it is that key — after the
+    /// path rule, so possibly the negation of the quaternion given (the same rotation).
     pub fn rotation(&self, t: f64) -> DQuat {
         let t = self.snap(t);
         match self.breaks().binary_search_by(|x| x.total_cmp(&t)) {
@@ -245,14 +262,28 @@ impl Curve {
         }
     }
 
-    /// World-frame angular velocity at `t`, rad/s.
+    /// World-frame angular velocity at `t`, rad/s: at a key, that of the segment starting there
+    /// (the last segment's at the last key); zero outside the span, where the pose is held.
     pub fn angular_velocity(&self, t: f64) -> DVec3 {
+        if self.outside(t) {
+            return DVec3::ZERO;
+        }
         self.omega(self.snap(t), Side::Right)
     }
 
-    /// World-frame angular acceleration at `t`, rad/s².
+    /// World-frame angular acceleration at `t`, rad/s², on the same terms as
+    /// [`Curve::angular_velocity`].
     pub fn angular_acceleration(&self, t: f64) -> DVec3 {
+        if self.outside(t) {
+            return DVec3::ZERO;
+        }
         self.alpha(self.snap(t), Side::Right)
+    }
+
+    /// More than 1e-9 s outside the keys' span.
+    fn outside(&self, t: f64) -> bool {
+        let (t0, t1) = self.span();
+        t < t0 - TIME_TOL || t > t1 + TIME_TOL
     }
 
     /// The piece containing `t` on `side`, and `t`'s parameter `u` in it.
@@ -281,8 +312,16 @@ impl Curve {
         }
     }
 
+    /// A one-key track: the key's rotation at every time, at rest.
+    pub fn is_constant(&self) -> bool {
+        self.breaks().len() == 1
+    }
+
     /// The curve at time `t` (the right piece at a boundary), without snapping.
     pub(crate) fn eval(&self, t: f64) -> DQuat {
+        if self.is_constant() {
+            return self.knots().quats[0];
+        }
         let (i, u) = self.piece(t, Side::Right);
         self.eval_piece(i, u)
     }
@@ -308,6 +347,9 @@ impl Curve {
     /// extrapolation `1.5·ω_near − 0.5·ω_next` from `side`, so that a jump at a key measures the
     /// curve and not its discretisation.
     pub(crate) fn omega(&self, t: f64, side: Side) -> DVec3 {
+        if self.is_constant() {
+            return DVec3::ZERO;
+        }
         let (i, u) = self.piece(t, side);
         let Pieces::Grid { times, .. } = &self.pieces else {
             return self.omega_piece(i, u);
@@ -358,6 +400,9 @@ impl Curve {
     /// difference of neighbouring pieces' velocities over the distance of their midpoints:
     /// centred inside, one-sided (on `side`) at a key or an end.
     pub(crate) fn alpha(&self, t: f64, side: Side) -> DVec3 {
+        if self.is_constant() {
+            return DVec3::ZERO;
+        }
         let (i, u) = self.piece(t, side);
         match &self.pieces {
             Pieces::Grid { times, .. } => {

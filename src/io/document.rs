@@ -153,7 +153,7 @@ impl Document {
         self.tracks
             .iter()
             .map(|track| {
-                let times = self.track_times(track, frame_fps, 2)?;
+                let times = self.track_times(track, frame_fps, 1)?;
                 let quats = track.keys.iter().map(|k| k.rot).collect();
                 let located = |e: TrackError| {
                     let loc = e

@@ -219,12 +219,65 @@ fn tracks_refuse_bad_times_with_typed_errors() {
         }
     );
     assert_eq!(
-        Track::new(vec![0.0], vec![q[0]]).unwrap_err(),
-        TrackError::TooFewKeys { found: 1 }
+        Track::new(vec![], vec![]).unwrap_err(),
+        TrackError::TooFewKeys { found: 0 }
     );
     // The library's message is the binary's.
     assert_eq!(
         new(&[0.0, 1.0, 0.5]).to_string(),
         "expected times strictly increasing within a track, found 0.5 s after 1 s"
     );
+}
+
+#[test]
+fn a_one_key_track_is_a_constant() {
+    let q = DQuat::from_rotation_y(0.7);
+    let track = Track::new(vec![0.5], vec![q]).unwrap();
+    for scheme in Scheme::ALL {
+        let curve = Curve::new(&track, &options(scheme, Fps::DEFAULT)).unwrap();
+        assert!(curve.is_constant());
+        for t in [-1.0, 0.5, 0.51, 3.0] {
+            assert_eq!(curve.rotation(t), q, "{scheme} at {t}");
+            assert_eq!(curve.angular_velocity(t), DVec3::ZERO);
+            assert_eq!(curve.angular_acceleration(t), DVec3::ZERO);
+        }
+        // Baked over a clip of one second at 10 fps: eleven frames of the key, at rest.
+        let mut sink = Frames::default();
+        let opts = BakeOptions {
+            velocity: true,
+            parallel: false,
+        };
+        let fps = Fps::new(10, 1).unwrap();
+        inbetween::bake_over(&curve, fps, (0.0, 1.0), opts, &mut sink, &mut |w| {
+            panic!("{w}")
+        })
+        .unwrap();
+        assert_eq!(sink.0.len(), 11);
+        assert!(sink.0.iter().all(|f| f.2 == q && f.3 == Some(DVec3::ZERO)));
+    }
+}
+
+#[test]
+fn bake_over_a_clip_holds_the_end_keys() {
+    let track = track();
+    let fps = Fps::new(10, 1).unwrap();
+    let curve = Curve::new(&track, &options(Scheme::Hermite, fps)).unwrap();
+    let mut sink = Frames::default();
+    let opts = BakeOptions {
+        velocity: true,
+        parallel: false,
+    };
+    inbetween::bake_over(&curve, fps, (-0.3, 2.25), opts, &mut sink, &mut |_| {}).unwrap();
+    let ks: Vec<i64> = sink.0.iter().map(|f| f.0).collect();
+    assert_eq!(ks, (-3..=22).collect::<Vec<_>>());
+    let (first, last) = (track.rotations()[0], track.rotations()[4]);
+    for f in &sink.0 {
+        if f.1 < 0.0 {
+            assert_eq!((f.2, f.3), (first, Some(DVec3::ZERO)), "frame {}", f.0);
+        } else if f.1 > 2.0 {
+            assert_eq!((f.2, f.3), (last, Some(DVec3::ZERO)), "frame {}", f.0);
+        } else {
+            assert_rot_close(f.2, curve.rotation(f.1), 1e-13, "inside");
+        }
+    }
 }

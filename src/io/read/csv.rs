@@ -167,7 +167,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     }
     if doc.tracks.is_empty() {
         return Err(input_err!(
-            "{source}: expected at least 2 keys, found only a header"
+            "{source}: expected at least 1 key, found only a header"
         ));
     }
     Ok(doc)
