@@ -5,6 +5,7 @@ mod support;
 
 mod analyze;
 mod animator;
+mod app_conventions;
 mod errors;
 mod hard_cases;
 mod plot;
