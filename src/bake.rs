@@ -14,13 +14,10 @@
 //! struct Frames(Vec<(i64, f64, DQuat)>);
 //!
 //! impl FrameSink for Frames {
-//!     fn begin_track(&mut self, _name: Option<&str>) -> std::io::Result<()> { Ok(()) }
 //!     fn frame(&mut self, k: i64, t: f64, q: DQuat, _w: Option<DVec3>) -> std::io::Result<()> {
 //!         self.0.push((k, t, q));
 //!         Ok(())
 //!     }
-//!     fn end_track(&mut self) -> std::io::Result<()> { Ok(()) }
-//!     fn finish(&mut self) -> std::io::Result<()> { Ok(()) }
 //! }
 //!
 //! let track = Track::new(
@@ -48,17 +45,25 @@ use glam::{DQuat, DVec3};
 use std::io;
 
 /// Receives a curve's frames, track by track: [`bake()`] calls `begin_track`, `frame` for every
-/// frame in order, then `end_track`; the caller calls `finish` after the last track.
+/// frame in order, then `end_track`; the caller calls `finish` after the last track. Only
+/// `frame` must be written: the others do nothing unless a sink needs them (a file format that
+/// opens and closes tracks).
 pub trait FrameSink {
     /// A track starts (`name` when it has one).
-    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()>;
+    fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
+        Ok(())
+    }
     /// One frame: its number `k` on the grid, its time `k/fps` in seconds, the rotation, and
     /// the world-frame angular velocity in rad/s when it was asked for.
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()>;
     /// The track's last frame has been given.
-    fn end_track(&mut self) -> io::Result<()>;
+    fn end_track(&mut self) -> io::Result<()> {
+        Ok(())
+    }
     /// The last track has ended: write what closes the output and flush it.
-    fn finish(&mut self) -> io::Result<()>;
+    fn finish(&mut self) -> io::Result<()> {
+        Ok(())
+    }
 }
 
 /// What [`bake()`] computes besides the rotations, and how.

@@ -2,11 +2,10 @@
 //! binary: at frame times a [`Curve`] gives the rotations and angular velocities `interp`
 //! writes; off the grid its velocity and acceleration agree with finite differences of itself.
 
-use crate::support::{assert_rot_close, assert_vec_close, bin};
+use crate::support::{Collect, assert_rot_close, assert_vec_close, bin};
 use glam::{DQuat, DVec3, EulerRot};
 use inbetween::{
-    BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, FrameSink, Scheme, Track,
-    TrackError, bake,
+    BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, Scheme, Track, TrackError, bake,
 };
 
 /// Five keys, unevenly spaced, turning about every axis (one step over 90°).
@@ -137,41 +136,21 @@ fn off_the_grid_derivatives_agree_with_finite_differences() {
     }
 }
 
-/// Frames collected in memory.
-#[derive(Default)]
-struct Frames(Vec<(i64, f64, DQuat, Option<DVec3>)>);
-
-impl FrameSink for Frames {
-    fn begin_track(&mut self, _: Option<&str>) -> std::io::Result<()> {
-        Ok(())
-    }
-    fn frame(&mut self, k: i64, t: f64, q: DQuat, w: Option<DVec3>) -> std::io::Result<()> {
-        self.0.push((k, t, q, w));
-        Ok(())
-    }
-    fn end_track(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-    fn finish(&mut self) -> std::io::Result<()> {
-        Ok(())
-    }
-}
-
 #[test]
 fn bake_streams_the_frames_interp_writes() {
     let track = track();
     let fps: Fps = "29.97".parse().unwrap();
     for scheme in Scheme::ALL {
         let curve = Curve::new(&track, &options(scheme, fps)).unwrap();
-        let mut sink = Frames::default();
+        let mut sink = Collect::default();
         let opts = BakeOptions {
             velocity: true,
             parallel: false,
         };
         bake(&curve, fps, opts, &mut sink, &mut |w| panic!("{w}")).unwrap();
         let want = interp(scheme, "29.97");
-        assert_eq!(sink.0.len(), want.len());
-        for ((k, t, q, w), (tw, qw, ww)) in sink.0.iter().zip(&want) {
+        assert_eq!(sink.frames.len(), want.len());
+        for ((k, t, q, w), (tw, qw, ww)) in sink.frames.iter().zip(&want) {
             assert_eq!((t, fps.time_of(*k)), (tw, *t), "{scheme} frame {k}");
             // The binary normalises the keys it reads: the same curve up to the last bits.
             let what = format!("{scheme} frame {k}");
@@ -242,7 +221,7 @@ fn a_one_key_track_is_a_constant() {
             assert_eq!(curve.angular_acceleration(t), DVec3::ZERO);
         }
         // Baked over a clip of one second at 10 fps: eleven frames of the key, at rest.
-        let mut sink = Frames::default();
+        let mut sink = Collect::default();
         let opts = BakeOptions {
             velocity: true,
             parallel: false,
@@ -252,8 +231,12 @@ fn a_one_key_track_is_a_constant() {
             panic!("{w}")
         })
         .unwrap();
-        assert_eq!(sink.0.len(), 11);
-        assert!(sink.0.iter().all(|f| f.2 == q && f.3 == Some(DVec3::ZERO)));
+        assert_eq!(sink.frames.len(), 11);
+        assert!(
+            sink.frames
+                .iter()
+                .all(|f| f.2 == q && f.3 == Some(DVec3::ZERO))
+        );
     }
 }
 
@@ -262,16 +245,16 @@ fn bake_over_a_clip_holds_the_end_keys() {
     let track = track();
     let fps = Fps::new(10, 1).unwrap();
     let curve = Curve::new(&track, &options(Scheme::Hermite, fps)).unwrap();
-    let mut sink = Frames::default();
+    let mut sink = Collect::default();
     let opts = BakeOptions {
         velocity: true,
         parallel: false,
     };
     inbetween::bake_over(&curve, fps, (-0.3, 2.25), opts, &mut sink, &mut |_| {}).unwrap();
-    let ks: Vec<i64> = sink.0.iter().map(|f| f.0).collect();
+    let ks: Vec<i64> = sink.frames.iter().map(|f| f.0).collect();
     assert_eq!(ks, (-3..=22).collect::<Vec<_>>());
     let (first, last) = (track.rotations()[0], track.rotations()[4]);
-    for f in &sink.0 {
+    for f in &sink.frames {
         if f.1 < 0.0 {
             assert_eq!((f.2, f.3), (first, Some(DVec3::ZERO)), "frame {}", f.0);
         } else if f.1 > 2.0 {

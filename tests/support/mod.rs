@@ -76,17 +76,8 @@ pub struct Collect {
 }
 
 impl FrameSink for Collect {
-    fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
-        Ok(())
-    }
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
         self.frames.push((k, time, q, omega));
-        Ok(())
-    }
-    fn end_track(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-    fn finish(&mut self) -> io::Result<()> {
         Ok(())
     }
 }
