@@ -3,6 +3,7 @@
 
 mod cli;
 mod cmd;
+mod signals;
 
 use clap::Parser;
 use cli::{Cli, Command};
@@ -10,6 +11,7 @@ use inbetween::Error;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    signals::install();
     let cli = Cli::parse();
     let mut stdin = std::io::stdin().lock();
     let mut warn = |msg: &str| eprintln!("inbetween: warning: {msg}");

@@ -6,6 +6,7 @@ mod support;
 mod analyze;
 mod errors;
 mod hard_cases;
+mod output;
 mod plot;
 mod reliability;
 mod roundtrip;
