@@ -3,6 +3,7 @@
 
 mod cli;
 mod cmd;
+mod signals;
 mod warnings;
 
 use clap::Parser;
@@ -11,6 +12,7 @@ use inbetween::Error;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
+    signals::install();
     let cli = Cli::parse();
     let mut stdin = std::io::stdin().lock();
     let mut warnings = warnings::Warnings::default();

@@ -1,68 +1,284 @@
-//! Where output goes: standard output, or a file written atomically (a temporary file in the
-//! target's directory, renamed over the target only when everything was written).
+//! Where output goes: standard output, or a file written atomically (a temporary file beside the
+//! target, renamed over it only when everything was written), or a device or pipe written
+//! directly.
+//!
+//! What `-o PATH` does depends on what `PATH` is:
+//!
+//! - a regular file, or nothing yet: a temporary file `.inbetween-*.tmp` in the same directory,
+//!   renamed over `PATH` by [`Output::commit`] (atomic; a replaced file keeps its mode, a new one
+//!   gets 0666 less the umask);
+//! - a symbolic link (or a chain of them): the link stays, and what it finally points to is
+//!   treated as above (the temporary file goes beside the link's target);
+//! - a character or block device, or a FIFO: opened for writing and written directly, never
+//!   replaced (so not atomic);
+//! - a directory, a socket, a loop of symbolic links, or a path whose directory does not exist
+//!   or is not a directory: an input error naming `PATH`.
+//!
+//! Temporary files of uncommitted outputs are listed process-wide so that a signal handler can
+//! remove them with [`remove_temp_files`] before the process ends.
 
+use crate::error::{Error, input_err};
+use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
-/// An output destination. Call [`Output::commit`] after the last byte; dropping it uncommitted
-/// leaves an existing target untouched and removes the temporary file.
-pub enum Output {
-    /// Standard output, buffered.
+/// An output destination: standard output, a temporary file renamed over the target by
+/// [`Output::commit`], or a device or FIFO written directly. Dropping it uncommitted leaves an
+/// existing target file untouched and removes the temporary file (bytes already written to a
+/// device or FIFO stay written).
+pub struct Output(Dest);
+
+enum Dest {
     Stdout(BufWriter<io::Stdout>),
-    /// A temporary file beside `target`, renamed over it by [`Output::commit`].
-    File {
-        /// The temporary file.
-        writer: BufWriter<tempfile::NamedTempFile>,
-        /// The file the user named.
-        target: PathBuf,
-    },
+    Temp(TempOutput),
+    Direct(BufWriter<File>),
+}
+
+/// A temporary file, renamed over `target` on commit. `registered` is declared after `writer` so
+/// that on drop the file is removed before it leaves the registry (the other order would leave a
+/// moment in which a signal could not find it).
+struct TempOutput {
+    writer: BufWriter<tempfile::NamedTempFile>,
+    registered: Registered,
+    /// The file to replace: the user's path with symbolic links resolved.
+    target: PathBuf,
 }
 
 const BUF: usize = 1 << 16;
 
-impl Output {
-    /// Standard output (`None` or `-`), or a temporary file beside `path`.
-    pub fn open(path: Option<&Path>) -> io::Result<Output> {
-        match path {
-            None => Ok(Output::Stdout(BufWriter::with_capacity(BUF, io::stdout()))),
-            Some(p) if p.as_os_str() == "-" => {
-                Ok(Output::Stdout(BufWriter::with_capacity(BUF, io::stdout())))
-            }
-            Some(p) => {
-                let dir = match p.parent() {
-                    Some(d) if !d.as_os_str().is_empty() => d,
-                    _ => Path::new("."),
-                };
-                let mut builder = tempfile::Builder::new();
-                builder.prefix(".inbetween-").suffix(".tmp");
-                // tempfile creates 0600 files; an output file should get what any program's
-                // output gets (0666 less the umask), or keep the mode of the file it replaces.
-                #[cfg(unix)]
-                {
-                    use std::os::unix::fs::PermissionsExt;
-                    builder.permissions(std::fs::Permissions::from_mode(0o666));
-                }
-                let tmp = builder.tempfile_in(dir)?;
-                if let Ok(meta) = std::fs::metadata(p) {
-                    tmp.as_file().set_permissions(meta.permissions())?;
-                }
-                Ok(Output::File {
-                    writer: BufWriter::with_capacity(BUF, tmp),
-                    target: p.to_path_buf(),
-                })
-            }
+/// Paths of the temporary files of live, uncommitted outputs. `closed` once
+/// [`remove_temp_files`] ran: no temporary file is created or renamed after that.
+struct Registry {
+    paths: Vec<PathBuf>,
+    closed: bool,
+}
+
+static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
+    paths: Vec::new(),
+    closed: false,
+});
+
+fn registry() -> MutexGuard<'static, Registry> {
+    REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// A temporary file's place in the registry, left on drop or by `release`.
+struct Registered(Option<PathBuf>);
+
+impl Registered {
+    fn release(&mut self, reg: &mut Registry) {
+        if let Some(p) = self.0.take()
+            && let Some(i) = reg.paths.iter().position(|q| *q == p)
+        {
+            reg.paths.swap_remove(i);
         }
     }
+}
 
-    /// Flushes and, for a file, renames the temporary file over the target.
+impl Drop for Registered {
+    fn drop(&mut self) {
+        if self.0.is_some() {
+            self.release(&mut registry());
+        }
+    }
+}
+
+/// Removes the temporary file of every uncommitted file [`Output`] of this process, for a signal
+/// handler (SIGINT, SIGTERM, …) about to end the process. It holds the same lock as
+/// [`Output::commit`]'s rename, so a target is either replaced whole or left untouched. From then
+/// on no temporary file is created or renamed: [`Output::open`] of a file and
+/// [`Output::commit`] of one fail with [`io::ErrorKind::Interrupted`]. Errors removing a file are
+/// ignored.
+pub fn remove_temp_files() {
+    let mut reg = registry();
+    reg.closed = true;
+    for p in reg.paths.drain(..) {
+        let _ = std::fs::remove_file(p);
+    }
+}
+
+fn interrupted() -> io::Error {
+    io::Error::new(
+        io::ErrorKind::Interrupted,
+        "output abandoned: the process is being interrupted",
+    )
+}
+
+/// An I/O error about `-o PATH`, naming it. tempfile's errors name the temporary file
+/// (`… at path "dir/.inbetween-XXXX.tmp"`); only their cause is kept.
+fn named(path: &Path, what: &str, e: io::Error) -> Error {
+    let message = e.to_string();
+    let cause = match message.rsplit_once(" at path \"") {
+        Some((cause, _)) => cause,
+        None => &message,
+    };
+    Error::Io(io::Error::new(
+        e.kind(),
+        format!("-o {}: {what}: {cause}", path.display()),
+    ))
+}
+
+/// Follows a chain of symbolic links to the path it ends at (which may not exist). Relative
+/// links are relative to the link's directory; the kernel resolves any `..` when the result is
+/// used.
+fn resolve_links(path: &Path) -> Result<PathBuf, Error> {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                let link = std::fs::read_link(&p)
+                    .map_err(|e| named(path, "cannot read the symbolic link", e))?;
+                p = match p.parent() {
+                    Some(dir) if link.is_relative() => dir.join(link),
+                    _ => link,
+                };
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(input_err!(
+        "-o {}: expected a file, found a loop of symbolic links",
+        path.display()
+    )
+    .into())
+}
+
+/// The directory `path` would be created in.
+fn parent_dir(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
+impl Output {
+    /// Standard output (`None` or `-`), else the destination for `path` (see the [module
+    /// documentation](self)). A directory, a socket, a loop of symbolic links or a missing
+    /// directory is an [`Error::Input`] naming `path`; failing to create or open the file is an
+    /// [`Error::Io`] naming it.
+    pub fn open(path: Option<&Path>) -> Result<Output, Error> {
+        let p = match path {
+            Some(p) if p.as_os_str() != "-" => p,
+            _ => {
+                return Ok(Output(Dest::Stdout(BufWriter::with_capacity(
+                    BUF,
+                    io::stdout(),
+                ))));
+            }
+        };
+        let target = resolve_links(p)?;
+        let existing = match std::fs::symlink_metadata(&target) {
+            Ok(meta) => Some(meta),
+            Err(e) => {
+                let dir = parent_dir(&target);
+                match std::fs::metadata(dir) {
+                    Err(d) if d.kind() == io::ErrorKind::NotFound => {
+                        return Err(input_err!(
+                            "-o {}: directory {} does not exist",
+                            p.display(),
+                            dir.display()
+                        )
+                        .into());
+                    }
+                    Ok(m) if !m.is_dir() => {
+                        return Err(input_err!(
+                            "-o {}: {} is not a directory",
+                            p.display(),
+                            dir.display()
+                        )
+                        .into());
+                    }
+                    _ => {}
+                }
+                if e.kind() != io::ErrorKind::NotFound {
+                    return Err(named(p, "cannot write", e));
+                }
+                None
+            }
+        };
+        if let Some(meta) = &existing {
+            let kind = meta.file_type();
+            if kind.is_dir() {
+                return Err(
+                    input_err!("-o {}: expected a file, found a directory", p.display()).into(),
+                );
+            }
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::FileTypeExt;
+                if kind.is_socket() {
+                    return Err(
+                        input_err!("-o {}: expected a file, found a socket", p.display()).into(),
+                    );
+                }
+            }
+            if !kind.is_file() {
+                // A device or a FIFO: written in place. Opening a FIFO waits for its reader.
+                let file = std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(&target)
+                    .map_err(|e| named(p, "cannot open", e))?;
+                return Ok(Output(Dest::Direct(BufWriter::with_capacity(BUF, file))));
+            }
+        }
+        let dir = parent_dir(&target);
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(".inbetween-").suffix(".tmp");
+        // tempfile creates 0600 files; an output file should get what any program's output gets
+        // (0666 less the umask), or keep the mode of the file it replaces.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            builder.permissions(std::fs::Permissions::from_mode(0o666));
+        }
+        // Created and registered under the lock, so that a signal finds every temporary file.
+        let tmp = {
+            let mut reg = registry();
+            if reg.closed {
+                return Err(named(p, "cannot write", interrupted()));
+            }
+            let tmp = builder
+                .tempfile_in(dir)
+                .map_err(|e| named(p, "cannot create a temporary file", e))?;
+            reg.paths.push(tmp.path().to_path_buf());
+            tmp
+        };
+        let registered = Registered(Some(tmp.path().to_path_buf()));
+        if let Some(meta) = existing {
+            tmp.as_file()
+                .set_permissions(meta.permissions())
+                .map_err(|e| named(p, "cannot set the mode", e))?;
+        }
+        Ok(Output(Dest::Temp(TempOutput {
+            writer: BufWriter::with_capacity(BUF, tmp),
+            registered,
+            target,
+        })))
+    }
+
+    /// Flushes and, for a temporary file, renames it over the target.
     pub fn commit(self) -> io::Result<()> {
-        match self {
-            Output::Stdout(mut w) => w.flush(),
-            Output::File { writer, target } => {
+        match self.0 {
+            Dest::Stdout(mut w) => w.flush(),
+            Dest::Direct(mut w) => w.flush(),
+            Dest::Temp(TempOutput {
+                writer,
+                mut registered,
+                target,
+            }) => {
                 let tmp = writer.into_inner().map_err(|e| e.into_error())?;
                 tmp.as_file().sync_all().ok();
-                tmp.persist(&target).map_err(|e| e.error)?;
-                Ok(())
+                // Under the lock: a signal arriving now waits, then finds the target replaced
+                // whole (or, if the rename failed, the temporary file already removed).
+                let mut reg = registry();
+                if reg.closed {
+                    registered.release(&mut reg);
+                    return Err(interrupted());
+                }
+                let renamed = tmp.persist(&target).map(drop).map_err(|e| e.error);
+                registered.release(&mut reg);
+                renamed
             }
         }
     }
@@ -70,23 +286,26 @@ impl Output {
 
 impl Write for Output {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        match self {
-            Output::Stdout(w) => w.write(buf),
-            Output::File { writer, .. } => writer.write(buf),
+        match &mut self.0 {
+            Dest::Stdout(w) => w.write(buf),
+            Dest::Temp(t) => t.writer.write(buf),
+            Dest::Direct(w) => w.write(buf),
         }
     }
 
     fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
-        match self {
-            Output::Stdout(w) => w.write_all(buf),
-            Output::File { writer, .. } => writer.write_all(buf),
+        match &mut self.0 {
+            Dest::Stdout(w) => w.write_all(buf),
+            Dest::Temp(t) => t.writer.write_all(buf),
+            Dest::Direct(w) => w.write_all(buf),
         }
     }
 
     fn flush(&mut self) -> io::Result<()> {
-        match self {
-            Output::Stdout(w) => w.flush(),
-            Output::File { writer, .. } => writer.flush(),
+        match &mut self.0 {
+            Dest::Stdout(w) => w.flush(),
+            Dest::Temp(t) => t.writer.flush(),
+            Dest::Direct(w) => w.flush(),
         }
     }
 }

@@ -8,6 +8,7 @@ mod animator;
 mod app_conventions;
 mod errors;
 mod hard_cases;
+mod output;
 mod plot;
 mod reliability;
 mod roundtrip;
