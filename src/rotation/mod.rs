@@ -7,6 +7,7 @@
 pub mod euler;
 pub mod matrix;
 pub mod quat;
+pub mod unwrap;
 
 use crate::error::InputResult;
 use crate::error::input_err;

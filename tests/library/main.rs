@@ -8,3 +8,4 @@ mod api;
 mod conventions;
 mod minaccel;
 mod properties;
+mod unwrap;
