@@ -6,6 +6,7 @@ mod support;
 mod analyze;
 mod errors;
 mod hard_cases;
+mod numbers;
 mod plot;
 mod reliability;
 mod roundtrip;
