@@ -77,7 +77,14 @@ impl Fps {
         Ok(fps)
     }
 
-    /// Parses `24`, `29.97`, `30000/1001`, `12.5`.
+    /// Parses `24`, `29.97`, `30000/1001`, `12.5`, `1e7`, `2.5e1`.
+    ///
+    /// A decimal may have an exponent (`e`/`E`, optionally signed); it must denote an exact
+    /// decimal of at most 9 decimals once trailing zeros are dropped: `1.2e-1` is 3/25,
+    /// `1.5e-10` is refused. The NTSC decimals mean their /1001 ratios in every spelling
+    /// (`29.97`, `29.970`, `2.997e1`); a ratio `N/D` is always exact. A value outside 1e-6 to
+    /// 1e7 frames per second, in any spelling, is refused with the range message, which quotes
+    /// the value as written.
     pub fn parse(s: &str) -> InputResult<Fps> {
         let s = s.trim();
         let bad = || {
@@ -85,37 +92,102 @@ impl Fps {
                 "expected a positive frame rate such as 24, 29.97 or 30000/1001, found \"{s}\""
             )
         };
+        let zero = || input_err!("expected a positive frame rate, found {s}");
+        let range = || {
+            input_err!(
+                "expected a frame rate between 1e-6 and {MAX_FPS:e} frames per second, found {s}"
+            )
+        };
         if let Some((n, d)) = s.split_once('/') {
             let n: u64 = n.trim().parse().map_err(|_| bad())?;
             let d: u64 = d.trim().parse().map_err(|_| bad())?;
-            return Fps::new(n, d).map_err(|e| e.at(format!("\"{s}\"")));
+            if n == 0 || d == 0 {
+                return Err(zero());
+            }
+            return Fps::new(n, d).map_err(|_| range());
         }
-        match s {
-            "23.976" => return Fps::new(24000, 1001),
-            "29.97" => return Fps::new(30000, 1001),
-            "47.952" => return Fps::new(48000, 1001),
-            "59.94" => return Fps::new(60000, 1001),
-            "119.88" => return Fps::new(120000, 1001),
-            _ => {}
-        }
-        let (int, frac) = s.split_once('.').unwrap_or((s, ""));
+        // digits[.digits][e[+|-]digits], at least one digit before the exponent.
+        let (mantissa, exponent) = match s.find(['e', 'E']) {
+            Some(i) => (&s[..i], Some(&s[i + 1..])),
+            None => (s, None),
+        };
+        let (int, frac) = mantissa.split_once('.').unwrap_or((mantissa, ""));
         let digits_ok = |t: &str| t.bytes().all(|b| b.is_ascii_digit());
         if int.is_empty() && frac.is_empty() || !digits_ok(int) || !digits_ok(frac) {
             return Err(bad());
         }
-        if frac.len() > 9 || int.len() > 12 {
+        let exponent: i64 = match exponent {
+            None => 0,
+            Some(e) => {
+                let unsigned = e.strip_prefix(['+', '-']).unwrap_or(e);
+                if unsigned.is_empty() || !digits_ok(unsigned) {
+                    return Err(bad());
+                }
+                // Beyond ±10⁶ only the sign matters (the value is far out of range).
+                let magnitude: i64 = unsigned
+                    .trim_start_matches('0')
+                    .parse::<i64>()
+                    .map_or(1_000_000, |m| m.min(1_000_000));
+                if e.starts_with('-') {
+                    -magnitude
+                } else {
+                    magnitude
+                }
+            }
+        };
+        // value = significant · 10^power, significant without leading or trailing zeros.
+        let all = format!("{int}{frac}");
+        let significant = all.trim_start_matches('0').trim_end_matches('0');
+        if significant.is_empty() {
+            return Err(zero());
+        }
+        let trailing = all.trim_end_matches('0').len();
+        let power = exponent - frac.len() as i64 + (all.len() - trailing) as i64;
+        // 10^order ≤ value < 10^(order+1): out of 1e-6..1e7 whatever the digits.
+        let order = significant.len() as i64 - 1 + power;
+        if !(-6..=7).contains(&order) {
+            return Err(range());
+        }
+        // At most 9 decimals (at most 17 significant digits here), so num/den fit a u64.
+        if power < -9 {
             return Err(bad());
         }
-        let den = 10u64.pow(frac.len() as u32);
-        let num: u64 = format!("{int}{frac}").parse().map_err(|_| bad())?;
-        Fps::new(num, den)
+        let sig: u64 = significant.parse().map_err(|_| bad())?;
+        let (num, den) = if power >= 0 {
+            (sig * 10u64.pow(power as u32), 1)
+        } else {
+            (sig, 10u64.pow((-power) as u32))
+        };
+        let fps = Fps::new(num, den).map_err(|_| range())?;
+        // The NTSC decimals, however spelled (29.97, 29.970, 2.997e1), are the /1001 ratios.
+        const NTSC: [(u64, u64, u64); 5] = [
+            (2997, 125, 24000), // 23.976
+            (2997, 100, 30000), // 29.97
+            (5994, 125, 48000), // 47.952
+            (2997, 50, 60000),  // 59.94
+            (2997, 25, 120000), // 119.88
+        ];
+        match NTSC.iter().find(|&&(n, d, _)| (n, d) == (fps.num, fps.den)) {
+            Some(&(_, _, ntsc)) => Fps::new(ntsc, 1001),
+            None => Ok(fps),
+        }
     }
 
     /// A rate from a JSON number (integers and the decimals [`Fps::parse`] accepts).
     pub fn from_f64(x: f64) -> InputResult<Fps> {
         if !x.is_finite() || x <= 0.0 {
-            return Err(input_err!("expected a positive frame rate, found {x}"));
+            return Err(input_err!(
+                "expected a positive frame rate, found {}",
+                crate::error::num(x)
+            ));
         }
+        if !(1e-6..=MAX_FPS).contains(&x) {
+            return Err(input_err!(
+                "expected a frame rate between 1e-6 and {MAX_FPS:e} frames per second, found {}",
+                crate::error::num(x)
+            ));
+        }
+        // Rust's `{}` is the shortest decimal that reads back to `x`, without exponent.
         Fps::parse(&format!("{x}"))
     }
 
@@ -369,13 +441,91 @@ mod tests {
             "",
             "1/0",
             "0/5",
-            "1e3",
+            "1e",
+            "e3",
+            "1e+",
+            "1e3.5",
+            "1e-3e1",
             ".",
             "1e400",
             "99999999999",
+            "1.5e-10",
+            "0x10",
+            "+24",
         ] {
             assert!(Fps::parse(s).is_err(), "{s}");
         }
+    }
+
+    #[test]
+    fn exponent_notation_is_the_exact_decimal() {
+        // Each pair denotes the same decimal; the ratio is worked out by hand.
+        for (s, num, den) in [
+            ("1e7", 10_000_000, 1),
+            ("1E7", 10_000_000, 1),
+            ("1e+7", 10_000_000, 1),
+            ("10000000", 10_000_000, 1),
+            ("2.5e1", 25, 1),
+            ("1.2e-1", 3, 25),
+            ("0.12", 3, 25),
+            ("120e-3", 3, 25),
+            ("1e-6", 1, 1_000_000),
+            ("0.000001", 1, 1_000_000),
+            ("2.4e01", 24, 1),
+            ("1.0000000000", 1, 1),
+            ("1.234e-6", 617, 500_000_000),
+        ] {
+            assert_eq!(Fps::parse(s).unwrap(), Fps::new(num, den).unwrap(), "{s}");
+        }
+        // The NTSC decimals in any spelling.
+        for s in ["29.97", "29.970", "2.997e1", "2997e-2"] {
+            assert_eq!(
+                Fps::parse(s).unwrap(),
+                Fps::new(30000, 1001).unwrap(),
+                "{s}"
+            );
+        }
+        assert_eq!(Fps::parse("2997/100").unwrap().to_string(), "2997/100");
+    }
+
+    #[test]
+    fn out_of_range_in_every_spelling_gives_the_range_message() {
+        let range = |v: &str| {
+            format!("expected a frame rate between 1e-6 and 1e7 frames per second, found {v}")
+        };
+        for s in [
+            "1e8",
+            "1.5e7",
+            "10000001",
+            "1e400",
+            "99999999999",
+            "1e-7",
+            "0.0000001",
+        ] {
+            assert_eq!(Fps::parse(s).unwrap_err().message(), range(s), "{s}");
+        }
+        assert_eq!(
+            Fps::parse("20000002/2").unwrap_err().message(),
+            range("20000002/2")
+        );
+        // Zero in any spelling, quoted once (`--fps 0/0` used to quote it twice).
+        for s in ["0", "0.0", "0e5", "0/0", "0/5", "1/0"] {
+            assert_eq!(
+                Fps::parse(s).unwrap_err().message(),
+                format!("expected a positive frame rate, found {s}"),
+                "{s}"
+            );
+        }
+        assert_eq!(
+            Fps::from_f64(1e-300).unwrap_err().message(),
+            range("1e-300")
+        );
+        assert_eq!(Fps::from_f64(1e20).unwrap_err().message(), range("1e20"));
+        assert_eq!(
+            Fps::from_f64(1e7).unwrap(),
+            Fps::new(10_000_000, 1).unwrap()
+        );
+        assert_eq!(Fps::from_f64(0.12).unwrap(), Fps::new(3, 25).unwrap());
     }
 
     #[test]

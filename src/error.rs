@@ -98,10 +98,13 @@ impl From<crate::track::TrackError> for Error {
     }
 }
 
-/// A number for a message: plain digits for ordinary magnitudes, exponent notation for very small
-/// or large ones (Rust's `{}` would print 5e-324 with 323 zeros).
+/// A number for a message: plain digits for ordinary magnitudes (`0.5`, `1.01`, `-24`),
+/// exponent notation with every significant digit for very small or large ones (`5e-324`,
+/// `1e300`, `1.2345e-7`; Rust's `{}` would print 5e-324 with 323 zeros), `0` for ±0.
 pub fn num(x: f64) -> String {
-    if x == 0.0 || (1e-4..1e15).contains(&x.abs()) || !x.is_finite() {
+    if x == 0.0 {
+        "0".to_string()
+    } else if (1e-4..1e15).contains(&x.abs()) || !x.is_finite() {
         format!("{x}")
     } else {
         format!("{x:e}")
@@ -116,3 +119,24 @@ macro_rules! input_err {
     ($($arg:tt)*) => { $crate::error::InputError::new(format!($($arg)*)) };
 }
 pub(crate) use input_err;
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    #[test]
+    fn numbers_keep_their_digits() {
+        assert_eq!(num(0.5), "0.5");
+        assert_eq!(num(-24.0), "-24");
+        assert_eq!(num(1.01), "1.01");
+        assert_eq!(num(1e-4), "0.0001");
+        assert_eq!(num(999999999999999.0), "999999999999999");
+        assert_eq!(num(1e15), "1e15");
+        assert_eq!(num(1e300), "1e300");
+        assert_eq!(num(-1.2345e-7), "-1.2345e-7");
+        assert_eq!(num(5e-324), "5e-324");
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(-0.0), "0");
+        assert_eq!(num(f64::INFINITY), "inf");
+    }
+}

@@ -139,6 +139,33 @@ pub const FIELDS: [&str; 10] = [
 ];
 
 impl Metrics {
+    /// The last line of defence before a report is written: every figure, in `unit`, is finite
+    /// (a NaN or infinite figure is a bug, never printed). The error is of kind `InvalidData`:
+    /// `internal error: non-finite figure in the analysis of track "hip", scheme hermite
+    /// ("energy" = NaN)`.
+    pub fn check_finite(&self, unit: AngleUnit) -> std::io::Result<()> {
+        let values = self.values(unit);
+        match values.iter().position(|x| !x.is_finite()) {
+            None => Ok(()),
+            Some(i) => {
+                let track = match &self.track {
+                    Some(name) => format!("track \"{name}\""),
+                    None => "an unnamed track".to_string(),
+                };
+                Err(std::io::Error::new(
+                    std::io::ErrorKind::InvalidData,
+                    format!(
+                        "internal error: non-finite figure in the analysis of {track}, scheme {} \
+                         (\"{}\" = {})",
+                        self.scheme.name(),
+                        FIELDS[i + 2],
+                        values[i]
+                    ),
+                ))
+            }
+        }
+    }
+
     /// The numeric fields in `unit` (after `track` and `scheme`).
     pub fn values(&self, unit: AngleUnit) -> [f64; 8] {
         let a = |x: f64| unit.from_rad(x);
@@ -219,6 +246,45 @@ fn format_sig(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn figures(energy: f64, max_speed: f64) -> Metrics {
+        Metrics {
+            track: Some("hip".into()),
+            scheme: Scheme::Squad,
+            duration: 1.0,
+            angle: 0.5,
+            max_speed,
+            mean_speed: 0.5,
+            max_accel: 2.0,
+            c1_jump: 0.0,
+            c2_jump: 0.0,
+            energy,
+            solver: None,
+        }
+    }
+
+    #[test]
+    fn a_non_finite_figure_is_an_internal_error() {
+        assert!(figures(1.0, 3.0).check_finite(AngleUnit::Deg).is_ok());
+        let err = figures(f64::NAN, 3.0)
+            .check_finite(AngleUnit::Deg)
+            .unwrap_err();
+        assert_eq!(err.kind(), std::io::ErrorKind::InvalidData);
+        assert_eq!(
+            err.to_string(),
+            "internal error: non-finite figure in the analysis of track \"hip\", scheme squad \
+             (\"energy\" = NaN)"
+        );
+        // Finite in radians, infinite in degrees.
+        let mut m = figures(1.0, 1e307);
+        assert!(m.check_finite(AngleUnit::Rad).is_ok());
+        m.track = None;
+        assert_eq!(
+            m.check_finite(AngleUnit::Deg).unwrap_err().to_string(),
+            "internal error: non-finite figure in the analysis of an unnamed track, scheme squad \
+             (\"max_speed\" = inf)"
+        );
+    }
 
     #[test]
     fn sig_format() {

@@ -26,6 +26,7 @@ pub fn run(
             };
             let curve = Curve::new(track, &opts).map_err(|e| e.at(&input.doc.source))?;
             let m = measure(&curve, input.fps);
+            m.check_finite(unit)?;
             if let Some(r) = m.solver
                 && !r.converged
             {

@@ -37,6 +37,10 @@ pub enum Side {
     Right,
 }
 
+/// Largest accepted end velocity, rad/s: beyond it the tangents' products overflow (and a frame
+/// period cannot resolve the motion anyway).
+pub const MAX_SPEED: f64 = 1e15;
+
 /// Step in `u` of the finite differences.
 const H: f64 = 1e-3;
 
@@ -124,10 +128,21 @@ impl Curve {
     /// its grid for minaccel (which fails only for a grid larger than
     /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
     pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
-        for (end, v) in [("start", opts.ends.start), ("end", opts.ends.end)] {
+        let given = [
+            ("start", opts.ends.start.or(track.start_velocity())),
+            ("end", opts.ends.end.or(track.end_velocity())),
+        ];
+        for (end, v) in given {
             if let Some(v) = v.filter(|v| !v.is_finite()) {
                 return Err(InputError::new(format!(
                     "{end} velocity: expected three finite numbers, found {v}"
+                )));
+            }
+            let speed = v.map(|v| crate::rotation::magnitude::length(v.to_array()));
+            if let Some(speed) = speed.filter(|&s| s > MAX_SPEED) {
+                return Err(InputError::new(format!(
+                    "{end} velocity: expected at most {MAX_SPEED:e} rad/s, found {} rad/s",
+                    crate::error::num(speed)
                 )));
             }
         }

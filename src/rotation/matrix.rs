@@ -8,6 +8,7 @@
 
 use crate::error::InputResult;
 use crate::error::input_err;
+use crate::rotation::magnitude::product_num;
 use glam::{DMat3, DQuat, DVec3};
 
 /// Largest accepted Frobenius norm of `RᵀR − I` before projection (docs/spec.md §2).
@@ -37,30 +38,53 @@ pub fn to_rows(m: &DMat3) -> [[f64; 3]; 3] {
 ///
 /// The projection is the orthogonal polar factor `U Vᵀ` of the SVD, computed by Newton's
 /// iteration `R ← (R + R⁻ᵀ)/2`, which converges quadratically from a nearly orthonormal start.
+///
+/// A matrix with entries beyond 1e100 or all below 1e-100 is checked as `s·N` (`s` its largest
+/// entry), so its determinant and `‖RᵀR − I‖` are computed without overflow and reported with
+/// their digits even beyond f64's range (`1e200·I` has `‖RᵀR − I‖ = 1.732e400`).
 pub fn to_quat(rows: [[f64; 3]; 3]) -> InputResult<DQuat> {
-    let m = from_rows(rows);
+    let flat = [
+        rows[0][0], rows[0][1], rows[0][2], rows[1][0], rows[1][1], rows[1][2], rows[2][0],
+        rows[2][1], rows[2][2],
+    ];
+    // M = s·N; s = 1 for ordinary entries.
+    let (s, n) = crate::rotation::magnitude::split(flat);
+    let m = from_rows([[n[0], n[1], n[2]], [n[3], n[4], n[5]], [n[6], n[7], n[8]]]);
     let det = m.determinant();
     if det < 0.0 {
         return Err(input_err!(
-            "expected a rotation matrix, found a reflection (determinant {det})"
+            "expected a rotation matrix, found a reflection (determinant {})",
+            product_num(&[det, s, s, s], None)
         ));
     }
-    let err = orthonormality_error(&m);
-    if err.is_nan() || err > ORTHONORMAL_TOL {
+    // ‖MᵀM − I‖ = s²·‖NᵀN − I/s²‖ (s ≥ 1); tiny entries (s < 1) cannot overflow as they are.
+    let err = if s >= 1.0 {
+        [deviation(&m, (s * s).recip()), s, s]
+    } else {
+        [orthonormality_error(&from_rows(rows)), 1.0, 1.0]
+    };
+    let value = err[0] * err[1] * err[2];
+    if value.is_nan() || value > ORTHONORMAL_TOL {
         return Err(input_err!(
-            "expected an orthonormal rotation matrix (‖RᵀR − I‖ ≤ 1e-3), found ‖RᵀR − I‖ = {err:.3e}"
+            "expected an orthonormal rotation matrix (‖RᵀR − I‖ ≤ 1e-3), found ‖RᵀR − I‖ = {}",
+            product_num(&err, Some(3))
         ));
     }
-    let r = project(m);
+    let r = project(from_rows(rows));
     Ok(crate::rotation::quat::canonical(
         DQuat::from_mat3(&r).normalize(),
     ))
 }
 
+/// Frobenius norm of `NᵀN − c·I`.
+fn deviation(n: &DMat3, c: f64) -> f64 {
+    let e = n.transpose() * *n - DMat3::IDENTITY * c;
+    (e.x_axis.length_squared() + e.y_axis.length_squared() + e.z_axis.length_squared()).sqrt()
+}
+
 /// Frobenius norm of `RᵀR − I`.
 pub fn orthonormality_error(m: &DMat3) -> f64 {
-    let e = m.transpose() * *m - DMat3::IDENTITY;
-    (e.x_axis.length_squared() + e.y_axis.length_squared() + e.z_axis.length_squared()).sqrt()
+    deviation(m, 1.0)
 }
 
 /// Nearest rotation (polar factor) of a nearly orthonormal matrix with positive determinant.

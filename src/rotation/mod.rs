@@ -5,12 +5,14 @@
 //! as they are; every other representation describes the rotation, so the sign does not matter.
 
 pub mod euler;
+pub mod magnitude;
 pub mod matrix;
 pub mod quat;
 pub mod unwrap;
 
 use crate::error::InputResult;
 use crate::error::input_err;
+use crate::error::num;
 pub use euler::EulerSeq;
 use glam::{DMat3, DQuat, DVec3};
 use std::fmt;
@@ -174,6 +176,12 @@ impl Repr {
 
     /// Converts values (quaternions as `[w, x, y, z]`, matrices row-major) to a unit quaternion.
     /// Returns a warning when a quaternion's norm is off 1 by more than 1e-3.
+    ///
+    /// Lengths are computed without overflow or underflow ([`magnitude`]): a quaternion or axis
+    /// of any finite non-zero scale is normalised. Angles in degrees are reduced exactly modulo
+    /// 360 first, so any finite value works (1e200° is 128°); in radians an angle, Euler angle or
+    /// rotation vector beyond 1e15 rad is an error, and so is a rotation vector longer than 1e15
+    /// degrees (its length is rounded, so its fraction of a turn is lost beyond that).
     pub fn to_quat(&self, v: &[f64], unit: AngleUnit) -> InputResult<(DQuat, Option<String>)> {
         debug_assert_eq!(v.len(), self.width());
         if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
@@ -181,42 +189,87 @@ impl Repr {
         }
         let q = match *self {
             Repr::Quat => {
-                let q = DQuat::from_xyzw(v[1], v[2], v[3], v[0]);
-                let n = q.length();
+                // q = s·w with w safe to square; s = 1 for ordinary values.
+                let (s, w) = magnitude::split([v[1], v[2], v[3], v[0]]);
+                let q = DQuat::from_array(w);
+                let r = q.length();
+                let n = s * r;
                 if n < MIN_QUAT_NORM {
                     return Err(input_err!(
                         "expected a quaternion of non-zero length, found norm {n:e}"
                     ));
                 }
-                let warning = ((n - 1.0).abs() > QUAT_NORM_WARN)
-                    .then(|| format!("quaternion norm {n} is off 1 by more than 1e-3; normalized"));
-                return Ok((q / n, warning));
+                let warning = ((n - 1.0).abs() > QUAT_NORM_WARN).then(|| {
+                    format!(
+                        "quaternion norm {} is off 1 by more than 1e-3; normalized",
+                        magnitude::product_num(&[r, s], None)
+                    )
+                });
+                return Ok((q / r, warning));
             }
             Repr::Euler(seq) => {
-                seq.to_quat([unit.to_rad(v[0]), unit.to_rad(v[1]), unit.to_rad(v[2])])
+                let mut rad = [0.0; 3];
+                for (i, (r, &a)) in rad.iter_mut().zip(v).enumerate() {
+                    *r = magnitude::angle_to_rad(a, unit).ok_or_else(|| {
+                        input_err!(
+                            "expected Euler angles within ±{:e} rad, found e{} = {}",
+                            magnitude::MAX_ANGLE,
+                            i + 1,
+                            num(a)
+                        )
+                    })?;
+                }
+                seq.to_quat(rad)
             }
             Repr::Matrix => {
                 let rows = [[v[0], v[1], v[2]], [v[3], v[4], v[5]], [v[6], v[7], v[8]]];
                 matrix::to_quat(rows)?
             }
             Repr::AxisAngle => {
-                let axis = DVec3::new(v[0], v[1], v[2]);
-                let angle = unit.to_rad(v[3]);
+                let (_, w) = magnitude::split([v[0], v[1], v[2]]);
+                let axis = DVec3::from_array(w);
                 let n = axis.length();
                 if n == 0.0 {
-                    if angle != 0.0 {
+                    if v[3] != 0.0 {
                         return Err(input_err!(
                             "expected a non-zero axis for a non-zero angle, found axis (0, 0, 0)"
                         ));
                     }
                     DQuat::IDENTITY
                 } else {
-                    quat::exp(axis * (angle / (2.0 * n)))
+                    let angle = magnitude::angle_to_rad(v[3], unit).ok_or_else(|| {
+                        input_err!(
+                            "expected an angle within ±{:e} rad, found {}",
+                            magnitude::MAX_ANGLE,
+                            num(v[3])
+                        )
+                    })?;
+                    from_unit_axis(axis / n, angle)
                 }
             }
             Repr::RotVec => {
-                let r = DVec3::new(unit.to_rad(v[0]), unit.to_rad(v[1]), unit.to_rad(v[2]));
-                quat::exp(r * 0.5)
+                let (s, w) = magnitude::split([v[0], v[1], v[2]]);
+                let dir = DVec3::from_array(w);
+                let r = dir.length();
+                if r == 0.0 {
+                    DQuat::IDENTITY
+                } else {
+                    // The length in the vector's own unit; rounded, so not reduced exactly.
+                    let len = s * r;
+                    if len > magnitude::MAX_ANGLE {
+                        return Err(input_err!(
+                            "expected a rotation vector no longer than {:e} {}, found length {}",
+                            magnitude::MAX_ANGLE,
+                            unit.as_str(),
+                            magnitude::product_num(&[r, s], None)
+                        ));
+                    }
+                    let angle = match unit {
+                        AngleUnit::Deg => (len % 360.0).to_radians(),
+                        AngleUnit::Rad => len,
+                    };
+                    from_unit_axis(dir / r, angle)
+                }
             }
         };
         Ok((quat::canonical(q.normalize()), None))
@@ -249,6 +302,13 @@ impl Repr {
             }
         }
     }
+}
+
+/// The rotation by `angle` (radians) about the unit `axis`: `(cos ½angle, sin ½angle·axis)`.
+/// (Not `exp(axis·½angle)`: that would recompute the angle as a rounded length.)
+fn from_unit_axis(axis: DVec3, angle: f64) -> DQuat {
+    let (s, c) = (0.5 * angle).sin_cos();
+    DQuat::from_xyzw(axis.x * s, axis.y * s, axis.z * s, c)
 }
 
 impl fmt::Display for Repr {
@@ -328,6 +388,164 @@ mod tests {
             .to_quat(&[0.0, 0.0, 0.0, 0.0], AngleUnit::Deg)
             .unwrap();
         assert_eq!(q, DQuat::IDENTITY);
+    }
+
+    /// The rotation by `deg` degrees about the unit `axis`, by the closed form, `w ≥ 0`.
+    fn closed_form(axis: DVec3, deg: f64) -> DQuat {
+        let h = deg.to_radians() / 2.0;
+        quat::canonical(DQuat::from_xyzw(
+            axis.x * h.sin(),
+            axis.y * h.sin(),
+            axis.z * h.sin(),
+            h.cos(),
+        ))
+    }
+
+    fn message(repr: Repr, v: &[f64], unit: AngleUnit) -> String {
+        repr.to_quat(v, unit).unwrap_err().message().to_string()
+    }
+
+    #[test]
+    fn large_quaternions_are_normalised() {
+        // Their norm overflowed to inf (the result was 0, 0, 0, 0).
+        let (q, w) = Repr::Quat
+            .to_quat(&[1e200, 0.0, 0.0, 0.0], AngleUnit::Deg)
+            .unwrap();
+        assert_eq!(q, DQuat::IDENTITY);
+        assert_eq!(
+            w.as_deref(),
+            Some("quaternion norm 1e200 is off 1 by more than 1e-3; normalized")
+        );
+        // A norm beyond f64 itself (2e308): each component is half the norm.
+        let (q, w) = Repr::Quat
+            .to_quat(&[-1e308, 1e308, 1e308, 1e308], AngleUnit::Deg)
+            .unwrap();
+        assert_eq!(q, DQuat::from_xyzw(0.5, 0.5, 0.5, -0.5));
+        assert_eq!(
+            w.as_deref(),
+            Some("quaternion norm 2e308 is off 1 by more than 1e-3; normalized")
+        );
+    }
+
+    #[test]
+    fn tiny_quaternions_keep_their_norm_in_the_message() {
+        // The norm underflowed to 0 and was printed as 0e0.
+        assert_eq!(
+            message(Repr::Quat, &[1e-300, 0.0, 0.0, 0.0], AngleUnit::Deg),
+            "expected a quaternion of non-zero length, found norm 1e-300"
+        );
+        assert_eq!(
+            message(Repr::Quat, &[0.0, 3e-200, 0.0, 4e-200], AngleUnit::Deg),
+            "expected a quaternion of non-zero length, found norm 5e-200"
+        );
+        assert_eq!(
+            message(Repr::Quat, &[0.0; 4], AngleUnit::Deg),
+            "expected a quaternion of non-zero length, found norm 0e0"
+        );
+    }
+
+    #[test]
+    fn axes_of_any_scale_are_normalised() {
+        // (1e200, 0, 0) silently became the identity; (1e-320, 0, 0) an error "axis (0, 0, 0)".
+        let want = closed_form(DVec3::X, 90.0);
+        for scale in [1e200, 1e-320, f64::MAX] {
+            let (q, _) = Repr::AxisAngle
+                .to_quat(&[scale, 0.0, 0.0, 90.0], AngleUnit::Deg)
+                .unwrap();
+            assert!((q - want).length() < 1e-15, "{scale:e}: {q}");
+        }
+        let (q, _) = Repr::AxisAngle
+            .to_quat(&[0.0, 3e250, -4e250, 60.0], AngleUnit::Deg)
+            .unwrap();
+        assert!((q - closed_form(DVec3::new(0.0, 0.6, -0.8), 60.0)).length() < 1e-15);
+    }
+
+    #[test]
+    fn degrees_are_reduced_exactly_before_conversion() {
+        // int(1e200) mod 360 = 128, int(-1e200) mod 360 = 232 ≡ −128, int(1e15) mod 360 = 280
+        // (Python's exact integers).
+        let (q, _) = Repr::AxisAngle
+            .to_quat(&[0.0, 0.0, 2.0, 1e200], AngleUnit::Deg)
+            .unwrap();
+        assert!((q - closed_form(DVec3::Z, 128.0)).length() < 1e-15, "{q}");
+        let (q, _) = Repr::AxisAngle
+            .to_quat(&[0.0, 0.0, 2.0, -1e200], AngleUnit::Deg)
+            .unwrap();
+        assert!((q - closed_form(DVec3::Z, -128.0)).length() < 1e-15, "{q}");
+        let zyx = Repr::parse("euler:ZYX").unwrap();
+        let (q, _) = zyx.to_quat(&[0.0, 1e200, 0.0], AngleUnit::Deg).unwrap();
+        assert!((q - closed_form(DVec3::Y, 128.0)).length() < 1e-15, "{q}");
+        // A rotation vector along an axis has an exact length: 1e15° ≡ 280° ≡ −80°.
+        let (q, _) = Repr::RotVec
+            .to_quat(&[0.0, 0.0, 1e15], AngleUnit::Deg)
+            .unwrap();
+        assert!((q - closed_form(DVec3::Z, -80.0)).length() < 1e-15, "{q}");
+    }
+
+    #[test]
+    fn radians_that_lose_the_turn_are_refused() {
+        assert_eq!(
+            message(Repr::AxisAngle, &[1.0, 0.0, 0.0, 1e300], AngleUnit::Rad),
+            "expected an angle within ±1e15 rad, found 1e300"
+        );
+        assert_eq!(
+            message(
+                Repr::parse("euler:zxz").unwrap(),
+                &[0.0, -2e15, 0.0],
+                AngleUnit::Rad
+            ),
+            "expected Euler angles within ±1e15 rad, found e2 = -2e15"
+        );
+        assert_eq!(
+            message(Repr::RotVec, &[1e300, 0.0, 0.0], AngleUnit::Rad),
+            "expected a rotation vector no longer than 1e15 rad, found length 1e300"
+        );
+        // A length beyond f64 keeps its digits: √3·1e308.
+        assert_eq!(
+            message(Repr::RotVec, &[1e308, -1e308, 1e308], AngleUnit::Rad),
+            "expected a rotation vector no longer than 1e15 rad, found length 1.7320508075688772e308"
+        );
+        // Rotation vectors in degrees too: their length is rounded, so not reduced exactly.
+        assert_eq!(
+            message(Repr::RotVec, &[0.0, 1e200, 0.0], AngleUnit::Deg),
+            "expected a rotation vector no longer than 1e15 deg, found length 1e200"
+        );
+        // At the limit: accepted, and sin/cos reduce the exact binary value.
+        let (q, _) = Repr::RotVec
+            .to_quat(&[1e15, 0.0, 0.0], AngleUnit::Rad)
+            .unwrap();
+        let h: f64 = 0.5e15;
+        let want = quat::canonical(DQuat::from_xyzw(h.sin(), 0.0, 0.0, h.cos()));
+        assert!((q - want).length() < 1e-15);
+        assert!(
+            Repr::AxisAngle
+                .to_quat(&[1.0, 0.0, 0.0, -1e15], AngleUnit::Rad)
+                .is_ok()
+        );
+    }
+
+    #[test]
+    fn huge_and_tiny_matrices_report_their_numbers() {
+        let diag = |a: f64, b: f64| [a, 0.0, 0.0, 0.0, b, 0.0, 0.0, 0.0, b];
+        // 1e200·I: RᵀR − I = (1e400 − 1)·I, Frobenius norm √3·1e400.
+        assert_eq!(
+            message(Repr::Matrix, &diag(1e200, 1e200), AngleUnit::Deg),
+            "expected an orthonormal rotation matrix (‖RᵀR − I‖ ≤ 1e-3), found ‖RᵀR − I‖ = 1.732e400"
+        );
+        // diag(−1e200, 1e200, 1e200): determinant −1e600.
+        assert_eq!(
+            message(Repr::Matrix, &diag(-1e200, 1e200), AngleUnit::Deg),
+            "expected a rotation matrix, found a reflection (determinant -1e600)"
+        );
+        assert_eq!(
+            message(Repr::Matrix, &diag(-1e-200, 1e-200), AngleUnit::Deg),
+            "expected a rotation matrix, found a reflection (determinant -1e-600)"
+        );
+        // 1e-200·I: RᵀR ≈ 0, so ‖RᵀR − I‖ = √3.
+        assert_eq!(
+            message(Repr::Matrix, &diag(1e-200, 1e-200), AngleUnit::Deg),
+            "expected an orthonormal rotation matrix (‖RᵀR − I‖ ≤ 1e-3), found ‖RᵀR − I‖ = 1.732e0"
+        );
     }
 
     #[test]

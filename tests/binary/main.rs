@@ -8,6 +8,7 @@ mod animator;
 mod app_conventions;
 mod errors;
 mod hard_cases;
+mod numbers;
 mod output;
 mod plot;
 mod reliability;

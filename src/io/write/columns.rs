@@ -42,19 +42,33 @@ impl RotationFormatter {
     }
 
     /// Appends `q` as CSV cells, each preceded by a comma (quaternions always `w,x,y,z`).
+    /// Returns whether every value was finite (the caller discards the bytes otherwise).
     #[inline]
-    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat) {
+    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat) -> bool {
         // CSV columns are named, so quaternions are always w,x,y,z.
         let repr = self.style.repr;
         repr.from_quat(q, self.style.angles, &mut self.vals);
+        let mut finite = true;
         for i in 0..repr.width() {
             out.push(b',');
+            finite &= self.vals[i].is_finite();
             self.nums.float(out, self.vals[i]);
         }
+        finite
     }
 
-    /// Appends `q` as a JSON member: `"quat": [w, x, y, z]`, a matrix as rows, etc.
-    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat) {
+    /// The first problem with writing `q` (a non-finite value, or a quaternion that is not a
+    /// rotation), computed again for the message (the cold path after [`Self::csv`] or
+    /// [`Self::json`] returned `false`, or the caller's norm check failed).
+    pub(crate) fn fault(&mut self, q: DQuat) -> Option<super::Bad> {
+        let repr = self.style.repr;
+        repr.from_quat(q, self.style.angles, &mut self.vals);
+        super::rotation_fault(repr, q, &self.vals[..repr.width()])
+    }
+
+    /// Appends `q` as a JSON member: `"quat": [w, x, y, z]`, a matrix as rows, etc. Returns
+    /// whether every value was finite (the caller discards the bytes otherwise).
+    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat) -> bool {
         let key = self.style.repr.json_key();
         let mut vals = [0.0; MAX_WIDTH];
         let n = {
@@ -65,6 +79,7 @@ impl RotationFormatter {
         out.extend_from_slice(b"\"");
         out.extend_from_slice(key.as_bytes());
         out.extend_from_slice(b"\": [");
+        let finite = vals[..n].iter().all(|x| x.is_finite());
         if self.style.repr == Repr::Matrix {
             for r in 0..3 {
                 out.extend_from_slice(if r == 0 { b"[" } else { b", [" });
@@ -85,5 +100,6 @@ impl RotationFormatter {
             }
         }
         out.push(b']');
+        finite
     }
 }

@@ -3,7 +3,9 @@
 use super::columns::RotationFormatter;
 use super::num::NumWriter;
 use super::worker::{Worker, worker_gone};
-use super::{Style, csv_field, json_head, json_string};
+use super::{
+    Bad, Style, csv_field, internal_error, is_rotation, json_head, json_string, velocity_fault,
+};
 use crate::bake::FrameSink;
 use crate::clock::Fps;
 use crate::io::Format;
@@ -37,10 +39,21 @@ pub(super) struct RowFormatter {
     angles: AngleUnit,
 }
 
+/// A frame [`RowFormatter::rows`] refused: its number and what was wrong.
+pub(super) type Fault = (i64, Bad);
+
 impl RowFormatter {
     /// Appends `frames`, the first being frame number `start` of its track; `track` is the CSV
-    /// row prefix (`name,`).
-    pub(super) fn rows(&mut self, out: &mut Vec<u8>, track: &[u8], start: usize, frames: &[Frame]) {
+    /// row prefix (`name,`). Stops at the first frame with a value that must not be written
+    /// (NaN, infinity, a quaternion that is not a rotation: a bug upstream); the bytes appended
+    /// are then to be discarded.
+    pub(super) fn rows(
+        &mut self,
+        out: &mut Vec<u8>,
+        track: &[u8],
+        start: usize,
+        frames: &[Frame],
+    ) -> Result<(), Fault> {
         for (i, f) in frames.iter().enumerate() {
             let omega = if self.velocity {
                 f.omega
@@ -48,6 +61,8 @@ impl RowFormatter {
             } else {
                 None
             };
+            // One `is_finite` per written value and one norm per rotation.
+            let mut ok = f.time.is_finite() && is_rotation(f.q);
             match self.format {
                 Format::Csv => {
                     if self.track_column {
@@ -55,11 +70,12 @@ impl RowFormatter {
                     }
                     self.nums.int(out, f.k);
                     out.push(b',');
-                    self.nums.float(out, f.time);
-                    self.rot.csv(out, f.q);
+                    self.nums.shortest(out, f.time);
+                    ok &= self.rot.csv(out, f.q);
                     if let Some(w) = omega {
                         for x in w {
                             out.push(b',');
+                            ok &= x.is_finite();
                             self.nums.float(out, x);
                         }
                     }
@@ -73,15 +89,16 @@ impl RowFormatter {
                     });
                     self.nums.int(out, f.k);
                     out.extend_from_slice(b", \"time\": ");
-                    self.nums.float(out, f.time);
+                    self.nums.shortest(out, f.time);
                     out.extend_from_slice(b", ");
-                    self.rot.json(out, f.q);
+                    ok &= self.rot.json(out, f.q);
                     if let Some(w) = omega {
                         out.extend_from_slice(b", \"angular_velocity\": [");
                         for (j, x) in w.iter().enumerate() {
                             if j > 0 {
                                 out.extend_from_slice(b", ");
                             }
+                            ok &= x.is_finite();
                             self.nums.float(out, *x);
                         }
                         out.push(b']');
@@ -89,7 +106,23 @@ impl RowFormatter {
                     out.push(b'}');
                 }
             }
+            if !ok || (self.velocity && omega.is_none()) {
+                return Err((f.k, self.fault(f, omega)));
+            }
         }
+        Ok(())
+    }
+
+    /// What is wrong with frame `f` (the cold path of [`Self::rows`]).
+    #[cold]
+    fn fault(&mut self, f: &Frame, omega: Option<[f64; 3]>) -> Bad {
+        if !f.time.is_finite() {
+            return Bad::NonFinite("time", f.time);
+        }
+        if let Some(bad) = self.rot.fault(f.q) {
+            return bad;
+        }
+        velocity_fault(omega)
     }
 }
 
@@ -104,6 +137,8 @@ pub struct FrameWriter<W: Write> {
     format: Format,
     rows: RowFormatter,
     track: Vec<u8>,
+    /// The current track's name, for error messages.
+    track_name: Option<String>,
     tracks_written: usize,
     /// Frames of the current track formatted or queued so far.
     frames_in_track: usize,
@@ -165,6 +200,7 @@ impl<W: Write> FrameWriter<W> {
                 angles: style.angles,
             },
             track: Vec::new(),
+            track_name: None,
             tracks_written: 0,
             frames_in_track: 0,
             block: Vec::with_capacity(BLOCK),
@@ -192,12 +228,27 @@ impl<W: Write> FrameWriter<W> {
         Ok(())
     }
 
+    /// The error for a frame of the current track that must not be written.
+    #[cold]
+    fn refuse(&self, (k, bad): Fault) -> io::Error {
+        let index = self.tracks_written.saturating_sub(1);
+        internal_error(
+            &format!("frame {k}"),
+            self.track_name.as_deref(),
+            index,
+            bad,
+        )
+    }
+
     /// Writes the worker's block, if it holds one.
     fn collect(&mut self) -> io::Result<()> {
         if self.in_flight {
             let worker = self.worker.as_ref().ok_or_else(worker_gone)?;
-            let (bytes, mut frames) = worker.done.recv().map_err(|_| worker_gone())?;
+            let (bytes, mut frames, result) = worker.done.recv().map_err(|_| worker_gone())?;
             self.in_flight = false;
+            if let Err(fault) = result {
+                return Err(self.refuse(fault));
+            }
             self.w.write_all(&self.buf)?;
             self.buf.clear();
             self.w.write_all(&bytes)?;
@@ -237,17 +288,28 @@ impl<W: Write> FrameWriter<W> {
         }
         if !self.in_flight {
             // Nothing to overlap with: format straight into the output buffer.
-            self.rows
+            let before = self.buf.len();
+            let result = self
+                .rows
                 .rows(&mut self.buf, &self.track, start, &self.block);
             self.block.clear();
+            if let Err(fault) = result {
+                self.buf.truncate(before);
+                return Err(self.refuse(fault));
+            }
             return self.maybe_flush();
         }
         // Format this block while the worker formats the previous one, then write both in order.
         self.scratch.clear();
-        self.rows
+        let result = self
+            .rows
             .rows(&mut self.scratch, &self.track, start, &self.block);
         self.block.clear();
         self.collect()?;
+        if let Err(fault) = result {
+            self.scratch.clear();
+            return Err(self.refuse(fault));
+        }
         self.w.write_all(&self.scratch)?;
         Ok(())
     }
@@ -261,6 +323,7 @@ impl<W: Write> FrameWriter<W> {
 impl<W: Write> FrameSink for FrameWriter<W> {
     fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
         self.frames_in_track = 0;
+        self.track_name = name.map(str::to_string);
         match self.format {
             Format::Csv => {
                 self.track = csv_field(name.unwrap_or(""));
@@ -340,6 +403,148 @@ mod tests {
         let mut seq = FrameWriter::new(Vec::new(), format, style, fps, true, velocity).sequential();
         write(&mut seq);
         (par.into_inner(), seq.into_inner())
+    }
+
+    fn quat_style(num: NumFormat) -> Style {
+        Style {
+            repr: Repr::Quat,
+            angles: AngleUnit::Deg,
+            quat_order: QuatOrder::Wxyz,
+            num,
+        }
+    }
+
+    /// Writes one track named `name` of `n` frames at 30 fps, frame `bad` replaced by `frame`;
+    /// returns the bytes that reached the output and the error.
+    fn write_with_bad_frame(
+        format: Format,
+        parallel: bool,
+        name: Option<&str>,
+        n: usize,
+        bad: usize,
+        frame: (f64, DQuat, Option<DVec3>),
+    ) -> (Vec<u8>, io::Error) {
+        let fps = Fps::new(30, 1).unwrap();
+        let style = quat_style(NumFormat::Shortest);
+        let mut w = FrameWriter::new(Vec::new(), format, style, fps, false, true);
+        if !parallel {
+            w = w.sequential();
+        }
+        let mut result = w.begin_track(name);
+        for k in 0..n {
+            if result.is_err() {
+                break;
+            }
+            let (t, q, omega) = if k == bad {
+                frame
+            } else {
+                (k as f64 / 30.0, DQuat::IDENTITY, Some(DVec3::ZERO))
+            };
+            result = w.frame(k as i64, t, q, omega);
+        }
+        let result = result
+            .and_then(|()| w.end_track())
+            .and_then(|()| w.finish());
+        let err = result.expect_err("a bad frame is an error");
+        (w.into_inner(), err)
+    }
+
+    #[test]
+    fn non_finite_values_are_refused_not_written() {
+        let nan_q = DQuat::from_xyzw(f64::NAN, 0.0, 0.0, 1.0);
+        let cases = [
+            (
+                (f64::NAN, DQuat::IDENTITY, Some(DVec3::ZERO)),
+                "internal error: non-finite value in frame 7 of track \"hip\" (\"time\" = NaN)",
+            ),
+            (
+                (0.2, nan_q, Some(DVec3::ZERO)),
+                "internal error: non-finite value in frame 7 of track \"hip\" (\"x\" = NaN)",
+            ),
+            (
+                (0.2, DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), Some(DVec3::ZERO)),
+                "internal error: zero or non-unit quaternion in frame 7 of track \"hip\" (norm 0)",
+            ),
+            (
+                // Finite in rad/s, infinite in deg/s.
+                (0.2, DQuat::IDENTITY, Some(DVec3::new(0.0, 1e307, 0.0))),
+                "internal error: non-finite value in frame 7 of track \"hip\" (\"wy\" = inf)",
+            ),
+            (
+                (0.2, DQuat::IDENTITY, None),
+                "internal error: no angular velocity in frame 7 of track \"hip\"",
+            ),
+        ];
+        for format in [Format::Csv, Format::Json] {
+            for (frame, want) in cases {
+                let (out, err) = write_with_bad_frame(format, false, Some("hip"), 10, 7, frame);
+                assert_eq!(err.kind(), io::ErrorKind::InvalidData);
+                assert_eq!(err.to_string(), want, "{format:?}");
+                let text = String::from_utf8(out).unwrap();
+                assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
+            }
+        }
+        // An unnamed track is named by its index.
+        let (_, err) = write_with_bad_frame(
+            Format::Csv,
+            false,
+            None,
+            3,
+            0,
+            (0.0, nan_q, Some(DVec3::ZERO)),
+        );
+        assert_eq!(
+            err.to_string(),
+            "internal error: non-finite value in frame 0 of track 0 (\"x\" = NaN)"
+        );
+    }
+
+    #[test]
+    fn a_bad_frame_in_a_block_of_the_formatting_thread_is_refused() {
+        // Frame 2·BLOCK + 5 is in the third block: formatted by the worker thread when there are
+        // two cores, here otherwise.
+        let bad = 2 * BLOCK + 5;
+        for format in [Format::Csv, Format::Json] {
+            let (out, err) = write_with_bad_frame(
+                format,
+                true,
+                Some("arm"),
+                4 * BLOCK,
+                bad,
+                (f64::INFINITY, DQuat::IDENTITY, Some(DVec3::ZERO)),
+            );
+            assert_eq!(
+                err.to_string(),
+                format!(
+                    "internal error: non-finite value in frame {bad} of track \"arm\" (\"time\" = inf)"
+                )
+            );
+            let text = String::from_utf8(out).unwrap();
+            assert!(!text.contains("inf"));
+        }
+    }
+
+    #[test]
+    fn times_are_shortest_whatever_the_precision() {
+        let fps = Fps::new(30, 1).unwrap();
+        // `--precision 1` used to write the time 1/30 as 0.0, and x = −1e-9 as -0.0.
+        for (format, want) in [
+            (Format::Csv, "1,0.03333333333333333,-1.0,0.0,0.0,0.0\n"),
+            (
+                Format::Json,
+                "{\"frame\": 1, \"time\": 0.03333333333333333, \"quat\": [-1.0, 0.0, 0.0, 0.0]}",
+            ),
+        ] {
+            let style = quat_style(NumFormat::Fixed(1));
+            let mut w = FrameWriter::new(Vec::new(), format, style, fps, false, false);
+            w.begin_track(None).unwrap();
+            w.frame(1, 1.0 / 30.0, DQuat::from_xyzw(-1e-9, 0.0, 0.0, -1.0), None)
+                .unwrap();
+            w.end_track().unwrap();
+            w.finish().unwrap();
+            let text = String::from_utf8(w.into_inner()).unwrap();
+            assert!(text.contains(want), "{format:?}: {text}");
+        }
     }
 
     #[test]

@@ -2,18 +2,19 @@
 
 use super::columns::RotationFormatter;
 use super::num::NumWriter;
-use super::{Style, csv_field, json_head, json_string};
+use super::{Bad, Style, csv_field, internal_error, is_rotation, json_head, json_string};
 use crate::clock::Fps;
 use crate::io::Format;
 use crate::io::document::{Document, KeyTime};
 use std::io::{self, Write};
 
-/// Writes a key's time, or its frame number (as an integer when it is whole).
+/// Writes a key's time, or its frame number (as an integer when it is whole), with the
+/// shortest round-trip digits whatever the precision (it is a time, not a rotation).
 fn when_value(nums: &mut NumWriter, buf: &mut Vec<u8>, x: f64, frame: bool) {
     if frame && x.fract() == 0.0 && x.abs() < 9.007_199_254_740_992e15 {
         nums.int(buf, x as i64);
     } else {
-        nums.float(buf, x);
+        nums.shortest(buf, x);
     }
 }
 
@@ -23,6 +24,10 @@ fn when_value(nums: &mut NumWriter, buf: &mut Vec<u8>, x: f64, frame: bool) {
 ///
 /// Keys are written with `frame` when every key of the document has one, otherwise with `time`
 /// (frames converted at `frame_fps`).
+///
+/// A NaN or infinite value, or a key rotation that is not a unit quaternion, is never written:
+/// the error is `internal error: non-finite value in key 3 of track "hip" ("time" = inf)`
+/// (kind `InvalidData`), and nothing is written.
 pub fn write_keys<W: Write>(
     mut w: W,
     doc: &Document,
@@ -45,6 +50,22 @@ pub fn write_keys<W: Write>(
     let mut nums = NumWriter::new(style.num);
     let mut buf = Vec::new();
     let named = doc.named_tracks || doc.tracks.len() > 1;
+    // The last line of defence: one check per written value (see the module `write`).
+    let refuse = |ti: usize, item: &str, bad: Bad| {
+        internal_error(item, doc.tracks[ti].name.as_deref(), ti, bad)
+    };
+    let check_key = |rot: &mut RotationFormatter, ti: usize, i: usize, t: f64, ok: bool| {
+        let q = doc.tracks[ti].keys[i].rot;
+        if ok && t.is_finite() && is_rotation(q) {
+            return Ok(());
+        }
+        let bad = if t.is_finite() {
+            rot.fault(q).unwrap_or(Bad::NotRotation(q.length()))
+        } else {
+            Bad::NonFinite(when_name, t)
+        };
+        Err(refuse(ti, &format!("key {i}"), bad))
+    };
     match format {
         Format::Csv => {
             if named {
@@ -56,14 +77,16 @@ pub fn write_keys<W: Write>(
                 buf.extend_from_slice(c.as_bytes());
             }
             buf.push(b'\n');
-            for track in &doc.tracks {
-                for key in &track.keys {
+            for (ti, track) in doc.tracks.iter().enumerate() {
+                for (i, key) in track.keys.iter().enumerate() {
                     if named {
                         buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
                         buf.push(b',');
                     }
-                    when_value(&mut nums, &mut buf, when(key.when), all_frames);
-                    rot.csv(&mut buf, key.rot);
+                    let t = when(key.when);
+                    when_value(&mut nums, &mut buf, t, all_frames);
+                    let ok = rot.csv(&mut buf, key.rot);
+                    check_key(&mut rot, ti, i, t, ok)?;
                     buf.push(b'\n');
                 }
             }
@@ -79,15 +102,25 @@ pub fn write_keys<W: Write>(
                 &style,
                 velocities,
             );
-            let vel = |buf: &mut Vec<u8>, nums: &mut NumWriter, name: &str, v: glam::DVec3| {
+            let vel = |buf: &mut Vec<u8>,
+                       nums: &mut NumWriter,
+                       ti: usize,
+                       name: &'static str,
+                       v: glam::DVec3| {
                 buf.extend_from_slice(format!(", \"{name}\": [").as_bytes());
                 for (i, x) in v.to_array().iter().enumerate() {
                     if i > 0 {
                         buf.extend_from_slice(b", ");
                     }
-                    nums.float(buf, style.angles.from_rad(*x));
+                    let x = style.angles.from_rad(*x);
+                    if !x.is_finite() {
+                        let item = name.replace('_', " ");
+                        return Err(refuse(ti, &format!("the {item}"), Bad::NonFinite(name, x)));
+                    }
+                    nums.float(buf, x);
                 }
                 buf.push(b']');
+                Ok(())
             };
             buf.extend_from_slice(if named {
                 b", \"tracks\": [\n".as_slice()
@@ -104,19 +137,21 @@ pub fn write_keys<W: Write>(
                     buf.extend_from_slice(format!("\"name\": {}", json_string(&name)).as_bytes());
                 }
                 if let Some(v) = track.start_velocity {
-                    vel(&mut buf, &mut nums, "start_velocity", v);
+                    vel(&mut buf, &mut nums, ti, "start_velocity", v)?;
                 }
                 if let Some(v) = track.end_velocity {
-                    vel(&mut buf, &mut nums, "end_velocity", v);
+                    vel(&mut buf, &mut nums, ti, "end_velocity", v)?;
                 }
                 buf.extend_from_slice(b", \"keys\": [");
                 for (i, key) in track.keys.iter().enumerate() {
                     buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
                     buf.extend_from_slice(when_name.as_bytes());
                     buf.extend_from_slice(b"\": ");
-                    when_value(&mut nums, &mut buf, when(key.when), all_frames);
+                    let t = when(key.when);
+                    when_value(&mut nums, &mut buf, t, all_frames);
                     buf.extend_from_slice(b", ");
-                    rot.json(&mut buf, key.rot);
+                    let ok = rot.json(&mut buf, key.rot);
+                    check_key(&mut rot, ti, i, t, ok)?;
                     buf.push(b'}');
                 }
                 buf.extend_from_slice(b"\n]");
@@ -129,4 +164,93 @@ pub fn write_keys<W: Write>(
     }
     w.write_all(&buf)?;
     w.flush()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::document::{DocTrack, Key, Loc};
+    use crate::io::write::num::NumFormat;
+    use crate::rotation::{AngleUnit, QuatOrder, Repr};
+    use glam::{DQuat, DVec3};
+
+    fn doc(second: (f64, DQuat), start_velocity: Option<DVec3>) -> Document {
+        let key = |i: u64, t: f64, rot: DQuat| Key {
+            when: KeyTime::Seconds(t),
+            rot,
+            loc: Loc::Line(i + 2),
+        };
+        Document {
+            source: "k.csv".into(),
+            fps: None,
+            rotation: Some(Repr::Quat),
+            tracks: vec![DocTrack {
+                name: Some("hip".into()),
+                keys: vec![key(0, 0.0, DQuat::IDENTITY), key(1, second.0, second.1)],
+                start_velocity,
+                end_velocity: None,
+            }],
+            named_tracks: true,
+            warnings: Vec::new(),
+        }
+    }
+
+    fn write(doc: &Document, format: Format, num: NumFormat) -> (Vec<u8>, io::Result<()>) {
+        let style = Style {
+            repr: Repr::Quat,
+            angles: AngleUnit::Deg,
+            quat_order: QuatOrder::Wxyz,
+            num,
+        };
+        let mut out = Vec::new();
+        let r = write_keys(&mut out, doc, format, style, Fps::DEFAULT);
+        (out, r)
+    }
+
+    #[test]
+    fn non_finite_keys_are_refused_not_written() {
+        let cases = [
+            (
+                doc((f64::INFINITY, DQuat::IDENTITY), None),
+                "internal error: non-finite value in key 1 of track \"hip\" (\"time\" = inf)",
+            ),
+            (
+                doc((1.0, DQuat::from_xyzw(0.0, f64::NAN, 0.0, 1.0)), None),
+                "internal error: non-finite value in key 1 of track \"hip\" (\"y\" = NaN)",
+            ),
+            (
+                doc((1.0, DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)), None),
+                "internal error: zero or non-unit quaternion in key 1 of track \"hip\" (norm 0)",
+            ),
+        ];
+        for format in [Format::Csv, Format::Json] {
+            for (doc, want) in &cases {
+                let (out, r) = write(doc, format, NumFormat::Shortest);
+                let err = r.unwrap_err();
+                assert_eq!(err.kind(), io::ErrorKind::InvalidData);
+                assert_eq!(err.to_string(), *want, "{format:?}");
+                assert!(out.is_empty());
+            }
+        }
+        // 1e307 rad/s is finite, but infinite in deg/s.
+        let doc = doc((1.0, DQuat::IDENTITY), Some(DVec3::new(1e307, 0.0, 0.0)));
+        let (out, r) = write(&doc, Format::Json, NumFormat::Shortest);
+        assert_eq!(
+            r.unwrap_err().to_string(),
+            "internal error: non-finite value in the start velocity of track \"hip\" \
+             (\"start_velocity\" = inf)"
+        );
+        assert!(out.is_empty());
+    }
+
+    #[test]
+    fn key_times_are_shortest_whatever_the_precision() {
+        let doc = doc((1.0 / 3.0, DQuat::from_xyzw(0.0, 0.0, -1e-9, 1.0)), None);
+        let (out, r) = write(&doc, Format::Csv, NumFormat::Fixed(2));
+        r.unwrap();
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            "track,time,w,x,y,z\nhip,0.0,1.00,0.00,0.00,0.00\nhip,0.3333333333333333,1.00,0.00,0.00,0.00\n"
+        );
+    }
 }

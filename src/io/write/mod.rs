@@ -20,6 +20,12 @@
 //! - [`keyframes`]: [`write_keys`], a document's keys for `convert`.
 //! - [`npy`]: [`NpyWriter`], frames as a NumPy array.
 //! - [`num`]: shortest round-trip and fixed-precision number formatting.
+//!
+//! Last line of defence (docs/spec.md, *Exit codes*): output never holds NaN, infinity or a zero
+//! quaternion. Every writer checks each value it writes (one `is_finite` per value, one norm
+//! per rotation) and, instead of writing a bad one, fails with an [`io::Error`] of kind
+//! `InvalidData`, `internal error: …`, naming the frame or key and the track. Inputs are
+//! validated and the curves are finite, so this only ever reports a bug.
 
 pub mod columns;
 pub mod frames;
@@ -34,7 +40,9 @@ pub use npy::NpyWriter;
 
 use crate::clock::Fps;
 use crate::rotation::{AngleUnit, QuatOrder, Repr};
+use glam::DQuat;
 use num::NumFormat;
+use std::io;
 
 /// How rotations and numbers are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -77,4 +85,69 @@ pub(crate) fn csv_field(s: &str) -> Vec<u8> {
     } else {
         s.as_bytes().to_vec()
     }
+}
+
+/// A value a writer refused to write (a bug upstream), with the field it was for.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Bad {
+    /// A NaN or infinite value for the named field (`time`, a rotation column, `wx`, …).
+    NonFinite(&'static str, f64),
+    /// A rotation whose quaternion is zero or far from unit, with its norm.
+    NotRotation(f64),
+    /// A frame without the angular velocity the output has columns for.
+    NoVelocity,
+}
+
+/// Whether `q` can be written as a rotation: its squared norm is in `[0.5, 2]` (the curves'
+/// points are unit to 1e-13; this catches a zero, NaN or wildly wrong quaternion, cheaply).
+#[inline]
+pub(crate) fn is_rotation(q: DQuat) -> bool {
+    (0.5..=2.0).contains(&q.length_squared())
+}
+
+/// The first problem among a rotation's written `values` (named by `repr`'s CSV columns) and
+/// its quaternion `q`, if any.
+pub(crate) fn rotation_fault(repr: Repr, q: DQuat, values: &[f64]) -> Option<Bad> {
+    if let Some((i, &x)) = values.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        return Some(Bad::NonFinite(repr.columns()[i], x));
+    }
+    (!is_rotation(q)).then(|| Bad::NotRotation(q.length()))
+}
+
+/// The problem with a frame's written angular velocity `w` (`None`: missing).
+pub(crate) fn velocity_fault(w: Option<[f64; 3]>) -> Bad {
+    match w {
+        None => Bad::NoVelocity,
+        Some(w) => {
+            let i = w.iter().position(|x| !x.is_finite()).unwrap_or(0);
+            Bad::NonFinite(["wx", "wy", "wz"][i], w[i])
+        }
+    }
+}
+
+/// The error for `bad` in `item` (`frame 12`, `key 3`) of a track, named or by index:
+/// `internal error: non-finite value in frame 12 of track "hip" ("wx" = NaN)`.
+pub(crate) fn internal_error(
+    item: &str,
+    track: Option<&str>,
+    track_index: usize,
+    bad: Bad,
+) -> io::Error {
+    let track = match track {
+        Some(name) => format!("track \"{name}\""),
+        None => format!("track {track_index}"),
+    };
+    let msg = match bad {
+        Bad::NonFinite(field, x) => {
+            format!("internal error: non-finite value in {item} of {track} (\"{field}\" = {x})")
+        }
+        Bad::NotRotation(n) => format!(
+            "internal error: zero or non-unit quaternion in {item} of {track} (norm {})",
+            crate::error::num(n)
+        ),
+        Bad::NoVelocity => {
+            format!("internal error: no angular velocity in {item} of {track}")
+        }
+    };
+    io::Error::new(io::ErrorKind::InvalidData, msg)
 }

@@ -10,7 +10,7 @@
 //! returns an `(n_frames, n_columns)` array. The header must state the shape, so the writer is
 //! given the exact number of frames; it checks it at the end.
 
-use super::Style;
+use super::{Bad, Style, internal_error, is_rotation, rotation_fault, velocity_fault};
 use crate::bake::FrameSink;
 use crate::rotation::{MAX_WIDTH, Repr};
 use glam::{DQuat, DVec3};
@@ -22,6 +22,9 @@ pub struct NpyWriter<W: Write> {
     buf: Vec<u8>,
     style: Style,
     track_index: Option<f64>,
+    /// The current track's name and index, for error messages.
+    track: (Option<String>, usize),
+    tracks: usize,
     velocity: bool,
     rows_expected: u64,
     rows: u64,
@@ -59,6 +62,8 @@ impl<W: Write> NpyWriter<W> {
             buf,
             style,
             track_index: track_column.then_some(-1.0),
+            track: (None, 0),
+            tracks: 0,
             velocity,
             rows_expected: rows,
             rows: 0,
@@ -75,18 +80,40 @@ impl<W: Write> NpyWriter<W> {
     fn push(&mut self, x: f64) {
         self.buf.extend_from_slice(&x.to_le_bytes());
     }
+
+    /// What is wrong with a frame whose checks failed (the cold path of `frame`).
+    #[cold]
+    fn refuse(&self, k: i64, time: f64, q: DQuat, omega: Option<[f64; 3]>) -> io::Error {
+        let repr = self.style.repr;
+        let bad = if !time.is_finite() {
+            Bad::NonFinite("time", time)
+        } else if let Some(bad) = rotation_fault(repr, q, &self.vals[..repr.width()]) {
+            bad
+        } else {
+            velocity_fault(omega)
+        };
+        internal_error(
+            &format!("frame {k}"),
+            self.track.0.as_deref(),
+            self.track.1,
+            bad,
+        )
+    }
 }
 
 impl<W: Write> FrameSink for NpyWriter<W> {
-    fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
         if let Some(i) = &mut self.track_index {
             *i += 1.0;
         }
+        self.track = (name.map(str::to_string), self.tracks);
+        self.tracks += 1;
         Ok(())
     }
 
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
+        let row_start = self.buf.len();
         if let Some(i) = self.track_index {
             self.push(i);
         }
@@ -94,14 +121,28 @@ impl<W: Write> FrameSink for NpyWriter<W> {
         self.push(time);
         let repr = self.style.repr;
         repr.from_quat(q, self.style.angles, &mut self.vals);
+        // One `is_finite` per written value and one norm per rotation.
+        let mut ok = time.is_finite() && is_rotation(q);
         for i in 0..repr.width() {
+            ok &= self.vals[i].is_finite();
             self.buf.extend_from_slice(&self.vals[i].to_le_bytes());
         }
+        let unit = self.style.angles;
+        let w = omega.map(|o| o.to_array().map(|x| unit.from_rad(x)));
         if self.velocity {
-            let w = omega.unwrap_or(DVec3::NAN);
-            for x in w.to_array() {
-                self.push(self.style.angles.from_rad(x));
+            match w {
+                Some(w) => {
+                    for x in w {
+                        ok &= x.is_finite();
+                        self.push(x);
+                    }
+                }
+                None => ok = false,
             }
+        }
+        if !ok {
+            self.buf.truncate(row_start);
+            return Err(self.refuse(k, time, q, w));
         }
         self.rows += 1;
         if self.buf.len() >= 1 << 16 {
@@ -131,6 +172,60 @@ impl<W: Write> FrameSink for NpyWriter<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::io::write::num::NumFormat;
+    use crate::rotation::{AngleUnit, QuatOrder};
+
+    fn writer(velocity: bool) -> NpyWriter<Vec<u8>> {
+        let style = Style {
+            repr: Repr::RotVec,
+            angles: AngleUnit::Deg,
+            quat_order: QuatOrder::Wxyz,
+            num: NumFormat::Shortest,
+        };
+        NpyWriter::new(Vec::new(), style, 3, true, velocity)
+    }
+
+    #[test]
+    fn non_finite_values_are_refused_not_written() {
+        let cases = [
+            (
+                (f64::NAN, DQuat::IDENTITY, Some(DVec3::ZERO)),
+                "internal error: non-finite value in frame 1 of track \"arm\" (\"time\" = NaN)",
+            ),
+            (
+                (
+                    0.1,
+                    DQuat::from_xyzw(0.0, 0.0, f64::INFINITY, 1.0),
+                    Some(DVec3::ZERO),
+                ),
+                "internal error: non-finite value in frame 1 of track \"arm\" (\"rz\" = NaN)",
+            ),
+            (
+                (0.1, DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0), Some(DVec3::ZERO)),
+                "internal error: zero or non-unit quaternion in frame 1 of track \"arm\" (norm 0)",
+            ),
+            (
+                (0.1, DQuat::IDENTITY, Some(DVec3::new(0.0, 0.0, -1e307))),
+                "internal error: non-finite value in frame 1 of track \"arm\" (\"wz\" = -inf)",
+            ),
+            (
+                // It used to write NaN for a missing velocity.
+                (0.1, DQuat::IDENTITY, None),
+                "internal error: no angular velocity in frame 1 of track \"arm\"",
+            ),
+        ];
+        for ((t, q, omega), want) in cases {
+            let mut w = writer(true);
+            w.begin_track(Some("arm")).unwrap();
+            w.frame(0, 0.0, DQuat::IDENTITY, Some(DVec3::ZERO)).unwrap();
+            let err = w.frame(1, t, q, omega).unwrap_err();
+            assert_eq!(err.kind(), io::ErrorKind::InvalidData);
+            assert_eq!(err.to_string(), want);
+            // The refused row is not in the buffer: the header, then one row of 9 values
+            // (track, frame, time, rx, ry, rz, wx, wy, wz).
+            assert_eq!(w.buf.len(), header(3, 9).len() + 9 * 8);
+        }
+    }
 
     #[test]
     fn header_is_aligned_and_parsable() {

@@ -38,16 +38,23 @@ impl NumWriter {
         }
     }
 
-    /// Appends a finite float. (Non-finite values never reach output: inputs are validated and
-    /// every curve point is finite; a non-finite value is written as JSON-invalid `NaN` so that a
-    /// bug cannot pass silently as a number.)
+    /// Appends a finite float in the writer's format. Non-finite values must not reach it: the
+    /// writers check every value they write (`is_finite`) and fail with an internal error
+    /// instead; here one would come out as `NaN` or `inf`.
     #[inline]
     pub fn float(&mut self, out: &mut Vec<u8>, x: f64) {
         match self.format {
-            // `+ 0.0` turns −0 into 0: a sign on zero carries no information here.
-            NumFormat::Shortest => out.extend_from_slice(self.zmij.format(x + 0.0).as_bytes()),
+            NumFormat::Shortest => self.shortest(out, x),
             NumFormat::Fixed(n) => fixed(out, x, n, &mut self.itoa),
         }
+    }
+
+    /// Appends a finite float with the shortest digits that read back to it, whatever the
+    /// writer's format (times: `--precision` applies to rotations and velocities only).
+    #[inline]
+    pub fn shortest(&mut self, out: &mut Vec<u8>, x: f64) {
+        // `+ 0.0` turns −0 into 0: a sign on zero carries no information here.
+        out.extend_from_slice(self.zmij.format(x + 0.0).as_bytes());
     }
 
     /// Appends an integer.
@@ -58,8 +65,9 @@ impl NumWriter {
 }
 
 /// Appends `x` with exactly `n` digits after the point: the same bytes as `format!("{x:.n$}")`
-/// (the exact binary value rounded half to even, `-` kept on negative values and −0), without
-/// its generic machinery.
+/// (the exact binary value rounded half to even, `-` kept on negative values), without its
+/// generic machinery — except that a value that rounds to zero has no sign (`-0.001` at two
+/// digits is `0.00`, not `-0.00`; −0 is `0.00`).
 ///
 /// `x = m·2^e` exactly (`m` < 2⁵³), so `x·10ⁿ = m·10ⁿ·2^e`; for `e < 0` and `n ≤ 17` the product
 /// `m·10ⁿ < 2¹¹⁰` fits a `u128`, and the rounded quotient by `2^−e` is one shift and one
@@ -90,7 +98,12 @@ pub fn fixed(out: &mut Vec<u8>, x: f64, n: usize, ints: &mut itoa::Buffer) {
     let exp_bits = ((bits >> 52) & 0x7ff) as i32;
     if n > 17 || exp_bits >= 1023 + 52 || exp_bits == 0x7ff {
         use std::io::Write;
+        let start = out.len();
         let _ = write!(out, "{x:.n$}");
+        // (Only with n > 17 can this be a rounded zero.)
+        if out[start] == b'-' && out[start + 1..].iter().all(|&b| b == b'0' || b == b'.') {
+            out.remove(start);
+        }
         return;
     }
     let frac = bits & ((1u64 << 52) - 1);
@@ -114,7 +127,7 @@ pub fn fixed(out: &mut Vec<u8>, x: f64, n: usize, ints: &mut itoa::Buffer) {
             q
         }
     };
-    if x.is_sign_negative() {
+    if x.is_sign_negative() && q != 0 {
         out.push(b'-');
     }
     // u128 division is a slow library call; every value that matters here fits a u64.
@@ -196,11 +209,13 @@ mod tests {
             for n in 0..=17 {
                 let mut out = Vec::new();
                 fixed(&mut out, x, n, &mut ints);
-                assert_eq!(
-                    String::from_utf8(out).unwrap(),
-                    format!("{x:.n$}"),
-                    "{x:e} n={n}"
-                );
+                // std's bytes, without the sign of a rounded zero.
+                let std = format!("{x:.n$}");
+                let want = match std.strip_prefix('-') {
+                    Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest,
+                    _ => &std,
+                };
+                assert_eq!(String::from_utf8(out).unwrap(), want, "{x:e} n={n}");
             }
         }
     }
@@ -209,6 +224,27 @@ mod tests {
     fn fixed_matches_printf() {
         assert_eq!(fmt(NumFormat::Fixed(3), 0.12345), "0.123");
         assert_eq!(fmt(NumFormat::Fixed(0), 2.5), "2");
-        assert_eq!(fmt(NumFormat::Fixed(2), -0.001), "-0.00");
+        assert_eq!(fmt(NumFormat::Fixed(2), -0.006), "-0.01");
+    }
+
+    #[test]
+    fn fixed_never_writes_minus_zero() {
+        // printf writes "-0.00" and "-0.0" for these; a sign on a written zero is noise.
+        assert_eq!(fmt(NumFormat::Fixed(2), -0.001), "0.00");
+        assert_eq!(fmt(NumFormat::Fixed(1), -1e-9), "0.0");
+        assert_eq!(fmt(NumFormat::Fixed(0), -0.4), "0");
+        assert_eq!(fmt(NumFormat::Fixed(3), -0.0), "0.000");
+        assert_eq!(fmt(NumFormat::Fixed(0), -0.5), "0");
+        assert_eq!(fmt(NumFormat::Fixed(0), -0.51), "-1");
+        let mut out = Vec::new();
+        fixed(&mut out, -1e-30, 20, &mut itoa::Buffer::new());
+        assert_eq!(out, b"0.00000000000000000000");
+    }
+
+    #[test]
+    fn shortest_ignores_the_precision() {
+        let mut out = Vec::new();
+        NumWriter::new(NumFormat::Fixed(1)).shortest(&mut out, 1.0 / 30.0);
+        assert_eq!(out, b"0.03333333333333333");
     }
 }

@@ -1,17 +1,21 @@
 //! The formatting thread behind [`super::FrameWriter`]: it formats the blocks it is sent, in
 //! order, and hands each back with its bytes so the writer can write them in sequence.
 
-use super::frames::{Frame, RowFormatter};
+use super::frames::{Fault, Frame, RowFormatter};
 use std::io;
 
 /// A block sent to the worker: frames, CSV track prefix, index of the first frame in its track;
 /// a buffer to format into comes along and goes back with the result.
 pub(super) type Job = (Vec<Frame>, Vec<u8>, usize, Vec<u8>);
 
+/// A formatted block: its bytes, its frames (for reuse) and whether every frame could be
+/// written (else the bytes are to be discarded).
+pub(super) type Done = (Vec<u8>, Vec<Frame>, Result<(), Fault>);
+
 /// The formatting thread: formats the blocks it is sent, in order.
 pub(super) struct Worker {
     pub(super) jobs: std::sync::mpsc::Sender<Job>,
-    pub(super) done: std::sync::mpsc::Receiver<(Vec<u8>, Vec<Frame>)>,
+    pub(super) done: std::sync::mpsc::Receiver<Done>,
     handle: Option<std::thread::JoinHandle<()>>,
 }
 
@@ -22,8 +26,8 @@ impl Worker {
         let handle = std::thread::spawn(move || {
             for (frames, track, start, mut out) in inbox {
                 out.clear();
-                rows.rows(&mut out, &track, start, &frames);
-                if outbox.send((out, frames)).is_err() {
+                let result = rows.rows(&mut out, &track, start, &frames);
+                if outbox.send((out, frames, result)).is_err() {
                     break;
                 }
             }
