@@ -193,12 +193,25 @@ impl EulerSeq {
         if !symmetric {
             angles[1] -= FRAC_PI_2;
         }
-        angles.map(|x| (x + PI).rem_euclid(TAU) - PI)
+        // Only the first and third angles wrap (as scipy): the middle one is already in its range,
+        // and wrapping it would turn a proper Euler sequence's 180° into −180°.
+        let wrap = |x: f64| (x + PI).rem_euclid(TAU) - PI;
+        [wrap(angles[0]), angles[1], wrap(angles[2])]
     }
 }
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn proper_euler_middle_angle_at_half_turn_is_plus_180() {
+        // ZXZ with the middle angle exactly 180°: scipy's range for it is [0°, 180°].
+        let seq = EulerSeq::parse("ZXZ").unwrap();
+        let q = seq.to_quat([0.3, std::f64::consts::PI, 0.2]);
+        let e = seq.from_quat(q);
+        assert!(e[1] >= 0.0, "{e:?}");
+        assert!((e[1] - std::f64::consts::PI).abs() < 1e-15, "{e:?}");
+    }
+
     use super::*;
     use glam::DMat3;
 
