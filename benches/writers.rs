@@ -23,6 +23,7 @@ fn style(num: NumFormat) -> Style {
         angles: AngleUnit::Deg,
         quat_order: QuatOrder::Wxyz,
         num,
+        euler: Default::default(),
     }
 }
 

@@ -33,6 +33,7 @@ fn main() {
             angles: AngleUnit::Deg,
             quat_order: QuatOrder::Wxyz,
             num,
+            euler: Default::default(),
         };
         let mut times = [Vec::new(), Vec::new()];
         for _ in 0..7 {

@@ -3,6 +3,7 @@
 
 use clap::{Args, Parser, Subcommand};
 use inbetween::Fps;
+use inbetween::io::write::EulerMode;
 use inbetween::io::write::num::{MAX_PRECISION, NumFormat};
 use inbetween::io::{Format, OutputFormat};
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
@@ -101,6 +102,11 @@ pub struct OutputArgs {
     #[arg(short = 'o', long = "output", value_name = "PATH")]
     pub output: Option<PathBuf>,
 
+    /// Euler output along a track: continuous (each triple the one of its rotation nearest the
+    /// previous: no jump at ±180°, no flip at gimbal lock) or wrapped (scipy's ranges).
+    #[arg(long, value_enum, default_value = "continuous")]
+    pub euler: EulerArg,
+
     /// Digits after the decimal point (as printf %.Nf); default: the shortest digits that read
     /// back to the same number.
     #[arg(long, value_name = "N", value_parser = parse_precision)]
@@ -111,6 +117,19 @@ impl OutputArgs {
     pub fn num_format(&self) -> NumFormat {
         self.precision.map_or(NumFormat::Shortest, NumFormat::Fixed)
     }
+
+    pub fn euler_mode(&self) -> EulerMode {
+        match self.euler {
+            EulerArg::Continuous => EulerMode::Continuous,
+            EulerArg::Wrapped => EulerMode::Wrapped,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum EulerArg {
+    Continuous,
+    Wrapped,
 }
 
 #[derive(Debug, Args)]

@@ -47,6 +47,7 @@ pub fn run(
         angles: args.input.angles,
         quat_order: args.input.quat_order,
         num: args.output.num_format(),
+        euler: args.output.euler_mode(),
     };
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &doc, format, style, frame_fps)?;

@@ -82,6 +82,7 @@ pub fn run(
         angles: args.input.angles,
         quat_order: args.input.quat_order,
         num: args.output.num_format(),
+        euler: args.output.euler_mode(),
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);

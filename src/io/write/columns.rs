@@ -23,11 +23,28 @@ impl RotationFormatter {
         }
     }
 
-    /// The values of `q` in the style's representation (JSON component order for quaternions).
+    /// `q` in the style's representation into `vals`; Euler angles from `euler` (radians,
+    /// continuous along the track) when given.
     #[inline]
-    pub fn values(&mut self, q: DQuat) -> &[f64] {
+    fn fill(&mut self, q: DQuat, euler: Option<[f64; 3]>) {
+        match euler {
+            Some(e) => {
+                let unit = self.style.angles;
+                self.vals[..3].copy_from_slice(&e.map(|x| unit.from_rad(x)));
+            }
+            None => self
+                .style
+                .repr
+                .from_quat(q, self.style.angles, &mut self.vals),
+        }
+    }
+
+    /// The values of `q` in the style's representation (JSON component order for quaternions);
+    /// Euler angles from `euler` when given.
+    #[inline]
+    pub fn values(&mut self, q: DQuat, euler: Option<[f64; 3]>) -> &[f64] {
         let repr = self.style.repr;
-        repr.from_quat(q, self.style.angles, &mut self.vals);
+        self.fill(q, euler);
         let w = repr.width();
         if repr == Repr::Quat {
             let o = self.style.quat_order.from_wxyz([
@@ -44,10 +61,10 @@ impl RotationFormatter {
     /// Appends `q` as CSV cells, each preceded by a comma (quaternions always `w,x,y,z`).
     /// Returns whether every value was finite (the caller discards the bytes otherwise).
     #[inline]
-    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat) -> bool {
+    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
         // CSV columns are named, so quaternions are always w,x,y,z.
         let repr = self.style.repr;
-        repr.from_quat(q, self.style.angles, &mut self.vals);
+        self.fill(q, euler);
         let mut finite = true;
         for i in 0..repr.width() {
             out.push(b',');
@@ -68,11 +85,11 @@ impl RotationFormatter {
 
     /// Appends `q` as a JSON member: `"quat": [w, x, y, z]`, a matrix as rows, etc. Returns
     /// whether every value was finite (the caller discards the bytes otherwise).
-    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat) -> bool {
+    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
         let key = self.style.repr.json_key();
         let mut vals = [0.0; MAX_WIDTH];
         let n = {
-            let v = self.values(q);
+            let v = self.values(q, euler);
             vals[..v.len()].copy_from_slice(v);
             v.len()
         };

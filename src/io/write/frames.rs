@@ -22,6 +22,8 @@ pub(super) struct Frame {
     time: f64,
     q: DQuat,
     omega: Option<DVec3>,
+    /// Continuous Euler angles (radians), computed in order on the writer's thread.
+    euler: Option<[f64; 3]>,
 }
 
 /// Frames per block; blocks alternate between this thread and the formatting worker.
@@ -71,7 +73,7 @@ impl RowFormatter {
                     self.nums.int(out, f.k);
                     out.push(b',');
                     self.nums.shortest(out, f.time);
-                    ok &= self.rot.csv(out, f.q);
+                    ok &= self.rot.csv(out, f.q, f.euler);
                     if let Some(w) = omega {
                         for x in w {
                             out.push(b',');
@@ -91,7 +93,7 @@ impl RowFormatter {
                     out.extend_from_slice(b", \"time\": ");
                     self.nums.shortest(out, f.time);
                     out.extend_from_slice(b", ");
-                    ok &= self.rot.json(out, f.q);
+                    ok &= self.rot.json(out, f.q, f.euler);
                     if let Some(w) = omega {
                         out.extend_from_slice(b", \"angular_velocity\": [");
                         for (j, x) in w.iter().enumerate() {
@@ -152,6 +154,10 @@ pub struct FrameWriter<W: Write> {
     spare: Vec<u8>,
     scratch: Vec<u8>,
     recycled: Vec<Frame>,
+    /// The style, for a new track's continuous-Euler state.
+    style: Style,
+    /// Continuous Euler angles along the current track (Euler output, `EulerMode::Continuous`).
+    unwrap: Option<crate::rotation::unwrap::EulerUnwrap>,
 }
 
 impl<W: Write> FrameWriter<W> {
@@ -210,6 +216,8 @@ impl<W: Write> FrameWriter<W> {
             spare: Vec::new(),
             scratch: Vec::new(),
             recycled: Vec::new(),
+            style,
+            unwrap: None,
         }
     }
 
@@ -322,6 +330,7 @@ impl<W: Write> FrameWriter<W> {
 
 impl<W: Write> FrameSink for FrameWriter<W> {
     fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
+        self.unwrap = self.style.unwrapper();
         self.frames_in_track = 0;
         self.track_name = name.map(str::to_string);
         match self.format {
@@ -347,7 +356,14 @@ impl<W: Write> FrameSink for FrameWriter<W> {
 
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
-        self.block.push(Frame { k, time, q, omega });
+        let euler = self.unwrap.as_mut().map(|u| u.next(q));
+        self.block.push(Frame {
+            k,
+            time,
+            q,
+            omega,
+            euler,
+        });
         if self.block.len() == BLOCK {
             self.flush_block(true)?;
         }
@@ -411,6 +427,7 @@ mod tests {
             angles: AngleUnit::Deg,
             quat_order: QuatOrder::Wxyz,
             num,
+            euler: Default::default(),
         }
     }
 
@@ -556,12 +573,14 @@ mod tests {
                 angles: AngleUnit::Deg,
                 quat_order: QuatOrder::Wxyz,
                 num: NumFormat::Shortest,
+                euler: Default::default(),
             },
             Style {
                 repr: Repr::Euler(EulerSeq::parse("zyx").unwrap()),
                 angles: AngleUnit::Rad,
                 quat_order: QuatOrder::Xyzw,
                 num: NumFormat::Fixed(9),
+                euler: Default::default(),
             },
         ];
         for format in [Format::Csv, Format::Json] {

@@ -78,6 +78,7 @@ pub fn write_keys<W: Write>(
             }
             buf.push(b'\n');
             for (ti, track) in doc.tracks.iter().enumerate() {
+                let mut unwrap = style.unwrapper();
                 for (i, key) in track.keys.iter().enumerate() {
                     if named {
                         buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
@@ -85,7 +86,8 @@ pub fn write_keys<W: Write>(
                     }
                     let t = when(key.when);
                     when_value(&mut nums, &mut buf, t, all_frames);
-                    let ok = rot.csv(&mut buf, key.rot);
+                    let euler = unwrap.as_mut().map(|u| u.next(key.rot));
+                    let ok = rot.csv(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
                     buf.push(b'\n');
                 }
@@ -143,6 +145,7 @@ pub fn write_keys<W: Write>(
                     vel(&mut buf, &mut nums, ti, "end_velocity", v)?;
                 }
                 buf.extend_from_slice(b", \"keys\": [");
+                let mut unwrap = style.unwrapper();
                 for (i, key) in track.keys.iter().enumerate() {
                     buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
                     buf.extend_from_slice(when_name.as_bytes());
@@ -150,7 +153,8 @@ pub fn write_keys<W: Write>(
                     let t = when(key.when);
                     when_value(&mut nums, &mut buf, t, all_frames);
                     buf.extend_from_slice(b", ");
-                    let ok = rot.json(&mut buf, key.rot);
+                    let euler = unwrap.as_mut().map(|u| u.next(key.rot));
+                    let ok = rot.json(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
                     buf.push(b'}');
                 }
@@ -201,6 +205,7 @@ mod tests {
             angles: AngleUnit::Deg,
             quat_order: QuatOrder::Wxyz,
             num,
+            euler: Default::default(),
         };
         let mut out = Vec::new();
         let r = write_keys(&mut out, doc, format, style, Fps::DEFAULT);

@@ -55,6 +55,32 @@ pub struct Style {
     pub quat_order: QuatOrder,
     /// Shortest round-trip or fixed precision.
     pub num: NumFormat,
+    /// Euler angles continuous along a track, or each triple in scipy's ranges.
+    pub euler: EulerMode,
+}
+
+/// How Euler angles are written along a track (`--euler`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EulerMode {
+    /// Each triple is the one of its rotation nearest the previous triple (both solutions of
+    /// the sequence, any multiple of 360°): no ±180° wrap, no flip near gimbal lock
+    /// ([`crate::rotation::unwrap`]). A track starts from the canonical triple.
+    #[default]
+    Continuous,
+    /// Each triple in scipy's ranges, independently.
+    Wrapped,
+}
+
+impl Style {
+    /// A new per-track state for continuous Euler angles, when this style writes them.
+    pub(crate) fn unwrapper(&self) -> Option<crate::rotation::unwrap::EulerUnwrap> {
+        match (self.repr, self.euler) {
+            (Repr::Euler(seq), EulerMode::Continuous) => {
+                Some(crate::rotation::unwrap::EulerUnwrap::new(seq))
+            }
+            _ => None,
+        }
+    }
 }
 
 pub(crate) fn json_string(s: &str) -> String {

@@ -29,6 +29,8 @@ pub struct NpyWriter<W: Write> {
     rows_expected: u64,
     rows: u64,
     vals: [f64; MAX_WIDTH],
+    /// Continuous Euler angles along the current track.
+    unwrap: Option<crate::rotation::unwrap::EulerUnwrap>,
 }
 
 /// Number of columns of a frame row.
@@ -68,6 +70,7 @@ impl<W: Write> NpyWriter<W> {
             rows_expected: rows,
             rows: 0,
             vals: [0.0; MAX_WIDTH],
+            unwrap: None,
         }
     }
 
@@ -107,6 +110,7 @@ impl<W: Write> FrameSink for NpyWriter<W> {
             *i += 1.0;
         }
         self.track = (name.map(str::to_string), self.tracks);
+        self.unwrap = self.style.unwrapper();
         self.tracks += 1;
         Ok(())
     }
@@ -120,7 +124,13 @@ impl<W: Write> FrameSink for NpyWriter<W> {
         self.push(k as f64);
         self.push(time);
         let repr = self.style.repr;
-        repr.from_quat(q, self.style.angles, &mut self.vals);
+        match self.unwrap.as_mut().map(|u| u.next(q)) {
+            Some(e) => {
+                let unit = self.style.angles;
+                self.vals[..3].copy_from_slice(&e.map(|x| unit.from_rad(x)));
+            }
+            None => repr.from_quat(q, self.style.angles, &mut self.vals),
+        }
         // One `is_finite` per written value and one norm per rotation.
         let mut ok = time.is_finite() && is_rotation(q);
         for i in 0..repr.width() {
@@ -181,6 +191,7 @@ mod tests {
             angles: AngleUnit::Deg,
             quat_order: QuatOrder::Wxyz,
             num: NumFormat::Shortest,
+            euler: Default::default(),
         };
         NpyWriter::new(Vec::new(), style, 3, true, velocity)
     }
