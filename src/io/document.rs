@@ -10,6 +10,7 @@ use crate::error::input_err;
 use crate::rotation::Repr;
 use crate::track::{Track, TrackError, check_times};
 use glam::{DQuat, DVec3};
+use std::borrow::Cow;
 use std::fmt;
 
 /// Where a key came from, for error messages.
@@ -44,6 +45,28 @@ pub fn at(source: &str, loc: Loc) -> String {
     format!("{source}:{loc}")
 }
 
+/// The most characters of a user's text (a field, a column or track name, a JSON string) that
+/// a message quotes; longer text is cut by [`shorten`].
+pub const MAX_QUOTED_CHARS: usize = 60;
+
+/// `s` as a message quotes it: unchanged up to [`MAX_QUOTED_CHARS`] characters (Unicode scalar
+/// values, not bytes), else its first [`MAX_QUOTED_CHARS`] characters followed by `…`. Never
+/// splits a character; costs O(1) whatever the length of `s`.
+///
+/// ```
+/// use inbetween::io::document::shorten;
+///
+/// assert_eq!(shorten("abc"), "abc");
+/// let long = "é".repeat(61);
+/// assert_eq!(shorten(&long), format!("{}…", "é".repeat(60)));
+/// ```
+pub fn shorten(s: &str) -> Cow<'_, str> {
+    match s.char_indices().nth(MAX_QUOTED_CHARS) {
+        None => Cow::Borrowed(s),
+        Some((end, _)) => Cow::Owned(format!("{}…", &s[..end])),
+    }
+}
+
 /// When a key is: seconds, or a frame number at the document's rate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum KeyTime {
@@ -53,15 +76,26 @@ pub enum KeyTime {
     Frame(f64),
 }
 
-/// One keyframe as read.
+/// One keyframe as read (where it was read is its track's [`KeyOrigin`], kept apart so that a
+/// key takes 48 bytes).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Key {
     /// When the key is.
     pub when: KeyTime,
     /// Its rotation, a unit quaternion (converted from the input representation).
     pub rot: DQuat,
-    /// Where it was read.
-    pub loc: Loc,
+}
+
+/// Where a track's keys were read, for messages: see [`DocTrack::loc`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum KeyOrigin {
+    /// CSV: the line of each key, in key order.
+    Lines(Vec<u64>),
+    /// JSON: key `i` is `keys[i]`, or `tracks[t].keys[i]` for `Some(t)`.
+    Json {
+        /// The track's index in `tracks`, when the document has `tracks`.
+        track: Option<usize>,
+    },
 }
 
 /// One track as read.
@@ -75,6 +109,21 @@ pub struct DocTrack {
     pub start_velocity: Option<DVec3>,
     /// World-frame angular velocity at the last key, rad/s.
     pub end_velocity: Option<DVec3>,
+    /// Where its keys were read.
+    pub origin: KeyOrigin,
+}
+
+impl DocTrack {
+    /// Where key `i` was read.
+    pub fn loc(&self, i: usize) -> Loc {
+        match &self.origin {
+            KeyOrigin::Lines(lines) => Loc::Line(lines[i]),
+            KeyOrigin::Json { track } => Loc::Json {
+                track: *track,
+                key: i,
+            },
+        }
+    }
 }
 
 /// A keyframe document as read from CSV or JSON.
@@ -104,11 +153,11 @@ impl Document {
         frame_fps: Fps,
         min_keys: usize,
     ) -> InputResult<Vec<f64>> {
-        let label = match &track.name {
-            Some(n) => format!("{}: track \"{n}\"", self.source),
-            None => self.source.clone(),
-        };
         if track.keys.len() < min_keys {
+            let label = match &track.name {
+                Some(n) => format!("{}: track \"{}\"", self.source, shorten(n)),
+                None => self.source.clone(),
+            };
             return Err(input_err!(
                 "{label}: expected at least {min_keys} keys, found {}",
                 track.keys.len()
@@ -125,6 +174,7 @@ impl Document {
         check_times(&times).map_err(|e| {
             let i = e.index().unwrap_or(0);
             let key = &track.keys[i];
+            let loc = track.loc(i);
             let (field, raw) = match key.when {
                 KeyTime::Seconds(t) => ("time", t),
                 KeyTime::Frame(f) => ("frame", f),
@@ -136,7 +186,7 @@ impl Document {
                 }
                 e => e,
             };
-            input_err!("{e}").at(format!("{}: {field}", at(&self.source, key.loc)))
+            input_err!("{e}").at(format!("{}: {field}", at(&self.source, loc)))
         })?;
         Ok(times)
     }
@@ -158,7 +208,7 @@ impl Document {
                 let located = |e: TrackError| {
                     let loc = e
                         .index()
-                        .map_or(self.source.clone(), |i| at(&self.source, track.keys[i].loc));
+                        .map_or(self.source.clone(), |i| at(&self.source, track.loc(i)));
                     input_err!("{e}").at(loc)
                 };
                 let t = Track::new(times, quats)

@@ -7,5 +7,6 @@ mod analyze;
 mod errors;
 mod hard_cases;
 mod plot;
+mod readers;
 mod reliability;
 mod roundtrip;
