@@ -143,9 +143,9 @@ fn grid_frames(
     if let Some(r) = curve.solver_report()
         && !r.converged
     {
-        let name = curve
-            .name()
-            .map_or(String::new(), |n| format!("track \"{n}\": "));
+        let name = curve.name().map_or(String::new(), |n| {
+            format!("track \"{}\": ", crate::error::shorten(n))
+        });
         warn(&format!(
             "{name}minaccel did not converge in {} iterations (projected gradient {:.1e}, {:.1e} \
              of its start); the frames are the best curve found",
@@ -205,9 +205,9 @@ fn segment_frames<S: Segment>(
     let period = fps.den() as f64 / fps.num() as f64;
     let seg = S::new(keys, s, curve.blend());
     let name = || {
-        curve
-            .name()
-            .map_or(String::new(), |n| format!("track \"{n}\", "))
+        curve.name().map_or(String::new(), |n| {
+            format!("track \"{}\", ", crate::error::shorten(n))
+        })
     };
     if let Some(note) = seg.limitation() {
         warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));

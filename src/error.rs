@@ -5,6 +5,7 @@
 //! input message names where the problem is (file, line or key, field), what was expected and
 //! what was found, e.g. `keys.csv:14: column "w": expected a number, found "abc"`.
 
+use std::borrow::Cow;
 use std::fmt;
 use std::io;
 
@@ -108,6 +109,28 @@ pub fn num(x: f64) -> String {
         format!("{x}")
     } else {
         format!("{x:e}")
+    }
+}
+
+/// The most characters of a user's text (a field, a column or track name, a JSON string) that
+/// a message quotes; longer text is cut by [`shorten`].
+pub const MAX_QUOTED_CHARS: usize = 60;
+
+/// `s` as a message quotes it: unchanged up to [`MAX_QUOTED_CHARS`] characters (Unicode scalar
+/// values, not bytes), else its first [`MAX_QUOTED_CHARS`] characters followed by `…`. Never
+/// splits a character; costs O(1) whatever the length of `s`.
+///
+/// ```
+/// use inbetween::error::shorten;
+///
+/// assert_eq!(shorten("abc"), "abc");
+/// let long = "é".repeat(61);
+/// assert_eq!(shorten(&long), format!("{}…", "é".repeat(60)));
+/// ```
+pub fn shorten(s: &str) -> Cow<'_, str> {
+    match s.char_indices().nth(MAX_QUOTED_CHARS) {
+        None => Cow::Borrowed(s),
+        Some((end, _)) => Cow::Owned(format!("{}…", &s[..end])),
     }
 }
 

@@ -110,7 +110,7 @@ pub fn run(
     sink.into_output()?.commit()?;
     if args.verbose {
         for (curve, r) in curves.iter().filter_map(|c| Some((c, c.solver_report()?))) {
-            let name = curve.name().unwrap_or("-");
+            let name = inbetween::error::shorten(curve.name().unwrap_or("-"));
             eprintln!(
                 "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
                  projected gradient {:.3e} -> {:.3e} ({}converged)",

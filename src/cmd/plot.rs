@@ -3,6 +3,7 @@
 use super::settings::read_curves;
 use crate::cli::{PlotArgs, WhatArg};
 use inbetween::chart::{What, svg};
+use inbetween::error::shorten;
 use inbetween::io::output::Output;
 use inbetween::{Error, InputError, Scheme};
 use std::io::{Read, Write};
@@ -20,13 +21,14 @@ pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) ->
             .ok_or_else(|| {
                 let names: Vec<&str> = tracks.iter().filter_map(|t| t.name()).collect();
                 InputError::new(format!(
-                    "{}: --track: expected one of {}, found \"{name}\"",
+                    "{}: --track: expected one of {}, found \"{}\"",
                     doc.source,
                     if names.is_empty() {
                         "(no named tracks)".to_string()
                     } else {
-                        names.join(", ")
-                    }
+                        shorten(&names.join(", ")).into_owned()
+                    },
+                    shorten(name)
                 ))
             })?,
     };

@@ -160,7 +160,7 @@ impl Curve {
             Scheme::MinAccel => {
                 let sol =
                     minaccel::solve(&keys, opts.grid_rate.as_f64()).map_err(|e| match &name {
-                        Some(n) => e.at(format!("track \"{n}\"")),
+                        Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
                         None => e,
                     })?;
                 let pieces = Pieces::Grid {

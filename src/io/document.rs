@@ -44,6 +44,8 @@ pub fn at(source: &str, loc: Loc) -> String {
     format!("{source}:{loc}")
 }
 
+pub use crate::error::{MAX_QUOTED_CHARS, shorten};
+
 /// When a key is: seconds, or a frame number at the document's rate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum KeyTime {
@@ -53,15 +55,26 @@ pub enum KeyTime {
     Frame(f64),
 }
 
-/// One keyframe as read.
+/// One keyframe as read (where it was read is its track's [`KeyOrigin`], kept apart so that a
+/// key takes 48 bytes).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Key {
     /// When the key is.
     pub when: KeyTime,
     /// Its rotation, a unit quaternion (converted from the input representation).
     pub rot: DQuat,
-    /// Where it was read.
-    pub loc: Loc,
+}
+
+/// Where a track's keys were read, for messages: see [`DocTrack::loc`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum KeyOrigin {
+    /// CSV: the line of each key, in key order.
+    Lines(Vec<u64>),
+    /// JSON: key `i` is `keys[i]`, or `tracks[t].keys[i]` for `Some(t)`.
+    Json {
+        /// The track's index in `tracks`, when the document has `tracks`.
+        track: Option<usize>,
+    },
 }
 
 /// One track as read.
@@ -75,6 +88,21 @@ pub struct DocTrack {
     pub start_velocity: Option<DVec3>,
     /// World-frame angular velocity at the last key, rad/s.
     pub end_velocity: Option<DVec3>,
+    /// Where its keys were read.
+    pub origin: KeyOrigin,
+}
+
+impl DocTrack {
+    /// Where key `i` was read.
+    pub fn loc(&self, i: usize) -> Loc {
+        match &self.origin {
+            KeyOrigin::Lines(lines) => Loc::Line(lines[i]),
+            KeyOrigin::Json { track } => Loc::Json {
+                track: *track,
+                key: i,
+            },
+        }
+    }
 }
 
 /// A keyframe document as read from CSV or JSON.
@@ -104,11 +132,11 @@ impl Document {
         frame_fps: Fps,
         min_keys: usize,
     ) -> InputResult<Vec<f64>> {
-        let label = match &track.name {
-            Some(n) => format!("{}: track \"{n}\"", self.source),
-            None => self.source.clone(),
-        };
         if track.keys.len() < min_keys {
+            let label = match &track.name {
+                Some(n) => format!("{}: track \"{}\"", self.source, shorten(n)),
+                None => self.source.clone(),
+            };
             return Err(input_err!(
                 "{label}: expected at least {min_keys} keys, found {}",
                 track.keys.len()
@@ -125,6 +153,7 @@ impl Document {
         check_times(&times).map_err(|e| {
             let i = e.index().unwrap_or(0);
             let key = &track.keys[i];
+            let loc = track.loc(i);
             let (field, raw) = match key.when {
                 KeyTime::Seconds(t) => ("time", t),
                 KeyTime::Frame(f) => ("frame", f),
@@ -136,7 +165,7 @@ impl Document {
                 }
                 e => e,
             };
-            input_err!("{e}").at(format!("{}: {field}", at(&self.source, key.loc)))
+            input_err!("{e}").at(format!("{}: {field}", at(&self.source, loc)))
         })?;
         Ok(times)
     }
@@ -158,7 +187,7 @@ impl Document {
                 let located = |e: TrackError| {
                     let loc = e
                         .index()
-                        .map_or(self.source.clone(), |i| at(&self.source, track.keys[i].loc));
+                        .map_or(self.source.clone(), |i| at(&self.source, track.loc(i)));
                     input_err!("{e}").at(loc)
                 };
                 let t = Track::new(times, quats)

@@ -11,10 +11,11 @@ pub mod output;
 pub mod read;
 pub mod write;
 
-use crate::error::InputResult;
 use crate::error::input_err;
+use crate::error::{InputError, InputResult};
 use crate::rotation::{AngleUnit, QuatOrder, Repr};
 use document::Document;
+use std::io::Read;
 use std::path::Path;
 
 /// File format of a keyframe document or of the output.
@@ -111,14 +112,76 @@ pub fn parse_bytes(
     Ok((read_document(&text, source, format, opts)?, format))
 }
 
-/// Reads and parses a keyframe file (see [`parse_bytes`]).
+/// The default limit on the size of an input: 1 GiB. A keyframe document larger than this is an
+/// input error rather than an unbounded allocation (reading `/dev/zero` stops here).
+pub const DEFAULT_MAX_INPUT_BYTES: u64 = 1 << 30;
+
+fn too_large(source: &str, limit: u64) -> InputError {
+    input_err!("{source}: input larger than {limit} bytes (--max-input-bytes)")
+}
+
+/// Reads all of `reader` (standard input, a pipe, a file), at most `limit` bytes: one byte more
+/// is an input error `<source>: input larger than <limit> bytes (--max-input-bytes)`, and
+/// reading stops there (it never reads more than `limit + 1` bytes).
+pub fn read_limited(reader: &mut dyn Read, limit: u64, source: &str) -> InputResult<Vec<u8>> {
+    read_limited_with_capacity(reader, limit, source, 0)
+}
+
+fn read_limited_with_capacity(
+    reader: &mut dyn Read,
+    limit: u64,
+    source: &str,
+    capacity: usize,
+) -> InputResult<Vec<u8>> {
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(capacity)
+        .map_err(|_| input_err!("{source}: cannot read: out of memory for {capacity} bytes"))?;
+    reader
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| input_err!("{source}: cannot read: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(source, limit));
+    }
+    Ok(bytes)
+}
+
+/// Reads and parses a keyframe file of at most [`DEFAULT_MAX_INPUT_BYTES`] (see
+/// [`read_path_limited`]).
 pub fn read_path(
     path: &Path,
     format: Option<Format>,
     opts: &ReadOptions,
 ) -> InputResult<(Document, Format)> {
+    read_path_limited(path, format, opts, DEFAULT_MAX_INPUT_BYTES)
+}
+
+/// Reads and parses a keyframe file (see [`parse_bytes`]) of at most `limit` bytes, else the
+/// input error of [`read_limited`]. A regular file larger than `limit` is refused before it is
+/// read; anything else (a pipe, a device) is read up to `limit + 1` bytes.
+pub fn read_path_limited(
+    path: &Path,
+    format: Option<Format>,
+    opts: &ReadOptions,
+    limit: u64,
+) -> InputResult<(Document, Format)> {
     let source = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| input_err!("{source}: cannot read: {e}"))?;
+    let cannot = |e: std::io::Error| input_err!("{source}: cannot read: {e}");
+    let mut file = std::fs::File::open(path).map_err(cannot)?;
+    // The size of a regular file, to refuse it unread or to read it into one allocation.
+    let size = file
+        .metadata()
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
+    if size.is_some_and(|n| n > limit) {
+        return Err(too_large(&source, limit));
+    }
+    // One byte more than the size, so that a file that grew while being read is still caught
+    // without a second allocation.
+    let capacity = size.map_or(0, |n| usize::try_from(n.saturating_add(1)).unwrap_or(0));
+    let bytes = read_limited_with_capacity(&mut file, limit, &source, capacity)?;
     parse_bytes(bytes, &source, Some(path), format, opts)
 }
 

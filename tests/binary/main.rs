@@ -11,6 +11,7 @@ mod hard_cases;
 mod numbers;
 mod output;
 mod plot;
+mod readers;
 mod reliability;
 mod roundtrip;
 mod validation;

@@ -13,8 +13,9 @@
 use crate::error::InputResult;
 use crate::error::input_err;
 use crate::io::ReadOptions;
-use crate::io::document::{DocTrack, Document, Key, KeyTime, Loc};
+use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, shorten};
 use crate::rotation::{MAX_WIDTH, Repr};
+use std::collections::{HashMap, HashSet};
 
 /// Column sets that name a representation, with their aliases.
 const QUAT_ALIASES: [&str; 4] = ["qw", "qx", "qy", "qz"];
@@ -42,7 +43,6 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
-        .trim(csv::Trim::All)
         .from_reader(text.as_bytes());
     let mut records = rdr.records();
     let mut record = csv::StringRecord::new();
@@ -56,15 +56,20 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         }
     };
     let header_line = header.position().map_or(1, |p| p.line());
-    let names: Vec<&str> = header.iter().collect();
+    // Fields are trimmed here rather than by the csv crate, whose trimming copies every record.
+    let names: Vec<&str> = header.iter().map(str::trim).collect();
     let hloc = format!("{source}:{header_line}");
-    for (i, n) in names.iter().enumerate() {
-        if names[..i].contains(n) {
-            return Err(input_err!("{hloc}: column \"{n}\" appears twice"));
+    let mut seen = HashSet::with_capacity(names.len());
+    for n in &names {
+        if !seen.insert(*n) {
+            return Err(input_err!(
+                "{hloc}: column \"{}\" appears twice",
+                shorten(n)
+            ));
         }
     }
     let col = |n: &str| names.iter().position(|c| *c == n);
-    let (repr, rot_cols) = choose_rotation(&names, opts, &hloc)?;
+    let (repr, rot_cols) = choose_rotation(&names, &seen, opts, &hloc)?;
     let time_col = col("time");
     let frame_col = col("frame");
     let (when_col, is_frame) = match (time_col, frame_col) {
@@ -78,7 +83,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         (None, None) => {
             return Err(input_err!(
                 "{hloc}: expected a \"time\" or a \"frame\" column, found neither (columns: {})",
-                names.join(",")
+                joined(&names)
             ));
         }
     };
@@ -87,7 +92,8 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         let known = *n == "track" || *n == "time" || *n == "frame" || rot_cols.contains(n);
         if !known {
             return Err(input_err!(
-                "{hloc}: unknown column \"{n}\" (expected track, time or frame, and {})",
+                "{hloc}: unknown column \"{}\" (expected track, time or frame, and {})",
+                shorten(n),
                 rot_cols.join(",")
             ));
         }
@@ -103,6 +109,8 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         warnings: Vec::new(),
     };
     let mut values = [0.0; MAX_WIDTH];
+    let mut track_index: HashMap<String, usize> = HashMap::new();
+    let (mut last, mut last_name) = (None, String::new());
     loop {
         match rdr.read_record(&mut record) {
             Ok(false) => break,
@@ -110,25 +118,31 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             Err(e) => return Err(csv_error(source, &e)),
         }
         let line = record.position().map_or(0, |p| p.line());
-        let loc = format!("{source}:{line}");
+        // Built only for a message: formatting it for every row would cost as much as the row.
+        let loc = || format!("{source}:{line}");
         if record.len() != names.len() {
             return Err(input_err!(
-                "{loc}: expected {} fields as in the header, found {}",
+                "{}: expected {} fields as in the header, found {}",
+                loc(),
                 names.len(),
                 record.len()
             ));
         }
         let number = |i: usize| -> InputResult<f64> {
-            let raw = &record[i];
+            let raw = record[i].trim();
             match raw.parse::<f64>() {
                 Ok(x) if x.is_finite() => Ok(x),
                 Ok(_) => Err(input_err!(
-                    "{loc}: column \"{}\": expected a finite number, found \"{raw}\"",
-                    names[i]
+                    "{}: column \"{}\": expected a finite number, found \"{}\"",
+                    loc(),
+                    names[i],
+                    shorten(raw)
                 )),
                 Err(_) => Err(input_err!(
-                    "{loc}: column \"{}\": expected a number, found \"{raw}\"",
-                    names[i]
+                    "{}: column \"{}\": expected a number, found \"{}\"",
+                    loc(),
+                    names[i],
+                    shorten(raw)
                 )),
             }
         };
@@ -138,23 +152,42 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         }
         let (rot, warning) = repr
             .to_quat(&values[..repr.width()], opts.angles)
-            .map_err(|e| e.at(format!("{loc}: columns {}", rot_cols.join(","))))?;
+            .map_err(|e| e.at(format!("{}: columns {}", loc(), rot_cols.join(","))))?;
         if let Some(w) = warning {
-            doc.warnings.push(format!("{loc}: {w}"));
+            doc.warnings.push(format!("{}: {w}", loc()));
         }
-        let name = track_col.map(|i| record[i].to_string());
-        let track = match doc.tracks.iter().position(|t| t.name == name) {
-            Some(i) => &mut doc.tracks[i],
-            None => {
-                doc.tracks.push(DocTrack {
-                    name,
-                    keys: Vec::new(),
-                    start_velocity: None,
-                    end_velocity: None,
-                });
-                doc.tracks.last_mut().expect("just pushed")
-            }
+        // The track of this row: the previous row's, else found by name in a map (tracks in
+        // order of first appearance), so that reading is linear in the number of tracks. Each
+        // name is kept once, as a key of the map, and handed to its track at the end.
+        let index = match track_col.map(|c| record[c].trim()) {
+            None => 0,
+            Some(name) => match last {
+                Some(i) if last_name == name => i,
+                _ => {
+                    let i = match track_index.get(name) {
+                        Some(&i) => i,
+                        None => {
+                            track_index.insert(name.to_string(), doc.tracks.len());
+                            doc.tracks.len()
+                        }
+                    };
+                    last = Some(i);
+                    last_name.clear();
+                    last_name.push_str(name);
+                    i
+                }
+            },
         };
+        if index == doc.tracks.len() {
+            doc.tracks.push(DocTrack {
+                name: None,
+                keys: Vec::new(),
+                start_velocity: None,
+                end_velocity: None,
+                origin: KeyOrigin::Lines(Vec::new()),
+            });
+        }
+        let track = &mut doc.tracks[index];
         track.keys.push(Key {
             when: if is_frame {
                 KeyTime::Frame(t)
@@ -162,8 +195,13 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 KeyTime::Seconds(t)
             },
             rot,
-            loc: Loc::Line(line),
         });
+        if let KeyOrigin::Lines(lines) = &mut track.origin {
+            lines.push(line);
+        }
+    }
+    for (name, i) in track_index {
+        doc.tracks[i].name = Some(name);
     }
     if doc.tracks.is_empty() {
         return Err(input_err!(
@@ -171,6 +209,22 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         ));
     }
     Ok(doc)
+}
+
+/// The header's names joined by commas for a message, cut like a quoted value ([`shorten`]),
+/// without building the whole list.
+fn joined(names: &[&str]) -> String {
+    let mut list = String::new();
+    for (i, n) in names.iter().enumerate() {
+        if i > 0 {
+            list.push(',');
+        }
+        list.push_str(&shorten(n));
+        if list.chars().count() > crate::io::document::MAX_QUOTED_CHARS {
+            break;
+        }
+    }
+    shorten(&list).into_owned()
 }
 
 fn csv_error(source: &str, e: &csv::Error) -> crate::error::InputError {
@@ -184,10 +238,11 @@ fn csv_error(source: &str, e: &csv::Error) -> crate::error::InputError {
 /// appear in the header.
 fn choose_rotation(
     names: &[&str],
+    set: &HashSet<&str>,
     opts: &ReadOptions,
     hloc: &str,
 ) -> InputResult<(Repr, Vec<&'static str>)> {
-    let has = |c: &&str| names.contains(c);
+    let has = |c: &&str| set.contains(c);
     let candidates = rotation_candidates();
     if let Some(from) = opts.from {
         let sets: Vec<_> = candidates
@@ -231,7 +286,7 @@ fn choose_rotation(
                 Err(input_err!(
                     "{hloc}: expected rotation columns (w,x,y,z or e1,e2,e3 or m00..m22 or \
                      ax,ay,az,angle or rx,ry,rz), found {}",
-                    names.join(",")
+                    joined(names)
                 ))
             }
         }
@@ -262,7 +317,7 @@ mod tests {
         assert_eq!(doc.tracks.len(), 2);
         assert_eq!(doc.tracks[0].name.as_deref(), Some("a"));
         assert_eq!(doc.tracks[1].keys[1].when, KeyTime::Seconds(2.0));
-        assert_eq!(doc.tracks[1].keys[1].loc, Loc::Line(5));
+        assert_eq!(doc.tracks[1].loc(1), crate::io::document::Loc::Line(5));
     }
 
     #[test]
@@ -286,6 +341,40 @@ mod tests {
         let doc = read(text, "k.csv", &o).unwrap();
         let q = doc.tracks[0].keys[1].rot;
         assert!((q.z - (std::f64::consts::FRAC_PI_4).sin()).abs() < 1e-15);
+    }
+
+    #[test]
+    fn messages_quote_at_most_60_characters() {
+        let long = "ж".repeat(500);
+        let cut = format!("{}…", "ж".repeat(60));
+        let err = |text: &str| {
+            read(text, "k.csv", &opts())
+                .unwrap_err()
+                .message()
+                .to_string()
+        };
+        assert_eq!(
+            err(&format!("time,w,x,y,z\n0,{long},0,0,0\n")),
+            format!("k.csv:2: column \"w\": expected a number, found \"{cut}\"")
+        );
+        assert_eq!(
+            err(&format!("time,w,x,y,z,{long}\n")),
+            format!(
+                "k.csv:1: unknown column \"{cut}\" (expected track, time or frame, and w,x,y,z)"
+            )
+        );
+        assert_eq!(
+            err(&format!("time,w,x,y,z,{long},{long}\n")),
+            format!("k.csv:1: column \"{cut}\" appears twice")
+        );
+        assert_eq!(
+            err(&format!("w,x,y,z,{long}\n")),
+            format!(
+                "k.csv:1: expected a \"time\" or a \"frame\" column, found neither (columns: \
+                 w,x,y,z,{}…)",
+                "ж".repeat(52)
+            )
+        );
     }
 
     #[test]

@@ -173,16 +173,15 @@ pub fn write_keys<W: Write>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::io::document::{DocTrack, Key, Loc};
+    use crate::io::document::{DocTrack, Key, KeyOrigin};
     use crate::io::write::num::NumFormat;
     use crate::rotation::{AngleUnit, QuatOrder, Repr};
     use glam::{DQuat, DVec3};
 
     fn doc(second: (f64, DQuat), start_velocity: Option<DVec3>) -> Document {
-        let key = |i: u64, t: f64, rot: DQuat| Key {
+        let key = |t: f64, rot: DQuat| Key {
             when: KeyTime::Seconds(t),
             rot,
-            loc: Loc::Line(i + 2),
         };
         Document {
             source: "k.csv".into(),
@@ -190,9 +189,10 @@ mod tests {
             rotation: Some(Repr::Quat),
             tracks: vec![DocTrack {
                 name: Some("hip".into()),
-                keys: vec![key(0, 0.0, DQuat::IDENTITY), key(1, second.0, second.1)],
+                keys: vec![key(0.0, DQuat::IDENTITY), key(second.0, second.1)],
                 start_velocity,
                 end_velocity: None,
+                origin: KeyOrigin::Lines(vec![2, 3]),
             }],
             named_tracks: true,
             warnings: Vec::new(),
