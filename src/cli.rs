@@ -83,6 +83,11 @@ pub struct InputArgs {
     /// (`{` or `[` first means JSON).
     #[arg(long, value_name = "F", value_parser = parse_format)]
     pub input_format: Option<Format>,
+
+    /// Refuse an input larger than this many bytes (a file from its size, standard input once
+    /// it passes the limit).
+    #[arg(long, value_name = "N", default_value_t = inbetween::io::DEFAULT_MAX_INPUT_BYTES)]
+    pub max_input_bytes: u64,
 }
 
 /// Where the output goes and how it is written.

@@ -46,12 +46,11 @@ pub fn read_input(
         quat_order: args.quat_order,
     };
     let (doc, format) = match args.input.as_deref() {
-        Some(p) if p.as_os_str() != "-" => inbetween::io::read_path(p, args.input_format, &opts)?,
+        Some(p) if p.as_os_str() != "-" => {
+            inbetween::io::read_path_limited(p, args.input_format, &opts, args.max_input_bytes)?
+        }
         _ => {
-            let mut bytes = Vec::new();
-            stdin
-                .read_to_end(&mut bytes)
-                .map_err(|e| InputError::new(format!("<stdin>: cannot read: {e}")))?;
+            let bytes = inbetween::io::read_limited(stdin, args.max_input_bytes, "<stdin>")?;
             inbetween::io::parse_bytes(bytes, "<stdin>", None, args.input_format, &opts)?
         }
     };
