@@ -1,7 +1,7 @@
 //! The mappings of docs/conventions.md: each package's own formula, built here independently,
 //! against what `inbetween convert --from euler:SEQ --to quat` makes of the same numbers.
 
-use crate::support::{bin, rot_angle};
+use crate::support::{bin, rot_angle, stdout_of};
 use glam::{DQuat, DVec3};
 
 /// Angles (degrees) sampled away from gimbal lock, one triple per row.
@@ -18,32 +18,25 @@ fn convert(seq: &str, rows: &[[f64; 3]]) -> Vec<DQuat> {
     for (i, r) in rows.iter().enumerate() {
         csv += &format!("{i},{:?},{:?},{:?}\n", r[0], r[1], r[2]);
     }
-    let out = bin()
-        .args([
-            "convert",
-            "-",
-            "--from",
-            &format!("euler:{seq}"),
-            "--to",
-            "quat",
-        ])
-        .write_stdin(csv)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            DQuat::from_xyzw(v[2], v[3], v[4], v[1])
-        })
-        .collect()
+    stdout_of(
+        bin()
+            .args([
+                "convert",
+                "-",
+                "--from",
+                &format!("euler:{seq}"),
+                "--to",
+                "quat",
+            ])
+            .write_stdin(csv),
+    )
+    .lines()
+    .skip(1)
+    .map(|l| {
+        let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        DQuat::from_xyzw(v[2], v[3], v[4], v[1])
+    })
+    .collect()
 }
 
 fn rx(deg: f64) -> DQuat {

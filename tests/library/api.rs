@@ -2,7 +2,7 @@
 //! binary: at frame times a [`Curve`] gives the rotations and angular velocities `interp`
 //! writes; off the grid its velocity and acceleration agree with finite differences of itself.
 
-use crate::support::{Collect, assert_rot_close, assert_vec_close, bin};
+use crate::support::{Collect, assert_rot_close, assert_vec_close, bin, stdout_of};
 use glam::{DQuat, DVec3, EulerRot};
 use inbetween::{
     BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, Scheme, Track, TrackError, bake,
@@ -50,19 +50,13 @@ fn interp(scheme: Scheme, fps: &str) -> Vec<(f64, DQuat, DVec3)> {
         // `{:?}` is Rust's shortest round-trip form: the binary reads the same f64.
         csv += &format!("{t:?},{:?},{:?},{:?},{:?}\n", q.w, q.x, q.y, q.z);
     }
-    let out = bin()
-        .args(["interp", "-", "--velocity", "--angles", "rad"])
-        .args(["--scheme", &scheme.to_string(), "--fps", fps])
-        .args(["--start-velocity", "0,0.5,-1"])
-        .write_stdin(csv)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let text = stdout_of(
+        bin()
+            .args(["interp", "-", "--velocity", "--angles", "rad"])
+            .args(["--scheme", &scheme.to_string(), "--fps", fps])
+            .args(["--start-velocity", "0,0.5,-1"])
+            .write_stdin(csv),
     );
-    let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next(), Some("frame,time,w,x,y,z,wx,wy,wz"));
     lines

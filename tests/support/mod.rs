@@ -22,6 +22,19 @@ pub fn bin() -> assert_cmd::Command {
     c
 }
 
+/// Runs `cmd`, asserts it succeeded (printing its stderr if not), and returns its stdout.
+#[track_caller]
+pub fn stdout_of(cmd: &mut assert_cmd::Command) -> String {
+    let out = cmd.output().expect("the binary runs");
+    assert!(
+        out.status.success(),
+        "exit {:?}: {}",
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("UTF-8 output")
+}
+
 /// Angle between two rotations in radians (q and −q are the same rotation).
 pub fn rot_angle(a: DQuat, b: DQuat) -> f64 {
     inbetween::rotation::quat::rotation_angle_between(a, b)
