@@ -84,14 +84,54 @@ pub struct Curve {
 /// The pieces of a curve.
 #[derive(Debug, Clone)]
 enum Pieces {
-    /// One segment per pair of keys.
-    Segments { keys: Knots, blend: Blend },
+    /// One segment per pair of keys, built once.
+    Segments {
+        keys: Knots,
+        blend: Blend,
+        segs: Segs,
+    },
     /// minaccel's solution: slerp between grid points.
     Grid {
         times: Vec<f64>,
         points: Vec<DQuat>,
         keys: Knots,
     },
+}
+
+/// The segments of a segment scheme, built once so that sampling does not rebuild them.
+#[derive(Debug, Clone)]
+enum Segs {
+    Slerp(Vec<Slerp>),
+    Hermite(Vec<Hermite>),
+    Squad(Vec<Squad>),
+    Bezier(Vec<Bezier>),
+}
+
+impl Segs {
+    fn new(keys: &Knots, scheme: Scheme, blend: Blend) -> Segs {
+        fn all<S: Segment>(keys: &Knots, blend: Blend) -> Vec<S> {
+            (0..keys.segments())
+                .map(|s| S::new(keys, s, blend))
+                .collect()
+        }
+        match scheme {
+            Scheme::Slerp => Segs::Slerp(all(keys, blend)),
+            Scheme::Hermite => Segs::Hermite(all(keys, blend)),
+            Scheme::Squad => Segs::Squad(all(keys, blend)),
+            // minaccel is a grid curve and never builds segments.
+            Scheme::Bezier | Scheme::MinAccel => Segs::Bezier(all(keys, blend)),
+        }
+    }
+
+    #[inline]
+    fn eval(&self, i: usize, u: f64) -> DQuat {
+        match self {
+            Segs::Slerp(v) => v[i].eval(u),
+            Segs::Hermite(v) => v[i].eval(u),
+            Segs::Squad(v) => v[i].eval(u),
+            Segs::Bezier(v) => v[i].eval(u),
+        }
+    }
 }
 
 /// `ω = 2·Q'·Q⁻¹` from a derivative `dq` at `q`.
@@ -152,6 +192,7 @@ impl Curve {
             // One key: a constant, whatever the scheme.
             _ if track.len() == 1 => (
                 Pieces::Segments {
+                    segs: Segs::Slerp(Vec::new()),
                     keys,
                     blend: opts.blend,
                 },
@@ -170,8 +211,9 @@ impl Curve {
                 };
                 (pieces, Some(sol.report))
             }
-            _ => (
+            scheme => (
                 Pieces::Segments {
+                    segs: Segs::new(&keys, scheme, opts.blend),
                     keys,
                     blend: opts.blend,
                 },
@@ -316,13 +358,7 @@ impl Curve {
     /// Evaluates piece `i` at parameter `u` (continued past [0, 1] by its own formula).
     fn eval_piece(&self, i: usize, u: f64) -> DQuat {
         match &self.pieces {
-            Pieces::Segments { keys, blend } => match self.scheme {
-                Scheme::Slerp => Slerp::new(keys, i, *blend).eval(u),
-                Scheme::Hermite => Hermite::new(keys, i, *blend).eval(u),
-                Scheme::Squad => Squad::new(keys, i, *blend).eval(u),
-                Scheme::Bezier => Bezier::new(keys, i, *blend).eval(u),
-                Scheme::MinAccel => unreachable!("minaccel is a Grid curve"),
-            },
+            Pieces::Segments { segs, .. } => segs.eval(i, u),
             Pieces::Grid { points, .. } => geodesic(points[i], points[i + 1], u),
         }
     }
