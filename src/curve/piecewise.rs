@@ -27,6 +27,7 @@ use crate::rotation::quat::{geodesic, log};
 use crate::tangent::Knots;
 use crate::track::Track;
 use glam::{DQuat, DVec3};
+use std::sync::OnceLock;
 
 /// Which piece to use at a piece boundary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,11 +85,12 @@ pub struct Curve {
 /// The pieces of a curve.
 #[derive(Debug, Clone)]
 enum Pieces {
-    /// One segment per pair of keys, built once.
+    /// One segment per pair of keys, built on the first sample and kept (baking builds its own,
+    /// one at a time, so `interp` never holds them all).
     Segments {
         keys: Knots,
         blend: Blend,
-        segs: Segs,
+        segs: OnceLock<Segs>,
     },
     /// minaccel's solution: slerp between grid points.
     Grid {
@@ -192,7 +194,7 @@ impl Curve {
             // One key: a constant, whatever the scheme.
             _ if track.len() == 1 => (
                 Pieces::Segments {
-                    segs: Segs::Slerp(Vec::new()),
+                    segs: OnceLock::new(),
                     keys,
                     blend: opts.blend,
                 },
@@ -211,9 +213,9 @@ impl Curve {
                 };
                 (pieces, Some(sol.report))
             }
-            scheme => (
+            _ => (
                 Pieces::Segments {
-                    segs: Segs::new(&keys, scheme, opts.blend),
+                    segs: OnceLock::new(),
                     keys,
                     blend: opts.blend,
                 },
@@ -358,7 +360,9 @@ impl Curve {
     /// Evaluates piece `i` at parameter `u` (continued past [0, 1] by its own formula).
     fn eval_piece(&self, i: usize, u: f64) -> DQuat {
         match &self.pieces {
-            Pieces::Segments { segs, .. } => segs.eval(i, u),
+            Pieces::Segments { segs, keys, blend } => segs
+                .get_or_init(|| Segs::new(keys, self.scheme, *blend))
+                .eval(i, u),
             Pieces::Grid { points, .. } => geodesic(points[i], points[i + 1], u),
         }
     }
