@@ -1,7 +1,6 @@
 //! A validated track: keyframe times and rotations that every scheme can interpolate.
 //!
-//! The constructor is the only way in, so a [`Track`] is known to hold at least one key (one key
-//! is a constant: a joint that does not move), whose
+//! The constructors are the only way in, so a [`Track`] is known to hold keys whose
 //! times are finite, strictly increasing and at least [`MIN_KEY_GAP`] apart, with finite unit
 //! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
 //! documents ([`check_times`]), so a file and a program are held to one contract.
@@ -20,7 +19,7 @@ pub const UNIT_TOL: f64 = 1e-6;
 /// Why a [`Track`] could not be built. Indices count keys from 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TrackError {
-    /// No key at all.
+    /// Fewer than two keys given to [`Track::new`] (a single key is [`Track::constant`]).
     TooFewKeys {
         /// The number of keys given.
         found: usize,
@@ -86,7 +85,7 @@ impl fmt::Display for TrackError {
         use crate::error::num;
         match *self {
             TrackError::TooFewKeys { found } => {
-                write!(f, "expected at least 1 key, found {found}")
+                write!(f, "expected at least 2 keys, found {found}")
             }
             TrackError::LengthMismatch { times, rotations } => write!(
                 f,
@@ -188,9 +187,9 @@ pub struct Track {
 impl Track {
     /// A track from key times (seconds) and rotations (unit quaternions), one per key.
     ///
-    /// One key is a constant. Refuses no key at all, mismatched lengths, non-finite, unsorted, duplicate or
-    /// closer-than-[`MIN_KEY_GAP`] times, and quaternions that are not finite and of unit norm
-    /// (within [`UNIT_TOL`]).
+    /// Refuses fewer than two keys (a joint that does not move is [`Track::constant`]),
+    /// mismatched lengths, non-finite, unsorted, duplicate or closer-than-[`MIN_KEY_GAP`] times,
+    /// and quaternions that are not finite and of unit norm (within [`UNIT_TOL`]).
     pub fn new(times: Vec<f64>, rotations: Vec<DQuat>) -> Result<Track, TrackError> {
         if times.len() != rotations.len() {
             return Err(TrackError::LengthMismatch {
@@ -198,9 +197,20 @@ impl Track {
                 rotations: rotations.len(),
             });
         }
-        if times.is_empty() {
-            return Err(TrackError::TooFewKeys { found: 0 });
+        if times.len() < 2 {
+            return Err(TrackError::TooFewKeys { found: times.len() });
         }
+        Track::checked(times, rotations)
+    }
+
+    /// A constant: one key, at `time`, whose rotation holds over any span it is written over (a
+    /// joint that does not move). Its curve is at rest everywhere.
+    pub fn constant(time: f64, rotation: DQuat) -> Result<Track, TrackError> {
+        Track::checked(vec![time], vec![rotation])
+    }
+
+    /// The checks shared by the constructors: times, then rotations.
+    fn checked(times: Vec<f64>, rotations: Vec<DQuat>) -> Result<Track, TrackError> {
         check_times(&times)?;
         for (index, q) in rotations.iter().enumerate() {
             let norm = q.length();
@@ -243,7 +253,7 @@ impl Track {
         self.name.as_deref()
     }
 
-    /// Key times in seconds: finite, strictly increasing, at least one.
+    /// Key times in seconds: finite, strictly increasing; at least two, or one for a constant.
     pub fn times(&self) -> &[f64] {
         &self.times
     }
@@ -253,12 +263,12 @@ impl Track {
         &self.rotations
     }
 
-    /// Number of keys (at least one).
+    /// Number of keys (one for a constant).
     pub fn len(&self) -> usize {
         self.times.len()
     }
 
-    /// Always false: a track has at least one key.
+    /// Always false: a track has at least one key (a constant).
     pub fn is_empty(&self) -> bool {
         false
     }
@@ -290,8 +300,15 @@ mod tests {
     #[test]
     fn refuses_bad_times_with_typed_errors() {
         let new = |t: &[f64]| Track::new(t.to_vec(), quats(t.len()));
-        assert!(new(&[0.0]).is_ok(), "one key: a constant");
+        assert_eq!(new(&[0.0]), Err(TrackError::TooFewKeys { found: 1 }));
         assert_eq!(new(&[]), Err(TrackError::TooFewKeys { found: 0 }));
+        // One key is said on purpose.
+        let c = Track::constant(0.5, DQuat::IDENTITY).unwrap();
+        assert_eq!((c.len(), c.span()), (1, (0.5, 0.5)));
+        assert!(matches!(
+            Track::constant(f64::NAN, DQuat::IDENTITY),
+            Err(TrackError::NonFiniteTime { .. })
+        ));
         assert!(matches!(
             new(&[0.0, f64::NAN]),
             Err(TrackError::NonFiniteTime { index: 1, .. })

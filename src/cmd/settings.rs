@@ -146,9 +146,12 @@ fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
             num(times[i])
         )));
     }
-    let snapped = Track::new(times, t.rotations().to_vec())
-        .and_then(|s| s.with_end_velocities(t.start_velocity(), t.end_velocity()))
-        .map_err(InputError::from)?;
+    let snapped = match times[..] {
+        [time] => Track::constant(time, t.rotations()[0]),
+        _ => Track::new(times, t.rotations().to_vec()),
+    }
+    .and_then(|s| s.with_end_velocities(t.start_velocity(), t.end_velocity()))
+    .map_err(InputError::from)?;
     Ok(match t.name() {
         Some(n) => snapped.with_name(n),
         None => snapped,

@@ -183,16 +183,19 @@ impl Document {
             .iter()
             .map(|track| {
                 let times = self.track_times(track, frame_fps, 1)?;
-                let quats = track.keys.iter().map(|k| k.rot).collect();
+                let quats: Vec<DQuat> = track.keys.iter().map(|k| k.rot).collect();
                 let located = |e: TrackError| {
                     let loc = e
                         .index()
                         .map_or(self.source.clone(), |i| at(&self.source, track.loc(i)));
                     input_err!("{e}").at(loc)
                 };
-                let t = Track::new(times, quats)
-                    .and_then(|t| t.with_end_velocities(track.start_velocity, track.end_velocity))
-                    .map_err(located)?;
+                let t = match times[..] {
+                    [time] => Track::constant(time, quats[0]),
+                    _ => Track::new(times, quats),
+                }
+                .and_then(|t| t.with_end_velocities(track.start_velocity, track.end_velocity))
+                .map_err(located)?;
                 Ok(match &track.name {
                     Some(n) => t.with_name(n.clone()),
                     None => t,

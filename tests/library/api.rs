@@ -192,8 +192,8 @@ fn tracks_refuse_bad_times_with_typed_errors() {
         }
     );
     assert_eq!(
-        Track::new(vec![], vec![]).unwrap_err(),
-        TrackError::TooFewKeys { found: 0 }
+        Track::new(vec![0.0], vec![q[0]]).unwrap_err(),
+        TrackError::TooFewKeys { found: 1 }
     );
     // The library's message is the binary's.
     assert_eq!(
@@ -205,7 +205,7 @@ fn tracks_refuse_bad_times_with_typed_errors() {
 #[test]
 fn a_one_key_track_is_a_constant() {
     let q = DQuat::from_rotation_y(0.7);
-    let track = Track::new(vec![0.5], vec![q]).unwrap();
+    let track = Track::constant(0.5, q).unwrap();
     for scheme in Scheme::ALL {
         let curve = Curve::new(&track, &options(scheme, Fps::DEFAULT)).unwrap();
         assert!(curve.is_constant());
