@@ -67,13 +67,25 @@ pub struct InputArgs {
     pub input: Option<PathBuf>,
 
     /// Input representation when the data does not say: the Euler sequence of CSV e1,e2,e3
-    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec).
+    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec). A JSON
+    /// "rotation" it contradicts is an error.
     #[arg(long, value_name = "REPR", value_parser = parse_repr)]
     pub from: Option<Repr>,
 
-    /// Unit of every angle written, and of angles read from CSV or JSON without "angles".
+    /// Unit of every angle written, and of input angles the document does not declare when
+    /// --input-angles is absent (CSV; JSON without "angles").
     #[arg(long, value_name = "U", value_parser = parse_angles, default_value = "deg")]
     pub angles: AngleUnit,
+
+    /// Unit of input angles the document does not declare (CSV; JSON without "angles"), so that
+    /// radians can be read and degrees written. A JSON "angles" it contradicts is an error.
+    #[arg(long, value_name = "U", value_parser = parse_angles)]
+    pub input_angles: Option<AngleUnit>,
+
+    /// Rate of the input's frame numbers when the document declares none (CSV always; JSON
+    /// without "fps"): 24, 29.97, 30000/1001, ... A JSON "fps" it contradicts is an error.
+    #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
+    pub key_fps: Option<Fps>,
 
     /// Component order of quaternions in JSON arrays (CSV columns are named).
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]

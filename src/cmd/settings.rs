@@ -43,6 +43,8 @@ pub fn read_input(
     let opts = ReadOptions {
         from: args.from,
         angles: args.angles,
+        input_angles: args.input_angles,
+        key_fps: args.key_fps,
         quat_order: args.quat_order,
     };
     let (doc, format) = match args.input.as_deref() {

@@ -14,8 +14,12 @@ use crate::error::InputResult;
 use crate::error::input_err;
 use crate::io::ReadOptions;
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, shorten};
+use crate::io::read::json::check_frame_time;
 use crate::rotation::{MAX_WIDTH, Repr};
 use std::collections::{HashMap, HashSet};
+
+/// interp's angular velocity columns (`--velocity`): accepted together and ignored.
+const VELOCITY_COLUMNS: [&str; 3] = ["wx", "wy", "wz"];
 
 /// Column sets that name a representation, with their aliases.
 const QUAT_ALIASES: [&str; 4] = ["qw", "qx", "qy", "qz"];
@@ -72,14 +76,12 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let (repr, rot_cols) = choose_rotation(&names, &seen, opts, &hloc)?;
     let time_col = col("time");
     let frame_col = col("frame");
-    let (when_col, is_frame) = match (time_col, frame_col) {
-        (Some(t), None) => (t, false),
-        (None, Some(f)) => (f, true),
-        (Some(_), Some(_)) => {
-            return Err(input_err!(
-                "{hloc}: expected a \"time\" or a \"frame\" column, found both"
-            ));
-        }
+    // With both (interp's output), the time is used and the frame number is checked against it
+    // when `--key-fps` gives its rate.
+    let (when_col, is_frame, frame_check) = match (time_col, frame_col) {
+        (Some(t), None) => (t, false, None),
+        (None, Some(f)) => (f, true, None),
+        (Some(t), Some(f)) => (t, false, Some(f)),
         (None, None) => {
             return Err(input_err!(
                 "{hloc}: expected a \"time\" or a \"frame\" column, found neither (columns: {})",
@@ -88,8 +90,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         }
     };
     let track_col = col("track");
+    // interp's `--velocity` columns, read and ignored (all three or none).
+    let velocity = VELOCITY_COLUMNS.iter().all(|c| seen.contains(c));
     for n in &names {
-        let known = *n == "track" || *n == "time" || *n == "frame" || rot_cols.contains(n);
+        let known = *n == "track"
+            || *n == "time"
+            || *n == "frame"
+            || rot_cols.contains(n)
+            || (velocity && VELOCITY_COLUMNS.contains(n));
         if !known {
             return Err(input_err!(
                 "{hloc}: unknown column \"{}\" (expected track, time or frame, and {})",
@@ -102,7 +110,8 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
 
     let mut doc = Document {
         source: source.to_string(),
-        fps: None,
+        // CSV declares no rate: `--key-fps` gives it.
+        fps: opts.key_fps,
         rotation: Some(repr),
         tracks: Vec::new(),
         named_tracks: track_col.is_some(),
@@ -147,11 +156,18 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             }
         };
         let t = number(when_col)?;
+        if let Some(f) = frame_check {
+            let frame = number(f)?;
+            if let Some(rate) = opts.key_fps {
+                check_frame_time(frame, t, rate, "--key-fps")
+                    .map_err(|e| e.at(format!("{}: columns \"frame\" and \"time\"", loc())))?;
+            }
+        }
         for (slot, &i) in values.iter_mut().zip(&rot_idx) {
             *slot = number(i)?;
         }
         let (rot, warning) = repr
-            .to_quat(&values[..repr.width()], opts.angles)
+            .to_quat(&values[..repr.width()], opts.undeclared_angles())
             .map_err(|e| e.at(format!("{}: columns {}", loc(), rot_cols.join(","))))?;
         if let Some(w) = warning {
             doc.warnings.push(format!("{}: {w}", loc()));
