@@ -87,6 +87,11 @@ pub struct InputArgs {
     #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
     pub key_fps: Option<Fps>,
 
+    /// CSV field delimiter: , ; or tab. Default: the one of the three found most often in the
+    /// header line (outside quotes), a comma on a tie or when there is none.
+    #[arg(long, value_name = "C", value_parser = parse_delimiter)]
+    pub delimiter: Option<u8>,
+
     /// Component order of quaternions in JSON arrays (CSV columns are named).
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
     pub quat_order: QuatOrder,
@@ -368,6 +373,15 @@ fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
         }
     }
     Ok(v)
+}
+
+fn parse_delimiter(s: &str) -> Result<u8, String> {
+    match s {
+        "," => Ok(b','),
+        ";" => Ok(b';'),
+        "tab" | "\t" => Ok(b'\t'),
+        _ => Err(format!("expected \",\", \";\" or \"tab\", found \"{s}\"")),
+    }
 }
 
 fn parse_repr(s: &str) -> Result<Repr, String> {

@@ -46,6 +46,7 @@ pub fn read_input(
         input_angles: args.input_angles,
         key_fps: args.key_fps,
         quat_order: args.quat_order,
+        delimiter: args.delimiter,
     };
     let (doc, format) = match args.input.as_deref() {
         Some(p) if p.as_os_str() != "-" => {

@@ -98,6 +98,9 @@ pub struct ReadOptions {
     pub key_fps: Option<Fps>,
     /// `--quat-order`: component order of JSON quaternion arrays.
     pub quat_order: QuatOrder,
+    /// `--delimiter`: the CSV field delimiter (`,`, `;` or tab); by default detected from the
+    /// header line ([`read::csv::detect_delimiter`]).
+    pub delimiter: Option<u8>,
 }
 
 impl ReadOptions {

@@ -236,3 +236,49 @@ fn frames_is_a_synonym_of_keys_and_angular_velocity_belongs_to_frames() {
          an array of length 3\n"
     );
 }
+
+#[test]
+fn spreadsheet_csv_reads_like_plain_csv() {
+    let plain = ok(
+        &["interp", "-", "--fps", "4"],
+        Some(b"time,w,x,y,z\n0,1,0,0,0\n1,0,0,0,1\n"),
+    );
+    for text in [
+        &b"Time, W, X, Y, Z\n0, 1, 0, 0, 0\n1, 0, 0, 0, 1\n"[..],
+        b"\xef\xbb\xbfTIME;W;X;Y;Z\r\n0;1;0;0;0\r\n1;0;0;0;1\r\n",
+        b" time \t w \t x \t y \t z \n0\t1\t0\t0\t0\n1\t0\t0\t0\t1\n",
+    ] {
+        assert_eq!(ok(&["interp", "-", "--fps", "4"], Some(text)), plain);
+    }
+    // --delimiter overrides detection.
+    let semi = b"time;w;x;y;z\n0;1;0;0;0\n1;0;0;0;1\n";
+    assert_eq!(
+        ok(
+            &["interp", "-", "--fps", "4", "--delimiter", ";"],
+            Some(semi)
+        ),
+        plain
+    );
+    let (code, _, err) = run(
+        &["interp", "-", "--fps", "4", "--delimiter", ","],
+        Some(semi),
+    );
+    assert_eq!(code, 2);
+    assert!(err.ends_with("found time;w;x;y;z\n"), "{err}");
+    let tab = b"time\tw\tx\ty\tz\n0\t1\t0\t0\t0\n1\t0\t0\t0\t1\n";
+    assert_eq!(
+        ok(
+            &["interp", "-", "--fps", "4", "--delimiter", "tab"],
+            Some(tab)
+        ),
+        plain
+    );
+    let (code, _, err) = run(&["interp", "-", "--delimiter", "|"], Some(semi));
+    assert_eq!(code, 2);
+    assert!(
+        err.contains(
+            "invalid value '|' for '--delimiter <C>': expected \",\", \";\" or \"tab\", found \"|\""
+        ),
+        "{err}"
+    );
+}
