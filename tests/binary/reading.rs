@@ -282,3 +282,70 @@ fn spreadsheet_csv_reads_like_plain_csv() {
         "{err}"
     );
 }
+
+/// The first frame line of interp's CSV output and the warnings.
+fn first_frame(args: &[&str], stdin: &[u8]) -> (String, String) {
+    let (code, out, err) = run(args, Some(stdin));
+    assert_eq!(code, 0, "{args:?}: {err}");
+    let out = String::from_utf8(out).unwrap();
+    (out.lines().nth(1).unwrap_or_default().to_string(), err)
+}
+
+#[test]
+fn key_rate_numbers_the_frames_of_a_document_that_declares_none() {
+    let maya = std::fs::read(format!("{}/fixtures/interp/maya_frames.csv", root())).unwrap();
+    let euler = ["--from", "euler:xyz"];
+    let warning = "inbetween: warning: <stdin>: frame numbers are read at the output rate, 60 \
+                   fps, as the document declares no rate; give the keys' rate with --key-fps \
+                   RATE\n";
+    // Without a rate: read at the output rate, with a warning naming --key-fps.
+    let (first, err) = first_frame(
+        &[&["interp", "-", "--fps", "60"][..], &euler].concat(),
+        &maya,
+    );
+    assert_eq!(
+        (first.split(',').next(), err.as_str()),
+        (Some("1"), warning)
+    );
+    // With --key-fps 24: frame 1 is at 1/24 s, the first 60 fps frame after it is frame 3.
+    let args = [
+        &["interp", "-", "--fps", "60", "--key-fps", "24"][..],
+        &euler,
+    ]
+    .concat();
+    let (first, err) = first_frame(&args, &maya);
+    assert!(first.starts_with("3,0.05,"), "{first}");
+    assert_eq!(err, "");
+    // --key-fps stands in for the missing declaration: it is also the default output rate.
+    let (first, _) = first_frame(
+        &[&["interp", "-", "--key-fps", "24"][..], &euler].concat(),
+        &maya,
+    );
+    assert!(first.starts_with("1,0.041666666666666664,"), "{first}");
+    // No warning for keys in seconds, nor for a document that declares its rate.
+    let (_, err) = first_frame(&["interp", "-"], b"time,w,x,y,z\n0,1,0,0,0\n1,0,0,0,1\n");
+    assert_eq!(err, "");
+    let declared = br#"{"fps": 24, "keys": [{"frame": 0, "quat": [1, 0, 0, 0]},
+        {"frame": 24, "quat": [0, 0, 0, 1]}]}"#;
+    let (_, err) = first_frame(&["interp", "-", "--fps", "60"], declared);
+    assert_eq!(err, "");
+    // A JSON document without "fps" takes --key-fps; one with it must agree.
+    let undeclared = br#"{"keys": [{"frame": 0, "quat": [1, 0, 0, 0]},
+        {"frame": 12, "quat": [0, 0, 0, 1]}]}"#;
+    let out = ok(
+        &["interp", "-", "--key-fps", "24", "--output-format", "csv"],
+        Some(undeclared),
+    );
+    assert!(
+        String::from_utf8(out)
+            .unwrap()
+            .ends_with("\n12,0.5,0.0,0.0,0.0,1.0\n")
+    );
+    ok(&["interp", "-", "--key-fps", "24"], Some(declared));
+    let (code, _, err) = run(&["interp", "-", "--key-fps", "25"], Some(declared));
+    assert_eq!(code, 2);
+    assert_eq!(
+        err,
+        "inbetween: error: <stdin> declares \"fps\": 24 but --key-fps says 25\n"
+    );
+}
