@@ -1,6 +1,8 @@
-//! What the subcommands share: reading the input, the rate rule (a document's `fps` numbers its
-//! own `frame` values; `--fps` sets the output rate, else the document's, else 30), and the
-//! curve options from the command line.
+//! What the subcommands share: reading the input (every command through [`read_input`], so
+//! that the one precedence rule between a document's declarations and the flags,
+//! [`inbetween::io::settle`], applies to all of them), the rate rule (a document's `fps`, or
+//! `--key-fps` standing in for it, numbers its `frame` values; `--fps` sets the output rate,
+//! else the document's, else 30), and the curve options from the command line.
 
 use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
 use glam::DVec3;

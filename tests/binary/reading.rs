@@ -349,3 +349,181 @@ fn key_rate_numbers_the_frames_of_a_document_that_declares_none() {
         "inbetween: error: <stdin> declares \"fps\": 24 but --key-fps says 25\n"
     );
 }
+
+/// The precedence rule, one case per row, run through every command: a document's
+/// declarations describe its own values; flags describe only what it leaves undeclared; a flag
+/// that contradicts a declaration is an input error naming both; `--fps` is the output rate;
+/// `--angles` is the output unit and, without `--input-angles`, the unit of undeclared input
+/// angles.
+#[test]
+fn precedence_table() {
+    // 90° about z, keyed at frame 24: at 1 s when the frames are read at 24 fps.
+    const DECLARED: &str = r#"{"fps": 24, "rotation": "euler:ZYX", "angles": "rad", "keys": [
+        {"frame": 0, "euler": [0, 0, 0]}, {"frame": 24, "euler": [1.5707963267948966, 0, 0]}]}"#;
+    const UNDECLARED_DEG: &str =
+        r#"[{"frame": 0, "euler": [0, 0, 0]}, {"frame": 24, "euler": [90, 0, 0]}]"#;
+    const CSV_DEG: &str = "frame,e1,e2,e3\n0,0,0,0\n24,90,0,0\n";
+    const CSV_RAD: &str = "frame,e1,e2,e3\n0,0,0,0\n24,1.5707963267948966,0,0\n";
+    // (document, flags, Ok(time of the second key in s) or Err(message)); the second key is
+    // always 90° about z when read as intended.
+    let table: &[(&str, &[&str], Result<f64, &str>)] = &[
+        // Declarations alone.
+        (DECLARED, &[], Ok(1.0)),
+        // Flags that agree with the declarations.
+        (
+            DECLARED,
+            &[
+                "--from",
+                "euler:ZYX",
+                "--input-angles",
+                "rad",
+                "--key-fps",
+                "24",
+            ],
+            Ok(1.0),
+        ),
+        // Flags that contradict them: an error naming both.
+        (
+            DECLARED,
+            &["--from", "euler:XYZ"],
+            Err("<stdin> declares \"rotation\": \"euler:ZYX\" but --from says euler:XYZ"),
+        ),
+        (
+            DECLARED,
+            &["--from", "quat"],
+            Err("<stdin> declares \"rotation\": \"euler:ZYX\" but --from says quat"),
+        ),
+        (
+            DECLARED,
+            &["--input-angles", "deg"],
+            Err("<stdin> declares \"angles\": \"rad\" but --input-angles says deg"),
+        ),
+        (
+            DECLARED,
+            &["--key-fps", "30"],
+            Err("<stdin> declares \"fps\": 24 but --key-fps says 30"),
+        ),
+        // --angles is the output unit: it never conflicts with a declaration.
+        (DECLARED, &["--angles", "deg"], Ok(1.0)),
+        // --fps is the output rate: the declared fps still numbers the document's frames.
+        (DECLARED, &["--fps", "48"], Ok(1.0)),
+        (DECLARED, &["--fps", "48", "--key-fps", "24"], Ok(1.0)),
+        // Undeclared: the flags say.
+        (
+            UNDECLARED_DEG,
+            &["--from", "euler:ZYX", "--key-fps", "24"],
+            Ok(1.0),
+        ),
+        (
+            UNDECLARED_DEG,
+            &["--from", "euler:ZYX", "--fps", "24"],
+            Ok(1.0),
+        ),
+        (
+            UNDECLARED_DEG,
+            &[
+                "--from",
+                "euler:ZYX",
+                "--input-angles",
+                "deg",
+                "--angles",
+                "rad",
+                "--key-fps",
+                "24",
+            ],
+            Ok(1.0),
+        ),
+        (
+            CSV_DEG,
+            &["--from", "euler:ZYX", "--key-fps", "24"],
+            Ok(1.0),
+        ),
+        (
+            CSV_RAD,
+            &["--from", "euler:ZYX", "--angles", "rad", "--key-fps", "24"],
+            Ok(1.0),
+        ),
+        (
+            CSV_RAD,
+            &[
+                "--from",
+                "euler:ZYX",
+                "--input-angles",
+                "rad",
+                "--key-fps",
+                "24",
+            ],
+            Ok(1.0),
+        ),
+        (
+            CSV_RAD,
+            &[
+                "--from",
+                "euler:ZYX",
+                "--input-angles",
+                "rad",
+                "--angles",
+                "deg",
+                "--key-fps",
+                "12",
+            ],
+            Ok(2.0),
+        ),
+    ];
+    let quarter = DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2);
+    for (doc, flags, want) in table {
+        let what = format!("{flags:?} on {}", &doc[..20]);
+        let interp_args = [
+            &["interp", "-", "--to", "quat", "--output-format", "csv"][..],
+            flags,
+        ]
+        .concat();
+        match want {
+            Ok(time) => {
+                let rows = csv_rows(&ok(&interp_args, Some(doc.as_bytes())));
+                let last = rows.last().unwrap();
+                assert_eq!(last.2, *time, "{what}: time of the last key");
+                let d = rot_angle(last.3, quarter);
+                assert!(d < 1e-12, "{what}: the last key is {d} rad off");
+                for cmd in ["convert", "analyze"] {
+                    ok(&[&[cmd, "-"][..], flags].concat(), Some(doc.as_bytes()));
+                }
+                ok(
+                    &[&["plot", "-", "-o", "-"][..], flags].concat(),
+                    Some(doc.as_bytes()),
+                );
+            }
+            Err(message) => {
+                for args in [
+                    interp_args.clone(),
+                    [&["convert", "-"][..], flags].concat(),
+                    [&["analyze", "-"][..], flags].concat(),
+                    [&["plot", "-", "-o", "-"][..], flags].concat(),
+                ] {
+                    let (code, out, err) = run(&args, Some(doc.as_bytes()));
+                    assert_eq!((code, out.is_empty()), (2, true), "{what}: {args:?}");
+                    assert_eq!(err, format!("inbetween: error: {message}\n"), "{args:?}");
+                }
+            }
+        }
+    }
+    // The output unit is --angles, whatever the input's.
+    let out = ok(
+        &[
+            "convert",
+            "-",
+            "--from",
+            "euler:ZYX",
+            "--input-angles",
+            "rad",
+            "--to",
+            "euler:ZYX",
+        ],
+        Some(CSV_RAD.as_bytes()),
+    );
+    assert!(
+        String::from_utf8(out)
+            .unwrap()
+            .ends_with("\n24,90.0,0.0,0.0\n")
+    );
+}

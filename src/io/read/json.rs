@@ -6,10 +6,13 @@
 //!  "keys": [{"time": 0.0, "euler": [0, 0, 0]}, {"frame": 24, "quat": [1, 0, 0, 0]}]}
 //! ```
 //! or `"tracks": [{"name": "hip", "keys": [...], "start_velocity": ...}, ...]`. A bare array is
-//! taken as `keys`. Unknown fields, and a field given twice in one object, are errors. Each key has exactly one of `time`/`frame` and one
-//! rotation field; `euler` keys take their sequence from `--from euler:SEQ` or the document's
-//! `rotation`. A document's `angles` describes its own values; `fps` is the rate its `frame`
-//! values are numbered at.
+//! taken as `keys`; `frames` (interp's output) is a synonym of `keys`, in a document and in a
+//! track. Unknown fields, and a field given twice in one object, are errors. Each key has one of
+//! `time`/`frame` (or both, as interp writes them: the time is used, the frame checked against
+//! it when the rate is known) and one rotation field. A document's declarations (`fps`,
+//! `rotation`, `angles`) describe its own values; the flags (`--key-fps`, `--from`,
+//! `--input-angles`) only what it leaves undeclared, and contradicting one is an error
+//! ([`settle`]).
 
 use crate::clock::Fps;
 use crate::error::input_err;
@@ -681,10 +684,11 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         })?),
         None => None,
     };
+    let rotation_written = format!("\"{}\"", wire.rotation.as_deref().unwrap_or(""));
     let rotation = settle(
         source,
         "rotation",
-        doc_rotation.map(|r| (r, wire.rotation.as_deref().unwrap_or(""))),
+        doc_rotation.map(|r| (r, rotation_written.as_str())),
         "--from",
         opts.from,
     )?;
