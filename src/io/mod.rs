@@ -241,3 +241,55 @@ pub fn read_document(
         Format::Json => read::json::read(text, source, opts),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settle_is_the_one_precedence_rule() {
+        let zyx = Repr::parse("euler:ZYX").unwrap();
+        let xyz = Repr::parse("euler:XYZ").unwrap();
+        let settled = |declared: Option<Repr>, given: Option<Repr>| {
+            settle(
+                "k.json",
+                "rotation",
+                declared.map(|r| (r, "\"euler:ZYX\"")),
+                "--from",
+                given,
+            )
+        };
+        // Declared alone, given alone, neither, both agreeing.
+        assert_eq!(settled(Some(zyx), None).unwrap(), Some(zyx));
+        assert_eq!(settled(None, Some(xyz)).unwrap(), Some(xyz));
+        assert_eq!(settled(None, None).unwrap(), None);
+        assert_eq!(settled(Some(zyx), Some(zyx)).unwrap(), Some(zyx));
+        // Contradicting: an error naming both.
+        assert_eq!(
+            settled(Some(zyx), Some(xyz)).unwrap_err().message(),
+            "k.json declares \"rotation\": \"euler:ZYX\" but --from says euler:XYZ"
+        );
+        let fps = settle(
+            "k.json",
+            "fps",
+            Some((Fps::parse("24").unwrap(), "24")),
+            "--key-fps",
+            Some(Fps::parse("30000/1001").unwrap()),
+        );
+        assert_eq!(
+            fps.unwrap_err().message(),
+            "k.json declares \"fps\": 24 but --key-fps says 30000/1001"
+        );
+    }
+
+    #[test]
+    fn input_angles_win_over_angles_for_undeclared_input() {
+        let mut o = ReadOptions {
+            angles: AngleUnit::Rad,
+            ..ReadOptions::default()
+        };
+        assert_eq!(o.undeclared_angles(), AngleUnit::Rad);
+        o.input_angles = Some(AngleUnit::Deg);
+        assert_eq!(o.undeclared_angles(), AngleUnit::Deg);
+    }
+}
