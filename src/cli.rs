@@ -67,13 +67,30 @@ pub struct InputArgs {
     pub input: Option<PathBuf>,
 
     /// Input representation when the data does not say: the Euler sequence of CSV e1,e2,e3
-    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec).
+    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec). A JSON
+    /// "rotation" it contradicts is an error.
     #[arg(long, value_name = "REPR", value_parser = parse_repr)]
     pub from: Option<Repr>,
 
-    /// Unit of every angle written, and of angles read from CSV or JSON without "angles".
+    /// Unit of every angle written, and of input angles the document does not declare when
+    /// --input-angles is absent (CSV; JSON without "angles").
     #[arg(long, value_name = "U", value_parser = parse_angles, default_value = "deg")]
     pub angles: AngleUnit,
+
+    /// Unit of input angles the document does not declare (CSV; JSON without "angles"), so that
+    /// radians can be read and degrees written. A JSON "angles" it contradicts is an error.
+    #[arg(long, value_name = "U", value_parser = parse_angles)]
+    pub input_angles: Option<AngleUnit>,
+
+    /// Rate of the input's frame numbers when the document declares none (CSV always; JSON
+    /// without "fps"): 24, 29.97, 30000/1001, ... A JSON "fps" it contradicts is an error.
+    #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
+    pub key_fps: Option<Fps>,
+
+    /// CSV field delimiter: , ; or tab. Default: the one of the three found most often in the
+    /// header line (outside quotes), a comma on a tie or when there is none.
+    #[arg(long, value_name = "C", value_parser = parse_delimiter)]
+    pub delimiter: Option<u8>,
 
     /// Component order of quaternions in JSON arrays (CSV columns are named).
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
@@ -356,6 +373,15 @@ fn parse_vec3(s: &str) -> Result<[f64; 3], String> {
         }
     }
     Ok(v)
+}
+
+fn parse_delimiter(s: &str) -> Result<u8, String> {
+    match s {
+        "," => Ok(b','),
+        ";" => Ok(b';'),
+        "tab" | "\t" => Ok(b'\t'),
+        _ => Err(format!("expected \",\", \";\" or \"tab\", found \"{s}\"")),
+    }
 }
 
 fn parse_repr(s: &str) -> Result<Repr, String> {

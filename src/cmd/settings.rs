@@ -1,11 +1,13 @@
-//! What the subcommands share: reading the input, the rate rule (a document's `fps` numbers its
-//! own `frame` values; `--fps` sets the output rate, else the document's, else 30), and the
-//! curve options from the command line.
+//! What the subcommands share: reading the input (every command through [`read_input`], so
+//! that the one precedence rule between a document's declarations and the flags,
+//! [`inbetween::io::settle`], applies to all of them), the rate rule (a document's `fps`, or
+//! `--key-fps` standing in for it, numbers its `frame` values; `--fps` sets the output rate,
+//! else the document's, else 30), and the curve options from the command line.
 
 use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
 use glam::DVec3;
 use inbetween::error::num;
-use inbetween::io::document::Document;
+use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
 use inbetween::rotation::AngleUnit;
 use inbetween::{
@@ -25,12 +27,30 @@ impl From<SchemeArg> for Scheme {
     }
 }
 
-/// The rates of a document: `(frame_fps, output_fps)`. A document's own `fps` numbers its
-/// `frame` values; `--fps` sets the output rate. Each falls back to the other, then to 30.
+/// The rates of a document: `(frame_fps, output_fps)`. A document's `fps` (declared, or given
+/// by `--key-fps`, which stands in for a missing declaration) numbers its `frame` values; `--fps`
+/// sets the output rate. Each falls back to the other, then to 30.
 pub fn rates(doc: &Document, fps_arg: Option<Fps>) -> (Fps, Fps) {
     let frame_fps = doc.fps.or(fps_arg).unwrap_or(Fps::DEFAULT);
     let output_fps = fps_arg.or(doc.fps).unwrap_or(Fps::DEFAULT);
     (frame_fps, output_fps)
+}
+
+/// The warning for frame numbers read at the output rate because nothing gives their rate (the
+/// document declares no `fps` and `--key-fps` is absent); `None` when no key is a frame number
+/// or the rate is known.
+pub fn key_rate_warning(doc: &Document, frame_fps: Fps) -> Option<String> {
+    let framed = doc
+        .tracks
+        .iter()
+        .any(|t| t.keys.iter().any(|k| matches!(k.when, KeyTime::Frame(_))));
+    (doc.fps.is_none() && framed).then(|| {
+        format!(
+            "{}: frame numbers are read at the output rate, {frame_fps} fps, as the document \
+             declares no rate; give the keys' rate with --key-fps RATE",
+            doc.source
+        )
+    })
 }
 
 /// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
@@ -43,7 +63,10 @@ pub fn read_input(
     let opts = ReadOptions {
         from: args.from,
         angles: args.angles,
+        input_angles: args.input_angles,
+        key_fps: args.key_fps,
         quat_order: args.quat_order,
+        delimiter: args.delimiter,
     };
     let (doc, format) = match args.input.as_deref() {
         Some(p) if p.as_os_str() != "-" => {
@@ -84,6 +107,9 @@ pub fn read_curves(
 ) -> Result<Curves, InputError> {
     let (doc, format) = read_input(input, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
+    if let Some(w) = key_rate_warning(&doc, frame_fps) {
+        warn(&w);
+    }
     let mut tracks = doc.tracks(frame_fps)?;
     if let Some(eps) = curve.snap_keys {
         for t in &mut tracks {

@@ -17,12 +17,14 @@ use std::fmt;
 pub enum Loc {
     /// A CSV line (1-based; the header is line 1).
     Line(u64),
-    /// A JSON key: `keys[i]`, or `tracks[t].keys[i]`.
+    /// A JSON key: `keys[i]`, or `tracks[t].keys[i]` (`frames` for interp's output).
     Json {
         /// The track's index in `tracks`, when the document has `tracks`.
         track: Option<usize>,
         /// The key's index in its `keys`.
         key: usize,
+        /// The list is called `frames` (interp's output) rather than `keys`.
+        frames: bool,
     },
 }
 
@@ -33,10 +35,20 @@ impl fmt::Display for Loc {
             Loc::Json {
                 track: Some(t),
                 key,
-            } => write!(f, " tracks[{t}].keys[{key}]"),
-            Loc::Json { track: None, key } => write!(f, " keys[{key}]"),
+                frames,
+            } => write!(f, " tracks[{t}].{}[{key}]", list_name(*frames)),
+            Loc::Json {
+                track: None,
+                key,
+                frames,
+            } => write!(f, " {}[{key}]", list_name(*frames)),
         }
     }
+}
+
+/// `frames` or `keys`: the name of a JSON list of keys.
+fn list_name(frames: bool) -> &'static str {
+    if frames { "frames" } else { "keys" }
 }
 
 /// Formats `source:line` (CSV) or `source: keys[3]` (JSON).
@@ -70,10 +82,13 @@ pub struct Key {
 pub enum KeyOrigin {
     /// CSV: the line of each key, in key order.
     Lines(Vec<u64>),
-    /// JSON: key `i` is `keys[i]`, or `tracks[t].keys[i]` for `Some(t)`.
+    /// JSON: key `i` is `keys[i]`, or `tracks[t].keys[i]` for `Some(t)` (`frames` for
+    /// interp's output).
     Json {
         /// The track's index in `tracks`, when the document has `tracks`.
         track: Option<usize>,
+        /// The list is called `frames`.
+        frames: bool,
     },
 }
 
@@ -97,9 +112,10 @@ impl DocTrack {
     pub fn loc(&self, i: usize) -> Loc {
         match &self.origin {
             KeyOrigin::Lines(lines) => Loc::Line(lines[i]),
-            KeyOrigin::Json { track } => Loc::Json {
+            KeyOrigin::Json { track, frames } => Loc::Json {
                 track: *track,
                 key: i,
+                frames: *frames,
             },
         }
     }
@@ -110,7 +126,8 @@ impl DocTrack {
 pub struct Document {
     /// File name for messages (`<stdin>` for standard input).
     pub source: String,
-    /// The rate the document's own `frame` values are numbered at, if it says.
+    /// The rate the document's own `frame` values are numbered at: its declared `fps`, else the
+    /// one `--key-fps` gives ([`crate::io::ReadOptions::key_fps`]), if any.
     pub fps: Option<Fps>,
     /// The representation the input used (the first key's, for JSON).
     pub rotation: Option<Repr>,

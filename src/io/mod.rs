@@ -11,8 +11,9 @@ pub mod output;
 pub mod read;
 pub mod write;
 
-use crate::error::input_err;
+use crate::clock::Fps;
 use crate::error::{InputError, InputResult};
+use crate::error::{input_err, shorten};
 use crate::rotation::{AngleUnit, QuatOrder, Repr};
 use document::Document;
 use std::io::Read;
@@ -79,16 +80,59 @@ impl OutputFormat {
     }
 }
 
-/// How to interpret input values the data does not describe itself.
+/// How to interpret input values the data does not describe itself: the command line's
+/// statements about the input, applied by the one precedence rule of [`settle`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ReadOptions {
     /// `--from`: the representation when the data does not say (the Euler sequence of CSV
-    /// `e1,e2,e3` columns and of JSON `euler` keys).
+    /// `e1,e2,e3` columns and of JSON `euler` keys); contradicting a JSON `rotation` is an error.
     pub from: Option<Repr>,
-    /// `--angles`: unit of angles in CSV and in JSON without `angles`.
+    /// `--angles`: the unit of undeclared input angles when `input_angles` is absent (it never
+    /// conflicts with a declaration).
     pub angles: AngleUnit,
+    /// `--input-angles`: the unit of undeclared input angles; contradicting a JSON `angles` is an
+    /// error.
+    pub input_angles: Option<AngleUnit>,
+    /// `--key-fps`: the rate of `frame` numbers when the document declares none; contradicting a
+    /// JSON `fps` is an error.
+    pub key_fps: Option<Fps>,
     /// `--quat-order`: component order of JSON quaternion arrays.
     pub quat_order: QuatOrder,
+    /// `--delimiter`: the CSV field delimiter (`,`, `;` or tab); by default detected from the
+    /// header line ([`read::csv::detect_delimiter`]).
+    pub delimiter: Option<u8>,
+}
+
+impl ReadOptions {
+    /// The unit of input angles the document does not declare: `--input-angles`, else
+    /// `--angles`.
+    pub fn undeclared_angles(&self) -> AngleUnit {
+        self.input_angles.unwrap_or(self.angles)
+    }
+}
+
+/// The one precedence rule between a document's declaration and a flag (docs/spec.md §3,
+/// *Precedence*): a declaration describes the document's own values and wins; a flag describes
+/// only what the document leaves undeclared; a flag that contradicts a declaration is an input
+/// error naming both: `keys.json declares "rotation": "euler:ZYX" but --from says euler:XYZ`.
+///
+/// `field` is the document's field, `declared` its value as written (`"euler:ZYX"`, `30`),
+/// `flag` the option. Returns the value that applies, if any.
+pub fn settle<T: PartialEq + std::fmt::Display>(
+    source: &str,
+    field: &str,
+    declared: Option<(T, &str)>,
+    flag: &str,
+    given: Option<T>,
+) -> InputResult<Option<T>> {
+    match (declared, given) {
+        (Some((d, written)), Some(g)) if d != g => Err(input_err!(
+            "{source} declares \"{field}\": {} but {flag} says {g}",
+            shorten(written)
+        )),
+        (Some((d, _)), _) => Ok(Some(d)),
+        (None, g) => Ok(g),
+    }
 }
 
 /// Parses a document from raw bytes: UTF-8 checked, the format as given, else from `path`'s
@@ -195,5 +239,57 @@ pub fn read_document(
     match format {
         Format::Csv => read::csv::read(text, source, opts),
         Format::Json => read::json::read(text, source, opts),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settle_is_the_one_precedence_rule() {
+        let zyx = Repr::parse("euler:ZYX").unwrap();
+        let xyz = Repr::parse("euler:XYZ").unwrap();
+        let settled = |declared: Option<Repr>, given: Option<Repr>| {
+            settle(
+                "k.json",
+                "rotation",
+                declared.map(|r| (r, "\"euler:ZYX\"")),
+                "--from",
+                given,
+            )
+        };
+        // Declared alone, given alone, neither, both agreeing.
+        assert_eq!(settled(Some(zyx), None).unwrap(), Some(zyx));
+        assert_eq!(settled(None, Some(xyz)).unwrap(), Some(xyz));
+        assert_eq!(settled(None, None).unwrap(), None);
+        assert_eq!(settled(Some(zyx), Some(zyx)).unwrap(), Some(zyx));
+        // Contradicting: an error naming both.
+        assert_eq!(
+            settled(Some(zyx), Some(xyz)).unwrap_err().message(),
+            "k.json declares \"rotation\": \"euler:ZYX\" but --from says euler:XYZ"
+        );
+        let fps = settle(
+            "k.json",
+            "fps",
+            Some((Fps::parse("24").unwrap(), "24")),
+            "--key-fps",
+            Some(Fps::parse("30000/1001").unwrap()),
+        );
+        assert_eq!(
+            fps.unwrap_err().message(),
+            "k.json declares \"fps\": 24 but --key-fps says 30000/1001"
+        );
+    }
+
+    #[test]
+    fn input_angles_win_over_angles_for_undeclared_input() {
+        let mut o = ReadOptions {
+            angles: AngleUnit::Rad,
+            ..ReadOptions::default()
+        };
+        assert_eq!(o.undeclared_angles(), AngleUnit::Rad);
+        o.input_angles = Some(AngleUnit::Deg);
+        assert_eq!(o.undeclared_angles(), AngleUnit::Deg);
     }
 }

@@ -12,6 +12,7 @@ mod numbers;
 mod output;
 mod plot;
 mod readers;
+mod reading;
 mod reliability;
 mod roundtrip;
 mod validation;

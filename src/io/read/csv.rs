@@ -14,8 +14,12 @@ use crate::error::InputResult;
 use crate::error::input_err;
 use crate::io::ReadOptions;
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, shorten};
+use crate::io::read::json::check_frame_time;
 use crate::rotation::{MAX_WIDTH, Repr};
 use std::collections::{HashMap, HashSet};
+
+/// interp's angular velocity columns (`--velocity`): accepted together and ignored.
+const VELOCITY_COLUMNS: [&str; 3] = ["wx", "wy", "wz"];
 
 /// Column sets that name a representation, with their aliases.
 const QUAT_ALIASES: [&str; 4] = ["qw", "qx", "qy", "qz"];
@@ -40,9 +44,11 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             "{source}: expected a CSV header row, found an empty input"
         ));
     }
+    let delimiter = opts.delimiter.unwrap_or_else(|| detect_delimiter(text));
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
+        .delimiter(delimiter)
         .from_reader(text.as_bytes());
     let mut records = rdr.records();
     let mut record = csv::StringRecord::new();
@@ -57,52 +63,64 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     };
     let header_line = header.position().map_or(1, |p| p.line());
     // Fields are trimmed here rather than by the csv crate, whose trimming copies every record.
-    let names: Vec<&str> = header.iter().map(str::trim).collect();
+    // Header names match case-insensitively (ASCII): `Time, W, X, Y, Z` as a spreadsheet writes
+    // them. Messages quote them as written.
+    let written: Vec<&str> = header.iter().map(str::trim).collect();
+    let lower: Vec<String> = written.iter().map(|n| n.to_ascii_lowercase()).collect();
+    let names: Vec<&str> = lower.iter().map(String::as_str).collect();
     let hloc = format!("{source}:{header_line}");
     let mut seen = HashSet::with_capacity(names.len());
-    for n in &names {
+    for (n, w) in names.iter().zip(&written) {
         if !seen.insert(*n) {
             return Err(input_err!(
                 "{hloc}: column \"{}\" appears twice",
-                shorten(n)
+                shorten(w)
             ));
         }
     }
     let col = |n: &str| names.iter().position(|c| *c == n);
-    let (repr, rot_cols) = choose_rotation(&names, &seen, opts, &hloc)?;
-    let time_col = col("time");
-    let frame_col = col("frame");
-    let (when_col, is_frame) = match (time_col, frame_col) {
-        (Some(t), None) => (t, false),
-        (None, Some(f)) => (f, true),
-        (Some(_), Some(_)) => {
-            return Err(input_err!(
-                "{hloc}: expected a \"time\" or a \"frame\" column, found both"
-            ));
-        }
-        (None, None) => {
-            return Err(input_err!(
-                "{hloc}: expected a \"time\" or a \"frame\" column, found neither (columns: {})",
-                joined(&names)
-            ));
-        }
-    };
+    let (repr, rot_cols) = choose_rotation(&written, &seen, opts, &hloc)?;
     let track_col = col("track");
-    for n in &names {
-        let known = *n == "track" || *n == "time" || *n == "frame" || rot_cols.contains(n);
+    // interp's `--velocity` columns, read and ignored (all three or none).
+    let velocity = VELOCITY_COLUMNS.iter().all(|c| seen.contains(c));
+    for (n, w) in names.iter().zip(&written) {
+        let known = *n == "track"
+            || *n == "time"
+            || *n == "frame"
+            || rot_cols.contains(n)
+            || (velocity && VELOCITY_COLUMNS.contains(n));
         if !known {
+            let mut expected = vec!["track", "time", "frame"];
+            expected.extend(&rot_cols);
             return Err(input_err!(
-                "{hloc}: unknown column \"{}\" (expected track, time or frame, and {})",
-                shorten(n),
-                rot_cols.join(",")
+                "{hloc}: unknown column \"{}\": expected {}{}",
+                shorten(w),
+                expected.join(", "),
+                suggestion(n, &expected)
             ));
         }
     }
+    let time_col = col("time");
+    let frame_col = col("frame");
+    // With both (interp's output), the time is used and the frame number is checked against it
+    // when `--key-fps` gives its rate.
+    let (when_col, is_frame, frame_check) = match (time_col, frame_col) {
+        (Some(t), None) => (t, false, None),
+        (None, Some(f)) => (f, true, None),
+        (Some(t), Some(f)) => (t, false, Some(f)),
+        (None, None) => {
+            return Err(input_err!(
+                "{hloc}: expected a \"time\" or a \"frame\" column, found neither (columns: {})",
+                joined(&written)
+            ));
+        }
+    };
     let rot_idx: Vec<usize> = rot_cols.iter().filter_map(|n| col(n)).collect();
 
     let mut doc = Document {
         source: source.to_string(),
-        fps: None,
+        // CSV declares no rate: `--key-fps` gives it.
+        fps: opts.key_fps,
         rotation: Some(repr),
         tracks: Vec::new(),
         named_tracks: track_col.is_some(),
@@ -135,23 +153,30 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 Ok(_) => Err(input_err!(
                     "{}: column \"{}\": expected a finite number, found \"{}\"",
                     loc(),
-                    names[i],
+                    written[i],
                     shorten(raw)
                 )),
                 Err(_) => Err(input_err!(
                     "{}: column \"{}\": expected a number, found \"{}\"",
                     loc(),
-                    names[i],
+                    written[i],
                     shorten(raw)
                 )),
             }
         };
         let t = number(when_col)?;
+        if let Some(f) = frame_check {
+            let frame = number(f)?;
+            if let Some(rate) = opts.key_fps {
+                check_frame_time(frame, t, rate, "--key-fps")
+                    .map_err(|e| e.at(format!("{}: columns \"frame\" and \"time\"", loc())))?;
+            }
+        }
         for (slot, &i) in values.iter_mut().zip(&rot_idx) {
             *slot = number(i)?;
         }
         let (rot, warning) = repr
-            .to_quat(&values[..repr.width()], opts.angles)
+            .to_quat(&values[..repr.width()], opts.undeclared_angles())
             .map_err(|e| e.at(format!("{}: columns {}", loc(), rot_cols.join(","))))?;
         if let Some(w) = warning {
             doc.warnings.push(format!("{}: {w}", loc()));
@@ -209,6 +234,62 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         ));
     }
     Ok(doc)
+}
+
+/// The delimiter of a CSV document without `--delimiter`: of `,`, `;` and tab, the one that
+/// occurs most often outside double quotes in the header line (the first line that is not
+/// blank); ties go to the first of `,`, `;`, tab; none at all is `,`.
+pub fn detect_delimiter(text: &str) -> u8 {
+    let header = text
+        .lines()
+        .find(|l| !l.trim().is_empty())
+        .unwrap_or_default();
+    let mut counts = [0usize; 3];
+    let mut quoted = false;
+    for b in header.bytes() {
+        match b {
+            b'"' => quoted = !quoted,
+            b',' if !quoted => counts[0] += 1,
+            b';' if !quoted => counts[1] += 1,
+            b'\t' if !quoted => counts[2] += 1,
+            _ => {}
+        }
+    }
+    let best = (0..3).fold(0, |best, i| if counts[i] > counts[best] { i } else { best });
+    [b',', b';', b'\t'][best]
+}
+
+/// Levenshtein distance between two short names (in characters).
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let here = (prev + usize::from(ca != cb))
+                .min(row[j] + 1)
+                .min(row[j + 1] + 1);
+            prev = row[j + 1];
+            row[j + 1] = here;
+        }
+    }
+    row[b.len()]
+}
+
+/// `; did you mean "time"?` for the expected name nearest `name` (lowercased) by edit distance,
+/// when that distance is at most 2 (the first such name on a tie); else nothing.
+fn suggestion(name: &str, expected: &[&str]) -> String {
+    // A name far longer than any column cannot be within 2 edits: skip the work.
+    if name.len() > 64 {
+        return String::new();
+    }
+    expected
+        .iter()
+        .map(|e| (edit_distance(name, e), e))
+        .filter(|(d, _)| *d <= 2)
+        .min_by_key(|(d, _)| *d)
+        .map_or(String::new(), |(_, e)| format!("; did you mean \"{e}\"?"))
 }
 
 /// The header's names joined by commas for a message, cut like a quoted value ([`shorten`]),
@@ -359,22 +440,69 @@ mod tests {
         );
         assert_eq!(
             err(&format!("time,w,x,y,z,{long}\n")),
-            format!(
-                "k.csv:1: unknown column \"{cut}\" (expected track, time or frame, and w,x,y,z)"
-            )
+            format!("k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z")
         );
         assert_eq!(
             err(&format!("time,w,x,y,z,{long},{long}\n")),
             format!("k.csv:1: column \"{cut}\" appears twice")
         );
+        // An unknown column is reported before a missing time, so the list of columns holds
+        // known names only.
         assert_eq!(
             err(&format!("w,x,y,z,{long}\n")),
-            format!(
-                "k.csv:1: expected a \"time\" or a \"frame\" column, found neither (columns: \
-                 w,x,y,z,{}…)",
-                "ж".repeat(52)
-            )
+            format!("k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z")
         );
+        assert_eq!(
+            err("W,X,Y,Z,Track\n"),
+            "k.csv:1: expected a \"time\" or a \"frame\" column, found neither (columns: \
+             W,X,Y,Z,Track)"
+        );
+    }
+
+    #[test]
+    fn the_delimiter_is_the_most_frequent_of_three_in_the_header() {
+        assert_eq!(detect_delimiter("time,w,x,y,z\n"), b',');
+        assert_eq!(detect_delimiter("\n\ntime;w;x;y;z\n0,5;1;0;0;0\n"), b';');
+        assert_eq!(detect_delimiter("time\tw\tx\ty\tz\n"), b'\t');
+        // Inside quotes a delimiter does not count; ties and none go to the comma.
+        assert_eq!(detect_delimiter("\"a,b,c\";time;w\n"), b';');
+        assert_eq!(detect_delimiter("a;b,c\n"), b',');
+        assert_eq!(detect_delimiter("a\tb;c\n"), b';');
+        assert_eq!(detect_delimiter("time\n"), b',');
+    }
+
+    #[test]
+    fn spreadsheet_headers_and_suggestions() {
+        let text = "Time ; W ; X ; Y ; Z\r\n0;1;0;0;0\r\n1;0;0;0;1\r\n";
+        let doc = read(text, "k.csv", &opts()).unwrap();
+        assert_eq!(doc.tracks[0].keys.len(), 2);
+        let err = |text: &str| {
+            read(text, "k.csv", &opts())
+                .unwrap_err()
+                .message()
+                .to_string()
+        };
+        assert_eq!(
+            err("TIME,w,x,y,z,Trak\n"),
+            "k.csv:1: unknown column \"Trak\": expected track, time, frame, w, x, y, z; did you \
+             mean \"track\"?"
+        );
+        assert_eq!(
+            err("time,W,x,y,z,w\n"),
+            "k.csv:1: column \"w\" appears twice"
+        );
+        assert_eq!(
+            err("time,W,x,y,z\n0,a,0,0,0\n"),
+            "k.csv:2: column \"W\": expected a number, found \"a\""
+        );
+        assert_eq!(suggestion("qw", &["w", "x"]), "; did you mean \"w\"?");
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        let tabs = ReadOptions {
+            delimiter: Some(b'\t'),
+            ..opts()
+        };
+        assert!(read("time,w,x,y,z\n0,1,0,0,0\n", "k.csv", &tabs).is_err());
+        assert!(read("time\tw\tx\ty\tz\n0\t1\t0\t0\t0\n", "k.csv", &tabs).is_ok());
     }
 
     #[test]

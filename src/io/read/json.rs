@@ -6,16 +6,19 @@
 //!  "keys": [{"time": 0.0, "euler": [0, 0, 0]}, {"frame": 24, "quat": [1, 0, 0, 0]}]}
 //! ```
 //! or `"tracks": [{"name": "hip", "keys": [...], "start_velocity": ...}, ...]`. A bare array is
-//! taken as `keys`. Unknown fields, and a field given twice in one object, are errors. Each key has exactly one of `time`/`frame` and one
-//! rotation field; `euler` keys take their sequence from `--from euler:SEQ` or the document's
-//! `rotation`. A document's `angles` describes its own values; `fps` is the rate its `frame`
-//! values are numbered at.
+//! taken as `keys`; `frames` (interp's output) is a synonym of `keys`, in a document and in a
+//! track. Unknown fields, and a field given twice in one object, are errors. Each key has one of
+//! `time`/`frame` (or both, as interp writes them: the time is used, the frame checked against
+//! it when the rate is known) and one rotation field. A document's declarations (`fps`,
+//! `rotation`, `angles`) describe its own values; the flags (`--key-fps`, `--from`,
+//! `--input-angles`) only what it leaves undeclared, and contradicting one is an error
+//! ([`settle`]).
 
 use crate::clock::Fps;
 use crate::error::input_err;
 use crate::error::{InputError, InputResult};
-use crate::io::ReadOptions;
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, Loc, shorten};
+use crate::io::{ReadOptions, settle};
 use crate::rotation::{AngleUnit, Repr};
 use glam::DVec3;
 use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
@@ -39,9 +42,10 @@ const DOC_FIELDS: &[&str] = &[
     "start_velocity",
     "end_velocity",
     "keys",
+    "frames",
     "tracks",
 ];
-const TRACK_FIELDS: &[&str] = &["name", "start_velocity", "end_velocity", "keys"];
+const TRACK_FIELDS: &[&str] = &["name", "start_velocity", "end_velocity", "keys", "frames"];
 const KEY_FIELDS: &[&str] = &[
     "time",
     "frame",
@@ -50,6 +54,7 @@ const KEY_FIELDS: &[&str] = &[
     "matrix",
     "axis_angle",
     "rotvec",
+    "angular_velocity",
 ];
 /// Index in [`KEY_FIELDS`] of the first rotation field.
 const FIRST_ROTATION: usize = 2;
@@ -64,6 +69,7 @@ struct DocWire {
     start_velocity: Option<[f64; 3]>,
     end_velocity: Option<[f64; 3]>,
     keys: Option<Vec<KeyWire>>,
+    frames: Option<Vec<KeyWire>>,
     tracks: Option<Vec<TrackWire>>,
 }
 
@@ -72,6 +78,8 @@ struct TrackWire {
     start_velocity: Option<[f64; 3]>,
     end_velocity: Option<[f64; 3]>,
     keys: Vec<KeyWire>,
+    /// The keys were given as `frames` (interp's output).
+    frames: bool,
 }
 
 /// A key as read. `null` fields count as absent.
@@ -83,6 +91,8 @@ struct KeyWire {
     rotations: u8,
     /// The values of the last rotation field read (the only one, when the key is valid).
     values: [f64; 9],
+    /// An `angular_velocity` was given (interp's frames; read and ignored).
+    angular_velocity: bool,
 }
 
 /// `fps` as read: a number, a string, or something else (shown in the message, cut).
@@ -367,6 +377,9 @@ impl<'de> Visitor<'de> for KeyVisitor {
                         .as_ref()
                         .map(|a| &a[..]),
                 ),
+                "angular_velocity" => {
+                    key.angular_velocity = map.next_value::<Option<Fixed<Num, 3>>>()?.is_some();
+                }
                 _ => {
                     let m = map.next_value::<Option<Fixed<Fixed<Num, 3>, 3>>>()?;
                     let flat = m.map(|m| {
@@ -403,21 +416,34 @@ impl<'de> Visitor<'de> for TrackVisitor {
         f.write_str("a track object")
     }
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<TrackWire, A::Error> {
-        let (mut name, mut start_velocity, mut end_velocity, mut keys) = (None, None, None, None);
+        let (mut name, mut start_velocity, mut end_velocity) = (None, None, None);
+        let (mut keys, mut frames) = (None, None);
         let mut seen = 0;
         while let Some(i) = next_field(&mut map, TRACK_FIELDS, &mut seen)? {
             match TRACK_FIELDS[i] {
                 "name" => name = map.next_value::<Option<Text>>()?.map(|t| t.0),
                 "start_velocity" => start_velocity = velocity(&mut map)?,
                 "end_velocity" => end_velocity = velocity(&mut map)?,
-                _ => keys = Some(map.next_value::<List<KeyWire>>()?.0),
+                "keys" => keys = Some(map.next_value::<List<KeyWire>>()?.0),
+                _ => frames = Some(map.next_value::<List<KeyWire>>()?.0),
             }
         }
+        let (keys, frames) = match (keys, frames) {
+            (Some(k), None) => (k, false),
+            (None, Some(f)) => (f, true),
+            (Some(_), Some(_)) => {
+                return Err(A::Error::custom(
+                    "expected \"keys\" or \"frames\", found both",
+                ));
+            }
+            (None, None) => return Err(A::Error::missing_field("keys")),
+        };
         Ok(TrackWire {
             name,
             start_velocity,
             end_velocity,
-            keys: keys.ok_or_else(|| A::Error::missing_field("keys"))?,
+            keys,
+            frames,
         })
     }
     fn visit_str<E: de::Error>(self, v: &str) -> Result<TrackWire, E> {
@@ -458,6 +484,7 @@ impl<'de> Visitor<'de> for DocVisitor {
                 "start_velocity" => doc.start_velocity = velocity(&mut map)?,
                 "end_velocity" => doc.end_velocity = velocity(&mut map)?,
                 "keys" => doc.keys = map.next_value::<Option<List<KeyWire>>>()?.map(|l| l.0),
+                "frames" => doc.frames = map.next_value::<Option<List<KeyWire>>>()?.map(|l| l.0),
                 _ => doc.tracks = map.next_value::<Option<List<TrackWire>>>()?.map(|l| l.0),
             }
         }
@@ -526,14 +553,21 @@ fn located(source: &str, e: serde_path_to_error::Error<serde_json::Error>) -> In
         Segment::Seq { index } => Some(*index),
         _ => None,
     };
+    // A list of keys: `keys`, or `frames` (interp's output).
+    let list = |s: &Segment| ["keys", "frames"].into_iter().find(|n| map(s, n));
     let (place, field) = match segments.as_slice() {
         // A bare array of keys.
         [s, rest @ ..] if seq(s).is_some() => (format!("keys[{}]", seq(s).unwrap()), rest),
-        [k, s, rest @ ..] if map(k, "keys") && seq(s).is_some() => {
-            (format!("keys[{}]", seq(s).unwrap()), rest)
+        [k, s, rest @ ..] if list(k).is_some() && seq(s).is_some() => {
+            (format!("{}[{}]", list(k).unwrap(), seq(s).unwrap()), rest)
         }
-        [t, ts, k, s, rest @ ..] if map(t, "tracks") && map(k, "keys") && seq(s).is_some() => (
-            format!("tracks[{}].keys[{}]", seq(ts).unwrap_or(0), seq(s).unwrap()),
+        [t, ts, k, s, rest @ ..] if map(t, "tracks") && list(k).is_some() && seq(s).is_some() => (
+            format!(
+                "tracks[{}].{}[{}]",
+                seq(ts).unwrap_or(0),
+                list(k).unwrap(),
+                seq(s).unwrap()
+            ),
             rest,
         ),
         [t, ts, rest @ ..] if map(t, "tracks") && seq(ts).is_some() => {
@@ -596,25 +630,52 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             serde_message(&e)
         )
     })?;
-    let angles = match &wire.angles {
-        Some(a) => {
-            AngleUnit::parse(a).map_err(|e| cut_quote(e, a).at(format!("{source}: \"angles\"")))?
-        }
-        None => opts.angles,
-    };
-    let fps = match &wire.fps {
+    // The document's declarations, each settled against its flag by the one precedence rule.
+    let declared_angles = match &wire.angles {
+        Some(a) => Some((
+            AngleUnit::parse(a).map_err(|e| cut_quote(e, a).at(format!("{source}: \"angles\"")))?,
+            format!("\"{a}\""),
+        )),
         None => None,
-        Some(FpsWire::Number(n)) => {
-            Some(Fps::from_f64(*n).map_err(|e| e.at(format!("{source}: \"fps\"")))?)
-        }
-        Some(FpsWire::Text(s)) => Some(
+    };
+    let angles = settle(
+        source,
+        "angles",
+        declared_angles
+            .as_ref()
+            .map(|(u, w)| (Unit(*u), w.as_str())),
+        "--input-angles",
+        opts.input_angles.map(Unit),
+    )?
+    .map_or(opts.undeclared_angles(), |u| u.0);
+    let declared_fps = match &wire.fps {
+        None => None,
+        Some(FpsWire::Number(n)) => Some((
+            Fps::from_f64(*n).map_err(|e| e.at(format!("{source}: \"fps\"")))?,
+            crate::error::num(*n),
+        )),
+        Some(FpsWire::Text(s)) => Some((
             Fps::parse(s).map_err(|e| cut_quote(e, s.trim()).at(format!("{source}: \"fps\"")))?,
-        ),
+            format!("\"{s}\""),
+        )),
         Some(FpsWire::Other(other)) => {
             return Err(input_err!(
                 "{source}: \"fps\": expected a number or a string such as \"30000/1001\", found {other}"
             ));
         }
+    };
+    let fps = settle(
+        source,
+        "fps",
+        declared_fps.as_ref().map(|(f, w)| (*f, w.as_str())),
+        "--key-fps",
+        opts.key_fps,
+    )?;
+    // Where the rate of `frame` values comes from, for messages.
+    let rate_from = if declared_fps.is_some() {
+        "\"fps\""
+    } else {
+        "--key-fps"
     };
     let doc_rotation = match &wire.rotation {
         Some(r) => Some(Repr::parse(r).map_err(|e| {
@@ -623,8 +684,16 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         })?),
         None => None,
     };
-    let euler_seq = match (opts.from, doc_rotation) {
-        (Some(Repr::Euler(seq)), _) | (_, Some(Repr::Euler(seq))) => Some(seq),
+    let rotation_written = format!("\"{}\"", wire.rotation.as_deref().unwrap_or(""));
+    let rotation = settle(
+        source,
+        "rotation",
+        doc_rotation.map(|r| (r, rotation_written.as_str())),
+        "--from",
+        opts.from,
+    )?;
+    let euler_seq = match rotation {
+        Some(Repr::Euler(seq)) => Some(seq),
         _ => None,
     };
     let velocity =
@@ -657,17 +726,31 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         source,
         angles,
         euler_seq,
+        rate: fps.map(|f| (f, rate_from)),
         opts,
     };
-    match (wire.keys, wire.tracks) {
-        (Some(keys), None) => {
-            let keys = ctx.keys(keys, None, &mut doc)?;
+    let keys = match (wire.keys, wire.frames) {
+        (Some(k), None) => Some((k, false)),
+        (None, Some(f)) => Some((f, true)),
+        (None, None) => None,
+        (Some(_), Some(_)) => {
+            return Err(input_err!(
+                "{source}: expected \"keys\" or \"frames\", found both"
+            ));
+        }
+    };
+    match (keys, wire.tracks) {
+        (Some((keys, frames)), None) => {
+            let keys = ctx.keys(keys, None, frames, &mut doc)?;
             doc.tracks.push(DocTrack {
                 name: None,
                 keys,
                 start_velocity: doc_start,
                 end_velocity: doc_end,
-                origin: KeyOrigin::Json { track: None },
+                origin: KeyOrigin::Json {
+                    track: None,
+                    frames,
+                },
             });
         }
         (None, Some(tracks)) => {
@@ -677,7 +760,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             for (ti, t) in tracks.into_iter().enumerate() {
                 let start = velocity(t.start_velocity, &|| format!("tracks[{ti}].start_velocity"))?;
                 let end = velocity(t.end_velocity, &|| format!("tracks[{ti}].end_velocity"))?;
-                let keys = ctx.keys(t.keys, Some(ti), &mut doc)?;
+                let keys = ctx.keys(t.keys, Some(ti), t.frames, &mut doc)?;
                 let name = t.name.unwrap_or_else(|| format!("track{ti}"));
                 if !names.insert(name.clone()) {
                     return Err(input_err!(
@@ -690,7 +773,10 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                     keys,
                     start_velocity: start.or(doc_start),
                     end_velocity: end.or(doc_end),
-                    origin: KeyOrigin::Json { track: Some(ti) },
+                    origin: KeyOrigin::Json {
+                        track: Some(ti),
+                        frames: t.frames,
+                    },
                 });
             }
         }
@@ -712,7 +798,38 @@ struct KeyContext<'a> {
     source: &'a str,
     angles: AngleUnit,
     euler_seq: Option<crate::rotation::EulerSeq>,
+    /// The rate of `frame` values, declared (`"fps"`) or given (`--key-fps`), and which.
+    rate: Option<(Fps, &'static str)>,
     opts: &'a ReadOptions,
+}
+
+/// An angle unit shown as the flag's value (`deg`), for [`settle`]'s message.
+#[derive(Clone, Copy, PartialEq)]
+struct Unit(AngleUnit);
+
+impl fmt::Display for Unit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.0.as_str())
+    }
+}
+
+/// A key with both `time` and `frame` (interp's output) is at its `time`; when the rate of its
+/// frame numbers is known, the two must agree within this many seconds.
+pub const FRAME_TIME_AGREEMENT: f64 = 1e-9;
+
+/// Checks that frame `frame` at `rate` is at `time` (within [`FRAME_TIME_AGREEMENT`]), for a key
+/// that gives both; `rate_from` names where the rate comes from (`"fps"`, `--key-fps`).
+pub fn check_frame_time(frame: f64, time: f64, rate: Fps, rate_from: &str) -> InputResult<()> {
+    let at = rate.frame_to_time(frame);
+    if (at - time).abs() <= FRAME_TIME_AGREEMENT {
+        return Ok(());
+    }
+    Err(input_err!(
+        "expected frame {} at {rate} fps ({rate_from}) to be at time {} s (within 1e-9 s), found {} s",
+        crate::error::num(frame),
+        crate::error::num(time),
+        crate::error::num(at)
+    ))
 }
 
 impl KeyContext<'_> {
@@ -720,19 +837,36 @@ impl KeyContext<'_> {
         &self,
         wires: Vec<KeyWire>,
         track: Option<usize>,
+        frames: bool,
         doc: &mut Document,
     ) -> InputResult<Vec<Key>> {
         let mut keys = Vec::with_capacity(wires.len());
         for (i, w) in wires.into_iter().enumerate() {
-            let loc = Loc::Json { track, key: i };
+            let loc = Loc::Json {
+                track,
+                key: i,
+                frames,
+            };
             let here = |e: InputError| e.at(format!("{}:{loc}", self.source));
+            if w.angular_velocity && !frames {
+                return Err(here(input_err!(
+                    "\"angular_velocity\": expected only in \"frames\" (interp's output), \
+                     found in \"keys\""
+                )));
+            }
             let when = match (w.time, w.frame) {
                 (Some(t), None) => KeyTime::Seconds(t),
                 (None, Some(f)) => KeyTime::Frame(f),
-                (Some(_), Some(_)) => {
-                    return Err(here(input_err!(
-                        "expected \"time\" or \"frame\", found both"
-                    )));
+                // interp's frames: the time is used, the frame number checked against it.
+                (Some(t), Some(f)) => {
+                    if let Some((rate, from)) = self.rate
+                        && t.is_finite()
+                        && f.is_finite()
+                    {
+                        check_frame_time(f, t, rate, from)
+                            .map_err(|e| here(e.at("\"frame\" and \"time\"")))?;
+                    }
+                    KeyTime::Seconds(t)
                 }
                 (None, None) => {
                     return Err(here(input_err!(
