@@ -1,6 +1,6 @@
 //! `inbetween convert`: keys in, the same keys out in another representation and/or format.
 
-use super::settings::{output_format, rates, read_input};
+use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
@@ -19,6 +19,13 @@ pub fn run(
     let (frame_fps, _) = rates(&doc, args.fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
+    }
+    // Frame numbers read at the default rate, unasked: the rate is written out (JSON "fps", or
+    // times converted from frames), so say which.
+    if args.fps.is_none()
+        && let Some(w) = key_rate_warning(&doc, frame_fps)
+    {
+        warn(&w.replace("at the output rate, ", "at the default rate, "));
     }
     let format = match output_format(&args.output, in_format) {
         OutputFormat::Doc(f) => f,

@@ -143,3 +143,36 @@ fn the_output_format_follows_the_extension_of_o() {
     );
     assert!(!bad.exists());
 }
+
+#[test]
+fn convert_says_which_rate_it_assumed_for_frame_numbers() {
+    let out = bin()
+        .args([
+            "convert",
+            "fixtures/interp/maya_frames.csv",
+            "--from",
+            "euler:xyz",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "inbetween: warning: fixtures/interp/maya_frames.csv: frame numbers are read at the \
+         default rate, 30 fps, as the document declares no rate; give the keys' rate with \
+         --key-fps RATE\n"
+    );
+    for given in [&["--key-fps", "24"][..], &["--fps", "24"][..]] {
+        let out = bin()
+            .args([
+                "convert",
+                "fixtures/interp/maya_frames.csv",
+                "--from",
+                "euler:xyz",
+            ])
+            .args(given)
+            .output()
+            .unwrap();
+        assert!(out.status.success() && out.stderr.is_empty(), "{given:?}");
+    }
+}
