@@ -254,9 +254,10 @@ pub struct AnalyzeArgs {
     #[command(flatten)]
     pub curve: CurveArgs,
 
-    /// text (an aligned table), csv or json.
-    #[arg(long, value_enum, default_value = "text")]
-    pub output_format: ReportFormat,
+    /// text (an aligned table), csv or json; by default from the extension of -o (.csv,
+    /// .json), else text.
+    #[arg(long, value_enum)]
+    pub output_format: Option<ReportFormat>,
 
     /// Output file, replaced atomically; default standard output.
     #[arg(short = 'o', long = "output", value_name = "PATH")]

@@ -126,11 +126,30 @@ pub const MAX_QUOTED_CHARS: usize = 60;
 /// assert_eq!(shorten("abc"), "abc");
 /// let long = "é".repeat(61);
 /// assert_eq!(shorten(&long), format!("{}…", "é".repeat(60)));
+/// assert_eq!(shorten("\u{1b}[31mRED"), "\\u{1b}[31mRED");
 /// ```
 pub fn shorten(s: &str) -> Cow<'_, str> {
-    match s.char_indices().nth(MAX_QUOTED_CHARS) {
+    let cut = match s.char_indices().nth(MAX_QUOTED_CHARS) {
         None => Cow::Borrowed(s),
         Some((end, _)) => Cow::Owned(format!("{}…", &s[..end])),
+    };
+    // Control characters (an escape sequence, a NUL) are shown escaped, never sent to the
+    // terminal as they are.
+    if cut.chars().any(char::is_control) {
+        Cow::Owned(
+            cut.chars()
+                .flat_map(|c| {
+                    let escaped: Vec<char> = if c.is_control() {
+                        c.escape_default().collect()
+                    } else {
+                        vec![c]
+                    };
+                    escaped
+                })
+                .collect(),
+        )
+    } else {
+        cut
     }
 }
 

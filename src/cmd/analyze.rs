@@ -40,7 +40,24 @@ pub fn run(
             rows.push(m);
         }
     }
-    let bytes = match args.output_format {
+    let by_extension = || {
+        let ext = args
+            .output
+            .as_deref()?
+            .extension()?
+            .to_str()?
+            .to_ascii_lowercase();
+        match ext.as_str() {
+            "csv" => Some(ReportFormat::Csv),
+            "json" => Some(ReportFormat::Json),
+            _ => None,
+        }
+    };
+    let format = args
+        .output_format
+        .or_else(by_extension)
+        .unwrap_or(ReportFormat::Text);
+    let bytes = match format {
         ReportFormat::Text => text_table(&rows, unit).into_bytes(),
         ReportFormat::Csv => csv_report(&rows, unit),
         ReportFormat::Json => json_report(&rows, unit),

@@ -2,6 +2,7 @@
 
 use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
+use inbetween::io::document::KeyTime;
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
 use inbetween::io::{Format, OutputFormat};
@@ -48,6 +49,18 @@ pub fn run(
             .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some())
     {
         warn("CSV has no place for start_velocity/end_velocity; they are not written");
+    }
+    let all_frames = doc
+        .tracks
+        .iter()
+        .flat_map(|t| &t.keys)
+        .all(|k| matches!(k.when, KeyTime::Frame(_)));
+    // A JSON document's rate (a CSV input never had one to lose).
+    if format == Format::Csv && in_format == Format::Json && all_frames && doc.fps.is_some() {
+        warn(&format!(
+            "CSV has no place for the rate: the frame numbers are written as they are, at \
+             {frame_fps} fps; read them back with --key-fps {frame_fps}"
+        ));
     }
     let style = Style {
         repr: args.output.to,

@@ -158,21 +158,62 @@ impl Output {
     /// directory is an [`Error::Input`] naming `path`; failing to create or open the file is an
     /// [`Error::Io`] naming it.
     pub fn open(path: Option<&Path>) -> Result<Output, Error> {
+        let stdout = || Output(Dest::Stdout(BufWriter::with_capacity(BUF, io::stdout())));
         let p = match path {
             Some(p) if p.as_os_str() != "-" => p,
-            _ => {
-                return Ok(Output(Dest::Stdout(BufWriter::with_capacity(
-                    BUF,
-                    io::stdout(),
-                ))));
-            }
+            _ => return Ok(stdout()),
         };
+        // Standard output by its device names is standard output itself: written through the
+        // descriptor the shell set up, so `>> log` appends and a pipe works (following the link
+        // would replace the file it points to, or find no file for a pipe).
+        if ["/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"]
+            .iter()
+            .any(|n| p.as_os_str() == *n)
+        {
+            return Ok(stdout());
+        }
+        // Any other open descriptor (`/dev/stderr`, `/dev/fd/N`): opened and written in place.
+        if p.as_os_str() == "/dev/stderr"
+            || p.starts_with("/dev/fd")
+            || p.starts_with("/proc/self/fd")
+        {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(p)
+                .map_err(|e| named(p, "cannot open", e))?;
+            return Ok(Output(Dest::Direct(BufWriter::with_capacity(BUF, file))));
+        }
+        // `out/` names a directory, existing or not.
+        if p.as_os_str().as_encoded_bytes().ends_with(b"/") && !p.is_dir() {
+            return Err(input_err!(
+                "-o {}: expected a file, found a directory name (ending in /)",
+                p.display()
+            )
+            .into());
+        }
         let target = resolve_links(p)?;
         let existing = match std::fs::symlink_metadata(&target) {
             Ok(meta) => Some(meta),
             Err(e) => {
                 let dir = parent_dir(&target);
                 match std::fs::metadata(dir) {
+                    // A file or a loop of links somewhere in the directory's own path.
+                    Err(d) if d.raw_os_error() == Some(20) => {
+                        return Err(input_err!(
+                            "-o {}: {} is not a directory",
+                            p.display(),
+                            dir.display()
+                        )
+                        .into());
+                    }
+                    Err(d) if d.raw_os_error() == Some(40) => {
+                        return Err(input_err!(
+                            "-o {}: {} is a loop of symbolic links",
+                            p.display(),
+                            dir.display()
+                        )
+                        .into());
+                    }
                     Err(d) if d.kind() == io::ErrorKind::NotFound => {
                         return Err(input_err!(
                             "-o {}: directory {} does not exist",

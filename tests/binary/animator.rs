@@ -176,3 +176,49 @@ fn convert_says_which_rate_it_assumed_for_frame_numbers() {
         assert!(out.status.success() && out.stderr.is_empty(), "{given:?}");
     }
 }
+
+#[test]
+fn convert_to_csv_names_the_rate_it_cannot_write() {
+    let out = bin()
+        .args([
+            "convert",
+            "fixtures/interp/frames_ntsc.json",
+            "--output-format",
+            "csv",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "inbetween: warning: CSV has no place for the rate: the frame numbers are written as \
+         they are, at 30000/1001 fps; read them back with --key-fps 30000/1001\n"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("frame,"));
+}
+
+#[test]
+fn analyze_writes_the_format_of_the_o_extension() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, starts) in [
+        ("a.json", "{"),
+        ("a.csv", "track,scheme,"),
+        ("a.txt", "track "),
+    ] {
+        let path = dir.path().join(name);
+        let out = bin()
+            .args([
+                "analyze",
+                "fixtures/interp/uniform.json",
+                "--scheme",
+                "slerp",
+                "-o",
+            ])
+            .arg(&path)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{name}");
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(text.starts_with(starts), "{name}: {text}");
+    }
+}

@@ -374,3 +374,78 @@ fn an_ignored_signal_stays_ignored() {
     assert_eq!(temp_files(dir.path()), Vec::<String>::new());
     assert!(!dir.path().join("out.csv").exists());
 }
+
+/// `-o /dev/stdout` is standard output itself: appended to a `>>` file, not a replaced file.
+#[test]
+fn dev_stdout_is_standard_output_not_the_file_behind_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("log");
+    std::fs::write(&log, "PREVIOUS\n").unwrap();
+    let append = std::fs::OpenOptions::new().append(true).open(&log).unwrap();
+    let status = std::process::Command::new(assert_cmd::cargo::cargo_bin("inbetween"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["interp", "fixtures/interp/uniform.json", "--fps", "2"])
+        .args(["--output-format", "csv", "-o", "/dev/stdout"])
+        .stdout(append)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert!(text.starts_with("PREVIOUS\nframe,time,w,x,y,z\n"), "{text}");
+    assert_eq!(text.lines().count(), 7);
+    // Into a pipe, too (there is no file behind it to follow).
+    let out = crate::support::bin()
+        .args(["interp", "fixtures/interp/uniform.json", "--fps", "2"])
+        .args(["--output-format", "csv", "-o", "/dev/stdout"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(out.stdout.starts_with(b"frame,time"));
+}
+
+/// A path through a file, through a loop of links, or ending in `/`: input errors naming it.
+#[test]
+fn impossible_paths_are_input_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("target.csv"), "precious\n").unwrap();
+    std::os::unix::fs::symlink("l3b", d.join("l3")).unwrap();
+    std::os::unix::fs::symlink("l3", d.join("l3b")).unwrap();
+    for (o, msg) in [
+        (
+            "newfile/",
+            "-o newfile/: expected a file, found a directory name (ending in /)",
+        ),
+        (
+            "target.csv/",
+            "-o target.csv/: expected a file, found a directory name (ending in /)",
+        ),
+        (
+            "target.csv/dir/out.csv",
+            "-o target.csv/dir/out.csv: target.csv/dir is not a directory",
+        ),
+        ("l3/x.csv", "-o l3/x.csv: l3 is a loop of symbolic links"),
+    ] {
+        let out = crate::support::bin()
+            .current_dir(d)
+            .arg("interp")
+            .arg(
+                std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join("fixtures/interp/uniform.json"),
+            )
+            .args(["-o", o])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{o}");
+        assert_eq!(
+            String::from_utf8_lossy(&out.stderr),
+            format!("inbetween: error: {msg}\n"),
+            "{o}"
+        );
+    }
+    assert_eq!(
+        std::fs::read_to_string(d.join("target.csv")).unwrap(),
+        "precious\n"
+    );
+    assert!(!d.join("newfile").exists());
+}
