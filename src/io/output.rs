@@ -32,7 +32,8 @@ pub struct Output(Dest);
 enum Dest {
     Stdout(BufWriter<io::Stdout>),
     Temp(TempOutput),
-    Direct(BufWriter<File>),
+    /// Written in place; the user's path, for messages.
+    Direct(BufWriter<File>, PathBuf),
 }
 
 /// A temporary file, renamed over `target` on commit. `registered` is declared after `writer` so
@@ -144,6 +145,23 @@ fn resolve_links(path: &Path) -> Result<PathBuf, Error> {
     .into())
 }
 
+/// An error while writing `-o PATH`, naming the path (not the temporary file) and keeping the
+/// error's kind. An error that already names it, or is an interruption, passes unchanged.
+fn write_error(path: &Path, e: io::Error) -> io::Error {
+    if e.kind() == io::ErrorKind::Interrupted || e.to_string().starts_with("-o ") {
+        return e;
+    }
+    // The OS's words without the temporary file's name that tempfile adds.
+    let why = e.raw_os_error().map_or_else(
+        || e.to_string(),
+        |n| io::Error::from_raw_os_error(n).to_string(),
+    );
+    io::Error::new(
+        e.kind(),
+        format!("-o {}: cannot write: {why}", path.display()),
+    )
+}
+
 /// The directory `path` would be created in.
 fn parent_dir(path: &Path) -> &Path {
     match path.parent() {
@@ -181,7 +199,10 @@ impl Output {
                 .write(true)
                 .open(p)
                 .map_err(|e| named(p, "cannot open", e))?;
-            return Ok(Output(Dest::Direct(BufWriter::with_capacity(BUF, file))));
+            return Ok(Output(Dest::Direct(
+                BufWriter::with_capacity(BUF, file),
+                p.to_path_buf(),
+            )));
         }
         // `out/` names a directory, existing or not.
         if p.as_os_str().as_encoded_bytes().ends_with(b"/") && !p.is_dir() {
@@ -260,7 +281,10 @@ impl Output {
                     .write(true)
                     .open(&target)
                     .map_err(|e| named(p, "cannot open", e))?;
-                return Ok(Output(Dest::Direct(BufWriter::with_capacity(BUF, file))));
+                return Ok(Output(Dest::Direct(
+                    BufWriter::with_capacity(BUF, file),
+                    p.to_path_buf(),
+                )));
             }
         }
         let dir = parent_dir(&target);
@@ -302,13 +326,15 @@ impl Output {
     pub fn commit(self) -> io::Result<()> {
         match self.0 {
             Dest::Stdout(mut w) => w.flush(),
-            Dest::Direct(mut w) => w.flush(),
+            Dest::Direct(mut w, path) => w.flush().map_err(|e| write_error(&path, e)),
             Dest::Temp(TempOutput {
                 writer,
                 mut registered,
                 target,
             }) => {
-                let tmp = writer.into_inner().map_err(|e| e.into_error())?;
+                let tmp = writer
+                    .into_inner()
+                    .map_err(|e| write_error(&target, e.into_error()))?;
                 tmp.as_file().sync_all().ok();
                 // Under the lock: a signal arriving now waits, then finds the target replaced
                 // whole (or, if the rename failed, the temporary file already removed).
@@ -317,7 +343,10 @@ impl Output {
                     registered.release(&mut reg);
                     return Err(interrupted());
                 }
-                let renamed = tmp.persist(&target).map(drop).map_err(|e| e.error);
+                let renamed = tmp
+                    .persist(&target)
+                    .map(drop)
+                    .map_err(|e| write_error(&target, e.error));
                 registered.release(&mut reg);
                 renamed
             }
@@ -329,24 +358,27 @@ impl Write for Output {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         match &mut self.0 {
             Dest::Stdout(w) => w.write(buf),
-            Dest::Temp(t) => t.writer.write(buf),
-            Dest::Direct(w) => w.write(buf),
+            Dest::Temp(t) => t.writer.write(buf).map_err(|e| write_error(&t.target, e)),
+            Dest::Direct(w, p) => w.write(buf).map_err(|e| write_error(p, e)),
         }
     }
 
     fn write_all(&mut self, buf: &[u8]) -> io::Result<()> {
         match &mut self.0 {
             Dest::Stdout(w) => w.write_all(buf),
-            Dest::Temp(t) => t.writer.write_all(buf),
-            Dest::Direct(w) => w.write_all(buf),
+            Dest::Temp(t) => t
+                .writer
+                .write_all(buf)
+                .map_err(|e| write_error(&t.target, e)),
+            Dest::Direct(w, p) => w.write_all(buf).map_err(|e| write_error(p, e)),
         }
     }
 
     fn flush(&mut self) -> io::Result<()> {
         match &mut self.0 {
             Dest::Stdout(w) => w.flush(),
-            Dest::Temp(t) => t.writer.flush(),
-            Dest::Direct(w) => w.flush(),
+            Dest::Temp(t) => t.writer.flush().map_err(|e| write_error(&t.target, e)),
+            Dest::Direct(w, p) => w.flush().map_err(|e| write_error(p, e)),
         }
     }
 }

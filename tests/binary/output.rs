@@ -449,3 +449,21 @@ fn impossible_paths_are_input_errors() {
     );
     assert!(!d.join("newfile").exists());
 }
+
+/// A write that fails (a full device) names the user's path, exit 1.
+#[test]
+fn a_failed_write_names_the_o_path() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("skipped: no /dev/full here");
+        return;
+    }
+    let out = crate::support::bin()
+        .args(["interp", "fixtures/interp/uniform.json", "-o", "/dev/full"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "inbetween: error: -o /dev/full: cannot write: No space left on device (os error 28)\n"
+    );
+}
