@@ -6,6 +6,7 @@
 
 use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
 use glam::DVec3;
+use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
 use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
@@ -126,6 +127,26 @@ pub fn read_curves(
                     num(time)
                 )));
             }
+        }
+    }
+    // The end velocities of the command line are checked as the flags they are (the document's
+    // own are checked with the curve, located in the file).
+    let unit = input.angles;
+    for (flag, v) in [
+        ("--start-velocity", curve.start_velocity),
+        ("--end-velocity", curve.end_velocity),
+    ] {
+        let speed = v.map(|v| unit.to_rad(inbetween::rotation::magnitude::length(v)));
+        if let Some(speed) = speed.filter(|&s| s > MAX_SPEED) {
+            let limit = match unit {
+                AngleUnit::Rad => format!("{MAX_SPEED:e} rad/s"),
+                AngleUnit::Deg => format!("{} deg/s", num(unit.from_rad(MAX_SPEED))),
+            };
+            return Err(InputError::new(format!(
+                "{flag}: expected at most {limit}, found {} {}/s",
+                num(unit.from_rad(speed)),
+                unit.as_str()
+            )));
         }
     }
     let opts = curve_options(curve, scheme, fps, input.angles);
