@@ -36,7 +36,7 @@
 use crate::clock::{Fps, PieceFrames};
 use crate::curve::bezier::Bezier;
 use crate::curve::hermite::Hermite;
-use crate::curve::piecewise::{Side, segment_omega};
+use crate::curve::piecewise::{Side, segment_omega, step_in};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Curve, Scheme, Segment, antipode_gap};
@@ -224,7 +224,8 @@ fn segment_frames<S: Segment>(
         ));
     }
     let delta = t1 - t0;
-    let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta));
+    let h = step_in(keys, s);
+    let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta, h));
     let mut k = p.from;
     if p.snap_start {
         emit((k, fps.time_of(k), keys.quats[s], omega(0.0)))?;
