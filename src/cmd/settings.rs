@@ -174,10 +174,7 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
 
 /// `file` or `file: track "name"`, for messages about a whole track.
 pub fn track_label(source: &str, t: &Track) -> String {
-    match t.name() {
-        Some(n) => format!("{source}: track \"{}\"", inbetween::error::shorten(n)),
-        None => source.to_string(),
-    }
+    inbetween::io::document::track_label(source, t.name())
 }
 
 /// The track with every key within `eps` frame periods of a frame moved onto it (`--snap-keys`).

@@ -58,6 +58,15 @@ pub fn at(source: &str, loc: Loc) -> String {
 
 pub use crate::error::{MAX_QUOTED_CHARS, shorten};
 
+/// `source` or `source: track "name"` (the name cut by [`shorten`]), for messages about a whole
+/// track.
+pub fn track_label(source: &str, name: Option<&str>) -> String {
+    match name {
+        Some(n) => format!("{source}: track \"{}\"", shorten(n)),
+        None => source.to_string(),
+    }
+}
+
 /// When a key is: seconds, or a frame number at the document's rate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum KeyTime {
@@ -150,10 +159,7 @@ impl Document {
         min_keys: usize,
     ) -> InputResult<Vec<f64>> {
         if track.keys.len() < min_keys {
-            let label = match &track.name {
-                Some(n) => format!("{}: track \"{}\"", self.source, shorten(n)),
-                None => self.source.clone(),
-            };
+            let label = track_label(&self.source, track.name.as_deref());
             return Err(input_err!(
                 "{label}: expected at least {min_keys} keys, found {}",
                 track.keys.len()

@@ -27,16 +27,7 @@ impl RotationFormatter {
     /// continuous along the track) when given.
     #[inline]
     fn fill(&mut self, q: DQuat, euler: Option<[f64; 3]>) {
-        match euler {
-            Some(e) => {
-                let unit = self.style.angles;
-                self.vals[..3].copy_from_slice(&e.map(|x| unit.from_rad(x)));
-            }
-            None => self
-                .style
-                .repr
-                .from_quat(q, self.style.angles, &mut self.vals),
-        }
+        self.style.fill(q, euler, &mut self.vals);
     }
 
     /// The values of `q` in the style's representation (JSON component order for quaternions);

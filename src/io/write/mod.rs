@@ -39,7 +39,7 @@ pub use keyframes::write_keys;
 pub use npy::NpyWriter;
 
 use crate::clock::Fps;
-use crate::rotation::{AngleUnit, QuatOrder, Repr};
+use crate::rotation::{AngleUnit, MAX_WIDTH, QuatOrder, Repr};
 use glam::DQuat;
 use num::NumFormat;
 use std::io;
@@ -72,6 +72,16 @@ pub enum EulerMode {
 }
 
 impl Style {
+    /// `q`'s values in this style's representation into `out` (the angle unit applied); Euler
+    /// angles taken from `euler` (radians, continuous along the track) when given.
+    #[inline]
+    pub(crate) fn fill(&self, q: glam::DQuat, euler: Option<[f64; 3]>, out: &mut [f64; MAX_WIDTH]) {
+        match euler {
+            Some(e) => out[..3].copy_from_slice(&e.map(|x| self.angles.from_rad(x))),
+            None => self.repr.from_quat(q, self.angles, out),
+        }
+    }
+
     /// A new per-track state for continuous Euler angles, when this style writes them.
     pub(crate) fn unwrapper(&self) -> Option<crate::rotation::unwrap::EulerUnwrap> {
         match (self.repr, self.euler) {

@@ -124,13 +124,8 @@ impl<W: Write> FrameSink for NpyWriter<W> {
         self.push(k as f64);
         self.push(time);
         let repr = self.style.repr;
-        match self.unwrap.as_mut().map(|u| u.next(q)) {
-            Some(e) => {
-                let unit = self.style.angles;
-                self.vals[..3].copy_from_slice(&e.map(|x| unit.from_rad(x)));
-            }
-            None => repr.from_quat(q, self.style.angles, &mut self.vals),
-        }
+        let euler = self.unwrap.as_mut().map(|u| u.next(q));
+        self.style.fill(q, euler, &mut self.vals);
         // One `is_finite` per written value and one norm per rotation.
         let mut ok = time.is_finite() && is_rotation(q);
         for i in 0..repr.width() {
