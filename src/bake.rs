@@ -53,6 +53,10 @@ pub trait FrameSink {
     fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
         Ok(())
     }
+    /// Right after `begin_track`, when the track's keys were given as Euler angles: the first
+    /// key's triple in `seq` (radians, as written). A sink writing continuous Euler angles in
+    /// the same sequence starts the track from it (docs/spec.md, Output of `interp`).
+    fn euler_start(&mut self, _seq: crate::EulerSeq, _angles: [f64; 3]) {}
     /// One frame: its number `k` on the grid, its time `k/fps` in seconds, the rotation, and
     /// the world-frame angular velocity in rad/s when it was asked for.
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()>;
@@ -105,6 +109,9 @@ pub fn bake_over(
     warn: &mut dyn FnMut(&str),
 ) -> io::Result<()> {
     sink.begin_track(curve.name())?;
+    if let Some((seq, angles)) = curve.euler_start() {
+        sink.euler_start(seq, angles);
+    }
     let (t0, t1) = curve.span();
     let (span_first, span_last) = fps.frames_between(lo.min(t0), hi.max(t1));
     let (first, last) = fps.frames_between(t0, t1);

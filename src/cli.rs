@@ -232,7 +232,9 @@ pub struct CurveArgs {
     pub end_velocity: Option<[f64; 3]>,
 
     /// shortest: flip each key into the hemisphere of the previous one (every step ≤ 180°);
-    /// as-given: keep quaternion signs (a flipped key is reached the long way round).
+    /// as-given: keep quaternion signs (a flipped key is reached the long way round); euler
+    /// (Euler input only): keep the turns the Euler angles make between keys (0→720° spins
+    /// twice).
     #[arg(long, value_enum, default_value = "shortest")]
     pub path: PathArg,
 
@@ -358,6 +360,7 @@ pub enum EndsArg {
 pub enum PathArg {
     Shortest,
     AsGiven,
+    Euler,
 }
 
 fn parse_vec3(s: &str) -> Result<[f64; 3], String> {

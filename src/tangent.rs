@@ -25,6 +25,11 @@ pub enum PathMode {
     /// Keep the input signs: a key whose sign is flipped against its predecessor is reached the
     /// long way round (360° − φ).
     AsGiven,
+    /// Keep the turns of Euler-angle keys: each segment's chord is the rotation vector, among
+    /// those that carry key `i` to key `i+1`, nearest the motion of the angles interpolated
+    /// linearly ([`crate::rotation::spin`]), so 0° → 270° turns 270° and 0° → 720° twice. Needs
+    /// the track's Euler angles ([`crate::Track::with_euler_angles`]).
+    Euler,
 }
 
 /// End condition when no velocity is given (docs/spec.md §4.2).
@@ -83,9 +88,13 @@ pub struct Knots {
     /// Whether the end tangents were given (a velocity or `rest`) rather than `chord`.
     pub(crate) start_given: bool,
     pub(crate) end_given: bool,
+    /// `--path euler`: each segment's half-angle chord `L_s` (`q_{s+1} = exp(L_s)·q_s`, any
+    /// length); `None` when the chords are the logs `log(q_{s+1} q_s⁻¹)`.
+    pub(crate) chords: Option<Vec<DVec3>>,
 }
 
-/// Applies `--path` to a sequence of quaternions.
+/// Applies `--path` to a sequence of quaternions (`Euler` keeps the signs here: its chords fix
+/// them, [`Knots::new`]).
 pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
     if mode == PathMode::Shortest {
         for i in 1..quats.len() {
@@ -96,6 +105,21 @@ pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
     }
 }
 
+/// `--path euler`'s half-angle chords from the keys' Euler angles, and each key's sign set so
+/// that `q_{s+1}` is `exp(L_s)·q_s` (not only the same rotation).
+fn euler_chords(seq: crate::EulerSeq, angles: &[DVec3], quats: &mut [DQuat]) -> Vec<DVec3> {
+    let mut chords = Vec::with_capacity(quats.len() - 1);
+    for s in 0..quats.len() - 1 {
+        let c = crate::rotation::spin::chord(seq, angles[s], angles[s + 1], quats[s], quats[s + 1])
+            * 0.5;
+        if (crate::rotation::quat::exp(c) * quats[s]).dot(quats[s + 1]) < 0.0 {
+            quats[s + 1] = -quats[s + 1];
+        }
+        chords.push(c);
+    }
+    chords
+}
+
 /// `log(b a⁻¹)`: the half-angle step from `a` to `b` in the world frame.
 #[inline]
 pub fn step(a: DQuat, b: DQuat) -> DVec3 {
@@ -104,9 +128,21 @@ pub fn step(a: DQuat, b: DQuat) -> DVec3 {
 
 impl Knots {
     /// Prepares a track: path mode, then tangents. Velocities in `ends` override the track's.
+    /// `PathMode::Euler` on a track without Euler angles is `AsGiven` (a curve refuses it
+    /// before: [`crate::Curve::new`]).
     pub fn new(track: &Track, path: PathMode, ends: EndConditions) -> Knots {
         let mut quats = track.rotations().to_vec();
         apply_path(&mut quats, path);
+        let chords = match (path, track.euler_angles()) {
+            (PathMode::Euler, Some((seq, angles))) if quats.len() > 1 => {
+                Some(euler_chords(seq, angles, &mut quats))
+            }
+            _ => None,
+        };
+        let chord = |s: usize, quats: &[DQuat]| match &chords {
+            Some(c) => c[s],
+            None => step(quats[s], quats[s + 1]),
+        };
         let t = track.times();
         let n = quats.len();
         if n == 1 {
@@ -117,12 +153,13 @@ impl Knots {
                 w: vec![DVec3::ZERO],
                 start_given: true,
                 end_given: true,
+                chords: None,
             };
         }
         let mut w = vec![DVec3::ZERO; n];
         for i in 1..n - 1 {
-            let lm = step(quats[i - 1], quats[i]);
-            let lp = step(quats[i], quats[i + 1]);
+            let lm = chord(i - 1, &quats);
+            let lp = chord(i, &quats);
             let span = t[i + 1] - t[i - 1];
             w[i] = if lm.length() + lp.length() > std::f64::consts::PI {
                 (lm + lp) / span
@@ -135,12 +172,12 @@ impl Knots {
         w[0] = match (start, ends.ends) {
             (Some(omega), _) => omega * 0.5,
             (None, Ends::Rest) => DVec3::ZERO,
-            (None, Ends::Chord) => step(quats[0], quats[1]) / (t[1] - t[0]),
+            (None, Ends::Chord) => chord(0, &quats) / (t[1] - t[0]),
         };
         w[n - 1] = match (end, ends.ends) {
             (Some(omega), _) => omega * 0.5,
             (None, Ends::Rest) => DVec3::ZERO,
-            (None, Ends::Chord) => step(quats[n - 2], quats[n - 1]) / (t[n - 1] - t[n - 2]),
+            (None, Ends::Chord) => chord(n - 2, &quats) / (t[n - 1] - t[n - 2]),
         };
         Knots {
             times: t.to_vec(),
@@ -148,6 +185,40 @@ impl Knots {
             w,
             start_given: start.is_some() || ends.ends == Ends::Rest,
             end_given: end.is_some() || ends.ends == Ends::Rest,
+            chords,
+        }
+    }
+
+    /// Whether the chords are `--path euler`'s (of any length) rather than the logs.
+    pub fn spins(&self) -> bool {
+        self.chords.is_some()
+    }
+
+    /// The half-angle chord of segment `s`: `L_s` with `q_{s+1} = exp(L_s)·q_s`.
+    pub fn chord(&self, s: usize) -> DVec3 {
+        match &self.chords {
+            Some(c) => c[s],
+            None => step(self.quats[s], self.quats[s + 1]),
+        }
+    }
+
+    /// The S³ length of segment `s`'s chord (`‖L_s‖`; for the logs, the angle between the keys).
+    pub fn chord_length(&self, s: usize) -> f64 {
+        match &self.chords {
+            Some(c) => c[s].length(),
+            None => crate::curve::s3_angle(self.quats[s], self.quats[s + 1]),
+        }
+    }
+
+    /// The great arc of segment `s`'s chord from `q_s` to `q_{s+1}` (slerp; squad's outer arc).
+    pub fn chord_arc(&self, s: usize) -> crate::curve::arc::Arc {
+        use crate::curve::arc::Arc;
+        match &self.chords {
+            Some(c) => Arc::leaving(
+                self.quats[s],
+                crate::rotation::quat::pure_mul(c[s], self.quats[s]),
+            ),
+            None => Arc::between(self.quats[s], self.quats[s + 1]),
         }
     }
 

@@ -5,6 +5,7 @@
 //! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
 //! documents ([`check_times`]), so a file and a program are held to one contract.
 
+use crate::rotation::EulerSeq;
 use glam::{DQuat, DVec3};
 use std::fmt;
 
@@ -15,6 +16,10 @@ pub const MIN_KEY_GAP: f64 = 1e-12;
 
 /// How far a rotation's norm may be from 1 (it is used as given, not renormalised).
 pub const UNIT_TOL: f64 = 1e-6;
+
+/// How far the rotation of a key's Euler triple may be from the key's rotation, rad
+/// ([`Track::with_euler_angles`]).
+pub const EULER_TOL: f64 = 1e-6;
 
 /// Why a [`Track`] could not be built. Indices count keys from 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,6 +70,21 @@ pub enum TrackError {
     },
     /// A given end velocity is not finite.
     NonFiniteVelocity,
+    /// [`Track::with_euler_angles`] got a number of triples other than the number of keys.
+    EulerCount {
+        /// Number of keys.
+        keys: usize,
+        /// Number of triples.
+        angles: usize,
+    },
+    /// A key's Euler angles are not finite, beyond ±1e15 rad, or not its rotation.
+    EulerAngles {
+        /// The key.
+        index: usize,
+        /// The angle between the triple's rotation and the key's, rad (NaN when the triple
+        /// is not finite or out of range).
+        off: f64,
+    },
 }
 
 impl TrackError {
@@ -74,7 +94,8 @@ impl TrackError {
             TrackError::NonFiniteTime { index, .. }
             | TrackError::NotIncreasing { index, .. }
             | TrackError::TooClose { index, .. }
-            | TrackError::NotUnit { index, .. } => Some(index),
+            | TrackError::NotUnit { index, .. }
+            | TrackError::EulerAngles { index, .. } => Some(index),
             _ => None,
         }
     }
@@ -116,6 +137,19 @@ impl fmt::Display for TrackError {
             TrackError::NonFiniteVelocity => {
                 write!(f, "expected a finite end velocity")
             }
+            TrackError::EulerCount { keys, angles } => write!(
+                f,
+                "expected one Euler triple per key, found {angles} triples for {keys} keys"
+            ),
+            TrackError::EulerAngles { off, .. } if off.is_nan() => {
+                write!(f, "expected finite Euler angles within ±1e15 rad")
+            }
+            TrackError::EulerAngles { off, .. } => write!(
+                f,
+                "expected Euler angles of the key's rotation (within {EULER_TOL:e} rad), found \
+                 {} rad away",
+                num(off)
+            ),
         }
     }
 }
@@ -182,6 +216,7 @@ pub struct Track {
     rotations: Vec<DQuat>,
     start_velocity: Option<DVec3>,
     end_velocity: Option<DVec3>,
+    euler: Option<(EulerSeq, Vec<DVec3>)>,
 }
 
 impl Track {
@@ -224,7 +259,57 @@ impl Track {
             rotations,
             start_velocity: None,
             end_velocity: None,
+            euler: None,
         })
+    }
+
+    /// Keeps the Euler angles the keys were given as (radians, as written: not wrapped), one
+    /// triple per key in `seq`. They are what `PathMode::Euler` builds its chords from (the turns
+    /// the angles make between keys, docs/spec.md §4.3), and where a continuous Euler output in
+    /// the same sequence starts. Each triple must be finite, within ±1e15 rad, and give its key's
+    /// rotation within [`EULER_TOL`] rad.
+    ///
+    /// ```
+    /// use inbetween::{EulerSeq, Track};
+    /// use glam::DVec3;
+    ///
+    /// let zyx = EulerSeq::parse("ZYX")?;
+    /// let e = [DVec3::ZERO, DVec3::new(4.712388980384690, 0.0, 0.0)]; // 0° and 270° about z
+    /// let q = e.iter().map(|e| zyx.to_quat(e.to_array())).collect();
+    /// let track = Track::new(vec![0.0, 1.0], q)?.with_euler_angles(zyx, e.to_vec())?;
+    /// assert_eq!(track.euler_angles().unwrap().1[1], e[1]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_euler_angles(
+        mut self,
+        seq: EulerSeq,
+        angles: Vec<DVec3>,
+    ) -> Result<Track, TrackError> {
+        if angles.len() != self.rotations.len() {
+            return Err(TrackError::EulerCount {
+                keys: self.rotations.len(),
+                angles: angles.len(),
+            });
+        }
+        for (index, (e, &q)) in angles.iter().zip(&self.rotations).enumerate() {
+            if !e.is_finite() || e.abs().max_element() > crate::rotation::magnitude::MAX_ANGLE {
+                return Err(TrackError::EulerAngles {
+                    index,
+                    off: f64::NAN,
+                });
+            }
+            let off = crate::rotation::quat::rotation_angle_between(seq.to_quat(e.to_array()), q);
+            if off > EULER_TOL {
+                return Err(TrackError::EulerAngles { index, off });
+            }
+        }
+        self.euler = Some((seq, angles));
+        Ok(self)
+    }
+
+    /// The Euler angles the keys were given as, when they were ([`Track::with_euler_angles`]).
+    pub fn euler_angles(&self) -> Option<(EulerSeq, &[DVec3])> {
+        self.euler.as_ref().map(|(s, a)| (*s, a.as_slice()))
     }
 
     /// Names the track (used in warnings and in multi-track output).

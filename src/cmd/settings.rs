@@ -10,7 +10,7 @@ use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
 use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
-use inbetween::rotation::AngleUnit;
+use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Track,
 };
@@ -117,6 +117,23 @@ pub fn read_curves(
             *t = snap_keys(t, fps, eps).map_err(|e| e.at(track_label(&doc.source, t)))?;
         }
     }
+    if curve.path == PathArg::Euler {
+        for (t, d) in tracks.iter().zip(&doc.tracks) {
+            if t.len() > 1 && t.euler_angles().is_none() {
+                let found = match (&d.euler, doc.rotation) {
+                    (Some(_), _) => "Euler angles beyond ±1e15 rad".to_string(),
+                    (None, Some(Repr::Euler(_))) => "keys in more than one representation".into(),
+                    (None, Some(r)) => format!("{r} keys"),
+                    (None, None) => "no keys".into(),
+                };
+                return Err(InputError::new(format!(
+                    "{}: --path euler needs keys given as Euler angles in one sequence \
+                     (--from euler:SEQ, or \"rotation\": \"euler:SEQ\" in JSON), found {found}",
+                    track_label(&doc.source, t)
+                )));
+            }
+        }
+    }
     for t in &tracks {
         let (t0, t1) = t.span();
         for time in [t0, t1] {
@@ -195,6 +212,10 @@ fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
         _ => Track::new(times, t.rotations().to_vec()),
     }
     .and_then(|s| s.with_end_velocities(t.start_velocity(), t.end_velocity()))
+    .and_then(|s| match t.euler_angles() {
+        Some((seq, angles)) => s.with_euler_angles(seq, angles.to_vec()),
+        None => Ok(s),
+    })
     .map_err(InputError::from)?;
     Ok(match t.name() {
         Some(n) => snapped.with_name(n),
@@ -214,6 +235,7 @@ fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) ->
         path: match args.path {
             PathArg::Shortest => PathMode::Shortest,
             PathArg::AsGiven => PathMode::AsGiven,
+            PathArg::Euler => PathMode::Euler,
         },
         ends: EndConditions {
             ends: match args.ends {

@@ -72,6 +72,14 @@ impl Arc {
         }
     }
 
+    /// The arc from `a` (u = 0) to `b` (u = 1) whose step is the branch of `log(b a⁻¹)` nearest
+    /// `target` ([`crate::rotation::quat::log_near`]): `exp(u·X)·a`. With `--path euler` the arcs
+    /// inside a segment that stand in for part of a spin take it, so they keep its turns.
+    pub fn near(a: DQuat, b: DQuat, target: glam::DVec3) -> Arc {
+        let x = crate::rotation::quat::log_near(b * a.conjugate(), target);
+        Arc::leaving(a, crate::rotation::quat::pure_mul(x, a))
+    }
+
     /// The arc leaving `q` at u = 0 with velocity `v` (a tangent at `q`, `v·q = 0`):
     /// `C(u) = cos(‖v‖u)·q + sin(‖v‖u)·v̂` (Nam & Kim's `C₁`).
     pub fn leaving(q: DQuat, v: DQuat) -> Arc {

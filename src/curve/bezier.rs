@@ -9,7 +9,9 @@
 //! ```
 //! The arcs `p₀→p₁` and `p₂→p₃` are built from the tangent itself (the arc leaving `q_i` along
 //! `V_i` for a third of its length), which is the same arc whenever `‖w‖/3 ≤ π` and keeps
-//! `Q'(0) = V_i` exactly even for tangents of several turns.
+//! `Q'(0) = V_i` exactly even for tangents of several turns. With `--path euler` the middle leg
+//! is the branch of `log(p₂ p₁⁻¹)` nearest `L_i − (w_i + w_{i+1})Δ_i/3` (the chord less the outer
+//! legs, `w` per second), so a spin keeps its turns.
 //!
 //! - Interpolation: every key. Tangency: `Q'(0) = V_i`, `Q'(1) = V_{i+1}`.
 //! - Continuity: C¹ at keys, C^∞ inside.
@@ -78,7 +80,13 @@ impl Segment for Bezier {
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         let r0 = Arc::leaving(keys.quats[s], keys.tangent(s, s) / 3.0);
         let r2 = Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s) / 3.0);
-        let r1 = Arc::between(r0.eval(1.0), r2.eval(0.0));
+        let r1 = if keys.spins() {
+            // The middle leg stands in for the chord less the two outer legs.
+            let target = keys.chord(s) - (keys.w[s] + keys.w[s + 1]) * (keys.delta(s) / 3.0);
+            Arc::near(r0.eval(1.0), r2.eval(0.0), target)
+        } else {
+            Arc::between(r0.eval(1.0), r2.eval(0.0))
+        };
         Bezier { r0, r1, r2 }
     }
 

@@ -77,7 +77,7 @@ impl Segment for Hermite {
         Hermite {
             c1: Arc::leaving(keys.quats[s], keys.tangent(s, s)),
             c2: Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s)),
-            chord: super::s3_angle(keys.quats[s], keys.quats[s + 1]),
+            chord: keys.chord_length(s),
             blend,
         }
     }

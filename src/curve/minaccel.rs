@@ -152,7 +152,7 @@ impl Problem {
         for (s, st) in steps.iter_mut().enumerate() {
             let bound = keys.tangent(s, s).length()
                 + keys.tangent(s + 1, s).length()
-                + s3_angle(keys.quats[s], keys.quats[s + 1]);
+                + keys.chord_length(s);
             let need = (bound / FRAC_PI_4).ceil();
             if need > *st as f64 {
                 *st = if need < MAX_GRID_POINTS as f64 {

@@ -203,22 +203,27 @@ pub fn s3_angle(a: DQuat, b: DQuat) -> f64 {
 
 /// Where the blends of `seg` come closest to antipodal: the smallest `‖a + b‖` over `u ∈ [0, 1]`
 /// and the `u` where it is, or `None` when [`Segment::blend_bound`] shows they cannot come within
-/// 1e-6 rad of it. Samples 256 points, then refines the smallest by golden-section search.
+/// 1e-6 rad of it. Samples 255 points strictly inside the segment, then refines the smallest by
+/// golden-section search within `[1e-6, 1 − 1e-6]`: at `u = 0` and `u = 1` every blend has weight
+/// 0 or 1 and is its first or second point whatever the geodesic, so no jump can happen there
+/// (a spin whose arcs are antipodal exactly at a key, such as `--path euler` spins, is not
+/// reported).
 pub fn antipode_gap<S: Segment>(seg: &S) -> Option<(f64, f64)> {
     if seg.blend_bound() < std::f64::consts::PI - 1e-6 {
         return None;
     }
     const N: usize = 256;
     let (mut best_i, mut best) = (0, f64::INFINITY);
-    for i in 0..=N {
+    for i in 1..N {
         let g = seg.blend_gap(i as f64 / N as f64);
         if g < best {
             (best_i, best) = (i, g);
         }
     }
+    const END: f64 = 1e-6;
     let (mut lo, mut hi) = (
-        best_i.saturating_sub(1) as f64 / N as f64,
-        (best_i + 1).min(N) as f64 / N as f64,
+        ((best_i - 1) as f64 / N as f64).max(END),
+        ((best_i + 1) as f64 / N as f64).min(1.0 - END),
     );
     let r = 0.5 * (5f64.sqrt() - 1.0);
     for _ in 0..80 {

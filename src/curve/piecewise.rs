@@ -24,7 +24,7 @@ use crate::curve::squad::Squad;
 use crate::curve::{Blend, CurveOptions, Scheme, Segment};
 use crate::error::{InputError, InputResult};
 use crate::rotation::quat::{geodesic, log};
-use crate::tangent::Knots;
+use crate::tangent::{Knots, PathMode};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
 use std::sync::OnceLock;
@@ -77,6 +77,7 @@ const H: f64 = 1e-3;
 #[derive(Debug, Clone)]
 pub struct Curve {
     name: Option<String>,
+    euler_start: Option<(crate::EulerSeq, [f64; 3])>,
     scheme: Scheme,
     pieces: Pieces,
     report: Option<Report>,
@@ -157,7 +158,9 @@ where
 /// than 10 rad (from its end tangents), so that the step turns at most 0.01 rad and the
 /// truncation error (~(step·turn)⁴) stays below 1e-9 relative however fast the spin.
 pub(crate) fn step_in(keys: &Knots, s: usize) -> f64 {
-    let turn = 2.0 * keys.w[s].length().max(keys.w[s + 1].length()) * keys.delta(s);
+    let turn = 2.0
+        * (keys.w[s].length().max(keys.w[s + 1].length()) * keys.delta(s))
+            .max(keys.chords.as_ref().map_or(0.0, |c| c[s].length()));
     H.min(0.01 / turn)
 }
 
@@ -196,8 +199,17 @@ impl Curve {
                 )));
             }
         }
-        let keys = Knots::new(track, opts.path, opts.ends);
         let name = track.name().map(str::to_string);
+        if opts.path == PathMode::Euler && track.len() > 1 && track.euler_angles().is_none() {
+            let e = InputError::new(
+                "path euler: the track's keys carry no Euler angles (Track::with_euler_angles)",
+            );
+            return Err(match &name {
+                Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
+                None => e,
+            });
+        }
+        let keys = Knots::new(track, opts.path, opts.ends);
         let (pieces, report) = match opts.scheme {
             // One key: a constant, whatever the scheme.
             _ if track.len() == 1 => (
@@ -232,6 +244,9 @@ impl Curve {
         };
         Ok(Curve {
             name,
+            euler_start: track
+                .euler_angles()
+                .map(|(seq, angles)| (seq, angles[0].to_array())),
             scheme: opts.scheme,
             pieces,
             report,
@@ -241,6 +256,12 @@ impl Curve {
     /// The track's name.
     pub fn name(&self) -> Option<&str> {
         self.name.as_deref()
+    }
+
+    /// The first key's Euler angles (radians, as written) when the track's keys were given as
+    /// Euler angles ([`Track::with_euler_angles`]): where continuous Euler output starts.
+    pub fn euler_start(&self) -> Option<(crate::EulerSeq, [f64; 3])> {
+        self.euler_start
     }
 
     /// The scheme.

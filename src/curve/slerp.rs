@@ -1,5 +1,6 @@
 //! `slerp` (Shoemake 1985; Szeliski 2010, Algorithm 2.1; docs/spec.md, References): the great
-//! arc between consecutive keys, `Q(u) = exp(u · log(q_{i+1} q_i⁻¹)) q_i`.
+//! arc between consecutive keys, `Q(u) = exp(u · log(q_{i+1} q_i⁻¹)) q_i` (with `--path euler`,
+//! `exp(u·L_i) q_i` for the segment's chord `L_i`, which may turn more than once).
 //!
 //! - Interpolation: every key. Tangency: none imposed; the velocity is the chord's.
 //! - Continuity: C⁰ at keys (the angular velocity jumps there), C^∞ inside.
@@ -23,7 +24,7 @@ impl Segment for Slerp {
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         Slerp {
-            arc: Arc::between(keys.quats[s], keys.quats[s + 1]),
+            arc: keys.chord_arc(s),
         }
     }
 

@@ -9,7 +9,9 @@
 //!                         b_n = exp((log(q_n q_{n−1}⁻¹) − w_n)/2)·q_n
 //! ```
 //! For uniform times `a_i = b_i = exp(−(P + M)/4)·q_i`, Shoemake's formula; `chord` ends give
-//! `a_1 = q_1`, `b_n = q_n`.
+//! `a_1 = q_1`, `b_n = q_n`. With `--path euler`, `P` and `M` are the segments' chords `L_i` and
+//! `−L_{i−1}`, the outer arc is `exp(u·L_i) q_i`, and the inner arc is the branch of
+//! `log(b_{i+1} a_i⁻¹)` nearest `L_i + X_b − X_a`, so a spin keeps its turns.
 //!
 //! - Interpolation: every key. Tangency: the velocity at key `i` is `m_i·q_i` per second from
 //!   both sides; at the ends it is the given `V`.
@@ -36,29 +38,44 @@ pub struct Squad {
     aliased: bool,
 }
 
+/// `P = log(q_{i+1} q_i⁻¹)`: the chord leaving key `i` (`--path euler`: the segment's chord).
+fn ahead(k: &Knots, i: usize) -> DVec3 {
+    match &k.chords {
+        Some(c) => c[i],
+        None => step(k.quats[i], k.quats[i + 1]),
+    }
+}
+
+/// `M = log(q_{i−1} q_i⁻¹)`: the chord back from key `i` (`--path euler`: minus the previous
+/// segment's chord).
+fn behind(k: &Knots, i: usize) -> DVec3 {
+    match &k.chords {
+        Some(c) => -c[i - 1],
+        None => step(k.quats[i], k.quats[i - 1]),
+    }
+}
+
 /// The exponent `X` of the inner control point `a_i = exp(X)·q_i` (leaving key `i`).
 fn a_exponent(k: &Knots, i: usize) -> DVec3 {
-    let q = k.quats[i];
-    let p = step(q, k.quats[i + 1]);
+    let p = ahead(k, i);
     if i == 0 {
         let w = k.w[0] * k.delta(0);
         return (w - p) * 0.5;
     }
-    let m = step(q, k.quats[i - 1]);
+    let m = behind(k, i);
     let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
     (mid * k.delta(i) - p) * 0.5
 }
 
 /// The exponent `X` of the inner control point `b_i = exp(X)·q_i` (arriving at key `i`).
 fn b_exponent(k: &Knots, i: usize) -> DVec3 {
-    let q = k.quats[i];
-    let m = step(q, k.quats[i - 1]);
+    let m = behind(k, i);
     let n = k.quats.len();
     if i == n - 1 {
         let w = k.w[i] * k.delta(i - 1);
         return (-m - w) * 0.5;
     }
-    let p = step(q, k.quats[i + 1]);
+    let p = ahead(k, i);
     let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
     (-m - mid * k.delta(i - 1)) * 0.5
 }
@@ -114,8 +131,13 @@ impl Segment for Squad {
         let (q0, q1) = (keys.quats[s], keys.quats[s + 1]);
         let (xa, xb) = (a_exponent(keys, s), b_exponent(keys, s + 1));
         let (a, b) = (exp(xa) * q0, exp(xb) * q1);
-        let outer = Arc::between(q0, q1);
-        let inner = Arc::between(a, b);
+        let outer = keys.chord_arc(s);
+        let inner = if keys.spins() {
+            // The inner arc runs beside the chord: the branch nearest L + X_b − X_a.
+            Arc::near(a, b, keys.chord(s) + xb - xa)
+        } else {
+            Arc::between(a, b)
+        };
         Squad {
             outer,
             inner,

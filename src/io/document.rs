@@ -101,6 +101,9 @@ pub enum KeyOrigin {
     },
 }
 
+/// A track's keys as Euler angles: the sequence, and each key's triple as written (radians).
+pub type EulerKeys = (crate::rotation::EulerSeq, Vec<DVec3>);
+
 /// One track as read.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DocTrack {
@@ -114,6 +117,10 @@ pub struct DocTrack {
     pub end_velocity: Option<DVec3>,
     /// Where its keys were read.
     pub origin: KeyOrigin,
+    /// The keys' Euler angles as written (radians, not wrapped), when every key of the track was
+    /// given as Euler angles in one sequence: `--path euler` and continuous Euler output start
+    /// from them ([`Track::with_euler_angles`]).
+    pub euler: Option<EulerKeys>,
 }
 
 impl DocTrack {
@@ -219,6 +226,15 @@ impl Document {
                 }
                 .and_then(|t| t.with_end_velocities(track.start_velocity, track.end_velocity))
                 .map_err(located)?;
+                // Angles beyond ±1e15 rad (possible in degrees, which are reduced exactly)
+                // are not kept: such a track has no Euler path.
+                let t = match &track.euler {
+                    Some((seq, angles)) => {
+                        let kept = t.clone().with_euler_angles(*seq, angles.clone());
+                        kept.unwrap_or(t)
+                    }
+                    None => t,
+                };
                 Ok(match &track.name {
                     Some(n) => t.with_name(n.clone()),
                     None => t,

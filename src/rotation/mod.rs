@@ -8,6 +8,7 @@ pub mod euler;
 pub mod magnitude;
 pub mod matrix;
 pub mod quat;
+pub mod spin;
 pub mod unwrap;
 
 use crate::error::InputResult;

@@ -36,6 +36,49 @@ pub fn log(q: DQuat) -> DVec3 {
     v * (s.atan2(q.w) / s)
 }
 
+/// Below this norm of its vector part a unit quaternion counts as `±1`: its log has no axis.
+pub const NO_AXIS: f64 = 1e-12;
+
+/// The branch of the half-angle logarithm of the unit quaternion `q` nearest `target`: among
+/// `n·(θ + 2πk)`, `k ∈ ℤ`, with `θ·n = log(q)`, the one nearest `target` (every one has
+/// `exp(·) = q`). Where `q` has no axis (`±1`, vector part below [`NO_AXIS`]) the axis is
+/// `target`'s direction. `--path euler` draws the arcs inside a segment with it (docs/spec.md
+/// §4.3), so that an arc standing in for part of a spin keeps the spin's turns.
+///
+/// ```
+/// use inbetween::rotation::quat::{exp, log_near};
+/// use glam::{DQuat, DVec3};
+/// use std::f64::consts::PI;
+///
+/// // A 300° turn about z: log is a half angle of 150° about z, and its branches 150° + 360°k.
+/// // Nearest a target of −200° it is −210° (a turn of −420°, which is also +300°).
+/// let q = DQuat::from_rotation_z(300f64.to_radians());
+/// let v = log_near(q, DVec3::new(0.0, 0.0, -200f64.to_radians()));
+/// assert!((v.z + 210f64.to_radians()).abs() < 1e-14);
+/// // −1 (a full turn) nearest a target along y: π about y.
+/// assert_eq!(log_near(-DQuat::IDENTITY, DVec3::new(0.0, 3.0, 0.0)), DVec3::new(0.0, PI, 0.0));
+/// assert!((exp(log_near(q, DVec3::new(0.0, 0.0, 9.0))) - q).length() < 1e-14);
+/// ```
+pub fn log_near(q: DQuat, target: DVec3) -> DVec3 {
+    let tau = 2.0 * std::f64::consts::PI;
+    let v = DVec3::new(q.x, q.y, q.z);
+    let s = v.length();
+    let (n, theta) = if s < NO_AXIS {
+        let t = target.length();
+        if t == 0.0 || !t.is_finite() {
+            return log(q);
+        }
+        (
+            target / t,
+            if q.w < 0.0 { std::f64::consts::PI } else { 0.0 },
+        )
+    } else {
+        (v / s, s.atan2(q.w))
+    };
+    let k = ((n.dot(target) - theta) / tau).round();
+    n * (theta + tau * k)
+}
+
 /// Exponential of a pure quaternion `θ·a` (given as its vector part): `cos θ + sin θ·a`.
 pub fn exp(v: DVec3) -> DQuat {
     let theta = v.length();

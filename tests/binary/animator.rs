@@ -222,3 +222,120 @@ fn analyze_writes_the_format_of_the_o_extension() {
         assert!(text.starts_with(starts), "{name}: {text}");
     }
 }
+
+/// `--path euler`: a spin keyed in Euler angles keeps its turns; quaternion input is refused
+/// with the track, what was found, and the remedy.
+#[test]
+fn euler_spins_turn_as_keyed_and_need_euler_keys() {
+    let keys = "time,e1,e2,e3\n0,0,0,0\n1,720,0,0\n";
+    let out = bin()
+        .args([
+            "interp",
+            "-",
+            "--input-format",
+            "csv",
+            "--from",
+            "euler:ZYX",
+            "--path",
+            "euler",
+            "--fps",
+            "8",
+            "--scheme",
+            "slerp",
+            "--to",
+            "euler:ZYX",
+        ])
+        .write_stdin(keys)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let e1: Vec<f64> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(2).unwrap().parse().unwrap())
+        .collect();
+    let want: Vec<f64> = (0..=8).map(|k| 90.0 * k as f64).collect();
+    assert_eq!(e1.len(), want.len());
+    for (g, w) in e1.iter().zip(&want) {
+        assert!((g - w).abs() < 1e-9, "{e1:?}");
+    }
+    // The shortest path has no motion at all between identical rotations.
+    let out = bin()
+        .args([
+            "interp",
+            "-",
+            "--input-format",
+            "csv",
+            "--from",
+            "euler:ZYX",
+            "--fps",
+            "8",
+            "--scheme",
+            "slerp",
+            "--to",
+            "euler:ZYX",
+        ])
+        .write_stdin(keys)
+        .output()
+        .unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.lines().skip(1).all(|l| l.ends_with(",0.0,0.0,0.0")),
+        "{text}"
+    );
+    let out = bin()
+        .args(["interp", "-", "--input-format", "csv", "--path", "euler"])
+        .write_stdin("time,w,x,y,z\n0,1,0,0,0\n1,0,0,0,1\n")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "inbetween: error: <stdin>: --path euler needs keys given as Euler angles in one sequence \
+         (--from euler:SEQ, or \"rotation\": \"euler:SEQ\" in JSON), found quat keys\n"
+    );
+}
+
+/// Continuous Euler output starts from the first key's own triple when the keys are Euler
+/// angles in the output's sequence (interp's frames and convert's keys), else from the canonical
+/// triple.
+#[test]
+fn continuous_euler_starts_from_the_first_keys_own_triple() {
+    let keys = "time,e1,e2,e3\n0,370,0,0\n1,380,0,0\n";
+    let first = |args: &[&str]| {
+        let out = bin().args(args).write_stdin(keys).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8(out.stdout).unwrap();
+        let row = text.lines().nth(1).unwrap().to_string();
+        let last = text.lines().last().unwrap().to_string();
+        (row, last)
+    };
+    let base = ["-", "--input-format", "csv", "--from", "euler:ZYX"];
+    let interp: Vec<&str> = ["interp"].iter().chain(&base).copied().collect();
+    let (row, last) = first(&[&interp[..], &["--fps", "2", "--to", "euler:ZYX"]].concat());
+    assert_eq!(
+        (row.as_str(), last.as_str()),
+        ("0,0.0,370.0,0.0,0.0", "2,1.0,380.0,0.0,0.0")
+    );
+    let convert: Vec<&str> = ["convert"].iter().chain(&base).copied().collect();
+    let (row, last) = first(&[&convert[..], &["--to", "euler:ZYX"]].concat());
+    assert_eq!(
+        (row.as_str(), last.as_str()),
+        ("0.0,370.0,0.0,0.0", "1.0,380.0,0.0,0.0")
+    );
+    // Another sequence starts from the canonical triple; so does --euler wrapped.
+    let (row, _) = first(&[&interp[..], &["--fps", "2", "--to", "euler:XYZ"]].concat());
+    assert!(row.starts_with("0,0.0,0.0,0.0,9.99999999999"), "{row}");
+    let (row, _) = first(&[&interp[..], &["--to", "euler:ZYX", "--euler", "wrapped"]].concat());
+    assert!(row.starts_with("0,0.0,9.99999999999"), "{row}");
+}

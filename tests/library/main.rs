@@ -8,4 +8,5 @@ mod api;
 mod conventions;
 mod minaccel;
 mod properties;
+mod spins;
 mod unwrap;

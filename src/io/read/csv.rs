@@ -16,6 +16,7 @@ use crate::io::ReadOptions;
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, shorten};
 use crate::io::read::json::check_frame_time;
 use crate::rotation::{MAX_WIDTH, Repr};
+use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
 /// interp's angular velocity columns (`--velocity`): accepted together and ignored.
@@ -210,6 +211,10 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 start_velocity: None,
                 end_velocity: None,
                 origin: KeyOrigin::Lines(Vec::new()),
+                euler: match repr {
+                    Repr::Euler(seq) => Some((seq, Vec::new())),
+                    _ => None,
+                },
             });
         }
         let track = &mut doc.tracks[index];
@@ -223,6 +228,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         });
         if let KeyOrigin::Lines(lines) = &mut track.origin {
             lines.push(line);
+        }
+        if let Some((_, angles)) = &mut track.euler {
+            let unit = opts.undeclared_angles();
+            angles.push(DVec3::new(
+                unit.to_rad(values[0]),
+                unit.to_rad(values[1]),
+                unit.to_rad(values[2]),
+            ));
         }
     }
     for (name, i) in track_index {

@@ -17,7 +17,7 @@
 use crate::clock::Fps;
 use crate::error::input_err;
 use crate::error::{InputError, InputResult};
-use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, Loc, shorten};
+use crate::io::document::{DocTrack, Document, EulerKeys, Key, KeyOrigin, KeyTime, Loc, shorten};
 use crate::io::{ReadOptions, settle};
 use crate::rotation::{AngleUnit, Repr};
 use glam::DVec3;
@@ -741,10 +741,11 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     };
     match (keys, wire.tracks) {
         (Some((keys, frames)), None) => {
-            let keys = ctx.keys(keys, None, frames, &mut doc)?;
+            let (keys, euler) = ctx.keys(keys, None, frames, &mut doc)?;
             doc.tracks.push(DocTrack {
                 name: None,
                 keys,
+                euler,
                 start_velocity: doc_start,
                 end_velocity: doc_end,
                 origin: KeyOrigin::Json {
@@ -760,7 +761,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             for (ti, t) in tracks.into_iter().enumerate() {
                 let start = velocity(t.start_velocity, &|| format!("tracks[{ti}].start_velocity"))?;
                 let end = velocity(t.end_velocity, &|| format!("tracks[{ti}].end_velocity"))?;
-                let keys = ctx.keys(t.keys, Some(ti), t.frames, &mut doc)?;
+                let (keys, euler) = ctx.keys(t.keys, Some(ti), t.frames, &mut doc)?;
                 let name = t.name.unwrap_or_else(|| format!("track{ti}"));
                 if !names.insert(name.clone()) {
                     return Err(input_err!(
@@ -771,6 +772,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 doc.tracks.push(DocTrack {
                     name: Some(name),
                     keys,
+                    euler,
                     start_velocity: start.or(doc_start),
                     end_velocity: end.or(doc_end),
                     origin: KeyOrigin::Json {
@@ -839,8 +841,11 @@ impl KeyContext<'_> {
         track: Option<usize>,
         frames: bool,
         doc: &mut Document,
-    ) -> InputResult<Vec<Key>> {
+    ) -> InputResult<(Vec<Key>, Option<EulerKeys>)> {
         let mut keys = Vec::with_capacity(wires.len());
+        // The keys' Euler angles as written, while every key so far is Euler in one sequence.
+        let mut euler: Option<EulerKeys> = None;
+        let mut all_euler = true;
         for (i, w) in wires.into_iter().enumerate() {
             let loc = Loc::Json {
                 track,
@@ -927,9 +932,20 @@ impl KeyContext<'_> {
             if doc.rotation.is_none() {
                 doc.rotation = Some(repr);
             }
+            match (repr, &mut euler) {
+                (Repr::Euler(seq), None) if all_euler => {
+                    euler = Some((seq, Vec::with_capacity(keys.capacity())));
+                }
+                (Repr::Euler(seq), Some((s, _))) if *s == seq => {}
+                _ => all_euler = false,
+            }
+            if let (true, Some((_, angles))) = (all_euler, &mut euler) {
+                let r = |x: f64| self.angles.to_rad(x);
+                angles.push(DVec3::new(r(values[0]), r(values[1]), r(values[2])));
+            }
             keys.push(Key { when, rot });
         }
-        Ok(keys)
+        Ok((keys, euler.filter(|_| all_euler)))
     }
 }
 

@@ -354,6 +354,10 @@ impl<W: Write> FrameSink for FrameWriter<W> {
         Ok(())
     }
 
+    fn euler_start(&mut self, seq: crate::EulerSeq, angles: [f64; 3]) {
+        self.unwrap = self.style.unwrapper_from(seq, angles);
+    }
+
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
         let euler = self.unwrap.as_mut().map(|u| u.next(q));

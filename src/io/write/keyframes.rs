@@ -5,8 +5,17 @@ use super::num::NumWriter;
 use super::{Bad, Style, csv_field, internal_error, is_rotation, json_head, json_string};
 use crate::clock::Fps;
 use crate::io::Format;
-use crate::io::document::{Document, KeyTime};
+use crate::io::document::{DocTrack, Document, KeyTime};
 use std::io::{self, Write};
+
+/// The continuous-Euler state of a track: from its first key's own triple when its keys were
+/// given as Euler angles ([`Style::unwrapper_from`]).
+fn track_unwrap(style: &Style, track: &DocTrack) -> Option<crate::rotation::unwrap::EulerUnwrap> {
+    match &track.euler {
+        Some((seq, angles)) => style.unwrapper_from(*seq, angles[0].to_array()),
+        None => style.unwrapper(),
+    }
+}
 
 /// Writes a key's time, or its frame number (as an integer when it is whole), with the
 /// shortest round-trip digits whatever the precision (it is a time, not a rotation).
@@ -78,7 +87,7 @@ pub fn write_keys<W: Write>(
             }
             buf.push(b'\n');
             for (ti, track) in doc.tracks.iter().enumerate() {
-                let mut unwrap = style.unwrapper();
+                let mut unwrap = track_unwrap(&style, track);
                 for (i, key) in track.keys.iter().enumerate() {
                     if named {
                         buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
@@ -145,7 +154,7 @@ pub fn write_keys<W: Write>(
                     vel(&mut buf, &mut nums, ti, "end_velocity", v)?;
                 }
                 buf.extend_from_slice(b", \"keys\": [");
-                let mut unwrap = style.unwrapper();
+                let mut unwrap = track_unwrap(&style, track);
                 for (i, key) in track.keys.iter().enumerate() {
                     buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
                     buf.extend_from_slice(when_name.as_bytes());
@@ -193,6 +202,7 @@ mod tests {
                 start_velocity,
                 end_velocity: None,
                 origin: KeyOrigin::Lines(vec![2, 3]),
+                euler: None,
             }],
             named_tracks: true,
             warnings: Vec::new(),

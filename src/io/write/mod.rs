@@ -64,7 +64,8 @@ pub struct Style {
 pub enum EulerMode {
     /// Each triple is the one of its rotation nearest the previous triple (both solutions of
     /// the sequence, any multiple of 360°): no ±180° wrap, no flip near gimbal lock
-    /// ([`crate::rotation::unwrap`]). A track starts from the canonical triple.
+    /// ([`crate::rotation::unwrap`]). A track starts from its first key's own triple when the
+    /// keys were given as Euler angles in the same sequence, else from the canonical triple.
     #[default]
     Continuous,
     /// Each triple in scipy's ranges, independently.
@@ -89,6 +90,22 @@ impl Style {
                 Some(crate::rotation::unwrap::EulerUnwrap::new(seq))
             }
             _ => None,
+        }
+    }
+
+    /// [`Style::unwrapper`] for a track whose first key was given as `angles` (radians) in `seq`:
+    /// when this style writes continuous Euler angles in that same sequence, the track starts
+    /// from the key's own triple.
+    pub(crate) fn unwrapper_from(
+        &self,
+        seq: crate::EulerSeq,
+        angles: [f64; 3],
+    ) -> Option<crate::rotation::unwrap::EulerUnwrap> {
+        match (self.repr, self.euler) {
+            (Repr::Euler(out), EulerMode::Continuous) if out == seq => Some(
+                crate::rotation::unwrap::EulerUnwrap::with_start(seq, angles),
+            ),
+            _ => self.unwrapper(),
         }
     }
 }
