@@ -17,13 +17,16 @@
 //!   `sqrt`, one `sin_cos`).
 //! - Limitations: a blend whose two arcs come near antipodal (tangents beyond about half a turn
 //!   per segment) is ill defined; the tool warns (docs/spec.md §4.3).
+//! - With `--path euler` the blend's log is the branch of `log(C₂ C₁⁻¹)` nearest its part of the
+//!   chord, `L − u·w_iΔ − (1 − u)·w_{i+1}Δ` (the 1-D difference `C₂ − C₁`), so a spin keeps its
+//!   turns even where the two arcs are a full turn apart (frames computed one at a time).
 
 use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
-use crate::rotation::quat::geodesic;
+use crate::rotation::quat::{exp, geodesic, log_near};
 use crate::tangent::Knots;
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 
 /// One Hermite segment.
 #[derive(Debug, Clone, Copy)]
@@ -32,6 +35,25 @@ pub struct Hermite {
     c2: Arc,
     chord: f64,
     blend: Blend,
+    spin: Option<Spin>,
+}
+
+/// `--path euler`: the segment's chord `L` and its end tangents `w_sΔ`, `w_{s+1}Δ` (world frame),
+/// whose 1-D difference `L − u·w_sΔ − (1 − u)·w_{s+1}Δ` picks the branch of the blend's log.
+#[derive(Debug, Clone, Copy)]
+struct Spin {
+    chord: DVec3,
+    start: DVec3,
+    end: DVec3,
+}
+
+impl Spin {
+    /// The blend at `u` between the arcs' points `a` and `b`, weight `f`.
+    #[inline]
+    fn blend(&self, a: DQuat, b: DQuat, u: f64, f: f64) -> DQuat {
+        let target = self.chord - self.start * u - self.end * (1.0 - u);
+        exp(log_near(b * a.conjugate(), target) * f) * a
+    }
 }
 
 /// Hermite in-betweens: both arcs by forward differences, the blends four frames at a time
@@ -45,6 +67,7 @@ pub struct HermiteFrames {
     j: f64,
     blend: Blend,
     block: Block4,
+    spin: Option<Spin>,
 }
 
 impl Iterator for HermiteFrames {
@@ -60,7 +83,14 @@ impl Iterator for HermiteFrames {
             j,
             blend,
             block,
+            spin,
         } = self;
+        if let Some(spin) = spin {
+            let u = *u0 + *j * *du;
+            *j += 1.0;
+            let (a, b) = (c1.next_point(), c2.next_point());
+            return Some(spin.blend(a, b, u, blend.f(u)));
+        }
         Some(block.next(|| {
             let (a, b) = (steps4(c1), steps4(c2));
             let f = params4(*u0, *du, *j, |u| blend.f(u));
@@ -79,11 +109,20 @@ impl Segment for Hermite {
             c2: Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s)),
             chord: keys.chord_length(s),
             blend,
+            spin: keys.spins().then(|| Spin {
+                chord: keys.chord(s),
+                start: keys.w[s] * keys.delta(s),
+                end: keys.w[s + 1] * keys.delta(s),
+            }),
         }
     }
 
     fn eval(&self, u: f64) -> DQuat {
-        geodesic(self.c1.eval(u), self.c2.eval(u), self.blend.f(u))
+        let (a, b, f) = (self.c1.eval(u), self.c2.eval(u), self.blend.f(u));
+        match &self.spin {
+            Some(spin) => spin.blend(a, b, u, f),
+            None => geodesic(a, b, f),
+        }
     }
 
     fn frames(&self, u0: f64, du: f64) -> HermiteFrames {
@@ -95,15 +134,30 @@ impl Segment for Hermite {
             j: 0.0,
             blend: self.blend,
             block: Block4::default(),
+            spin: self.spin,
         }
     }
 
     fn blend_bound(&self) -> f64 {
-        self.c1.span() + self.c2.span() + self.chord
+        match self.spin {
+            // Always sampled: the hazard is a tie between two branches, not an antipode.
+            Some(_) => f64::INFINITY,
+            None => self.c1.span() + self.c2.span() + self.chord,
+        }
     }
 
     fn blend_gap(&self, u: f64) -> f64 {
-        (self.c1.eval(u) + self.c2.eval(u)).length()
+        let (a, b) = (self.c1.eval(u), self.c2.eval(u));
+        match &self.spin {
+            // How far the branch taken is from half a turn off its target (0: a tie, where the
+            // blend could jump to the other branch).
+            Some(spin) => {
+                let target = spin.chord - spin.start * u - spin.end * (1.0 - u);
+                let x = log_near(b * a.conjugate(), target);
+                (std::f64::consts::PI - (x - target).length()).max(0.0)
+            }
+            None => (a + b).length(),
+        }
     }
 }
 
