@@ -9,7 +9,7 @@
 //! CUBICSPLINE).
 //!
 //! The `gltf` crate parses and validates the document (JSON or GLB container, every index);
-//! accessors are decoded here with every byte range checked ([`accessor`]), so that a damaged
+//! accessors are decoded here with every byte range checked, so that a damaged
 //! file is an [`InputError`] naming the file, the animation, the channel and the accessor,
 //! never a panic. Writing ([`Asset::write`]) works on the JSON as a `serde_json::Value`, so
 //! whatever the `gltf` crate does not model (unknown extensions, `extras`) survives untouched.

@@ -77,7 +77,7 @@ struct Appended {
 impl Appended {
     /// Adds `data` as a new view (4-byte aligned); returns the view's number among the new ones.
     fn push(&mut self, data: &[u8]) -> usize {
-        while self.bytes.len() % 4 != 0 {
+        while !self.bytes.len().is_multiple_of(4) {
             self.bytes.push(0);
         }
         self.views.push((self.bytes.len(), data.len()));
@@ -91,7 +91,7 @@ fn f32_bytes(xs: impl IntoIterator<Item = f32>) -> Vec<u8> {
 }
 
 fn pad4(v: &mut Vec<u8>, byte: u8) {
-    while v.len() % 4 != 0 {
+    while !v.len().is_multiple_of(4) {
         v.push(byte);
     }
 }
