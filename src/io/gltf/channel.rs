@@ -245,7 +245,8 @@ impl Channel<DVec3> {
 ///
 /// ```
 /// use inbetween::io::gltf::on_frame;
-/// let frame = 7.0 / 30.0; // frame 7 at 30 fps
+/// let frame = 0.75; // frame 3 at 4 fps, a float32 exactly
+/// assert!(on_frame((7.0f64 / 30.0) as f32, 7.0 / 30.0)); // frame 7 at 30 fps, rounded to float32
 /// assert!(on_frame(frame as f32, frame));
 /// assert!(on_frame(f32::from_bits((frame as f32).to_bits() + 2), frame));
 /// assert!(!on_frame(f32::from_bits((frame as f32).to_bits() + 3), frame));
