@@ -7,6 +7,7 @@
 //! - [`output`]: standard output or an atomically replaced file, and the write-behind thread.
 
 pub mod document;
+pub mod gltf;
 pub mod output;
 pub mod read;
 pub mod write;
