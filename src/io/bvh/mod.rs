@@ -317,3 +317,81 @@ impl Clip {
         self.fps.time_of(i as i64)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::read::tests::SMALL;
+    use super::*;
+
+    fn round_trip(clip: &Clip) -> Clip {
+        let mut out = Vec::new();
+        write(
+            &mut out,
+            clip.hierarchy(),
+            clip.fps(),
+            clip.channel_count(),
+            clip.values(),
+        )
+        .unwrap();
+        let (back, warnings) = parse(std::str::from_utf8(&out).unwrap(), "out.bvh").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        back
+    }
+
+    #[test]
+    fn parse_write_parse_is_the_same_clip() {
+        let (clip, _) = parse(SMALL, "clip.bvh").unwrap();
+        let back = round_trip(&clip);
+        assert_eq!(back.hierarchy(), clip.hierarchy());
+        assert_eq!(back.joints(), clip.joints());
+        assert_eq!(back.values(), clip.values());
+        assert_eq!(back.fps(), clip.fps());
+        assert_eq!(back.frame_time_text(), "0.0333333333");
+        // And once more: now byte for byte.
+        let again = round_trip(&back);
+        assert_eq!(again, back);
+    }
+
+    #[test]
+    fn the_hierarchy_is_reproduced_byte_for_byte_with_crlf_and_odd_spacing() {
+        let messy = SMALL
+            .replace('\n', "\r\n")
+            .replace("\tOFFSET", "  OFFSET   ");
+        let (clip, _) = parse(&messy, "clip.bvh").unwrap();
+        let mut out = Vec::new();
+        write(&mut out, clip.hierarchy(), clip.fps(), 18, clip.values()).unwrap();
+        let end = messy.find("MOTION").unwrap();
+        assert_eq!(&out[..end], &messy.as_bytes()[..end]);
+        assert_eq!(&out[end..end + 7], b"MOTION\n");
+        assert_eq!(round_trip(&clip).values(), clip.values());
+    }
+
+    #[test]
+    fn channel_names_round_trip() {
+        for c in Channel::ALL {
+            assert_eq!(Channel::parse(c.as_str()), Some(c));
+            assert_eq!(c.to_string(), c.as_str());
+        }
+        assert_eq!(Channel::parse("zrotation"), None);
+        assert_eq!(
+            Channel::ALL.map(|c| (c.axis(), c.is_rotation())),
+            [
+                (0, false),
+                (1, false),
+                (2, false),
+                (0, true),
+                (1, true),
+                (2, true)
+            ]
+        );
+    }
+
+    #[test]
+    fn a_joint_with_some_rotation_channels_has_no_rotation() {
+        let text = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 2 Zrotation Xrotation\n}\n\
+                    MOTION\nFrames: 1\nFrame Time: 0.01\n1 2\n";
+        let (clip, _) = parse(text, "a.bvh").unwrap();
+        assert_eq!(clip.joints()[0].rotation(), None);
+        assert_eq!(clip.joints()[0].position(), None);
+    }
+}

@@ -84,7 +84,13 @@ pub fn rate_from_frame_time(text: &str) -> InputResult<Fps> {
     let approx = 1.0 / x;
     let nearest = STANDARD_RATES
         .iter()
-        .map(|&(n, d)| (n, d, (approx - n as f64 / d as f64).abs() / (n as f64 / d as f64)))
+        .map(|&(n, d)| {
+            (
+                n,
+                d,
+                (approx - n as f64 / d as f64).abs() / (n as f64 / d as f64),
+            )
+        })
         .min_by(|a, b| a.2.total_cmp(&b.2));
     if let Some((n, d, rel)) = nearest
         && rel <= RATE_TOLERANCE
@@ -105,14 +111,13 @@ pub fn rate_from_frame_time(text: &str) -> InputResult<Fps> {
         )
     };
     let (num, den) = if pow10 <= 0 {
-        (
-            10u128
-                .checked_pow((-pow10) as u32)
-                .ok_or_else(range)?,
-            sig,
-        )
+        (10u128.checked_pow((-pow10) as u32).ok_or_else(range)?, sig)
     } else {
-        (1, sig.checked_mul(10u128.checked_pow(pow10 as u32).ok_or_else(range)?).ok_or_else(range)?)
+        (
+            1,
+            sig.checked_mul(10u128.checked_pow(pow10 as u32).ok_or_else(range)?)
+                .ok_or_else(range)?,
+        )
     };
     let g = gcd(num, den);
     let (num, den) = (num / g, den / g);
@@ -249,7 +254,10 @@ mod tests {
             "expected a frame time in seconds such as 0.0333333, found \"abc\""
         );
         assert_eq!(err("0"), "expected a positive frame time, found 0");
-        assert_eq!(err("-0.0333333"), "expected a positive frame time, found -0.0333333");
+        assert_eq!(
+            err("-0.0333333"),
+            "expected a positive frame time, found -0.0333333"
+        );
         assert_eq!(err("nan"), "expected a finite frame time, found \"nan\"");
         assert_eq!(err("inf"), "expected a finite frame time, found \"inf\"");
         assert_eq!(

@@ -48,7 +48,10 @@ impl<'a> Tokens<'a> {
         self.skip_space();
         let bytes = self.text.as_bytes();
         let start = self.pos;
-        while bytes.get(self.pos).is_some_and(|b| !b.is_ascii_whitespace()) {
+        while bytes
+            .get(self.pos)
+            .is_some_and(|b| !b.is_ascii_whitespace())
+        {
             self.pos += 1;
         }
         (self.pos > start).then(|| Tok {
@@ -97,10 +100,7 @@ impl<'a> Parser<'a> {
         let tok = self.toks.next();
         match tok {
             Some(t) if t.s == keyword => Ok(t),
-            _ => Err(self.err(
-                tok,
-                format!("expected \"{keyword}\", found {}", found(tok)),
-            )),
+            _ => Err(self.err(tok, format!("expected \"{keyword}\", found {}", found(tok)))),
         }
     }
 
@@ -380,7 +380,8 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
             "expected a frame time after \"Frame Time:\", found the end of the line".to_string(),
         ));
     };
-    let fps = rate_from_frame_time(value.s).map_err(|e| e.at(format!("{source}:{}", value.line)))?;
+    let fps =
+        rate_from_frame_time(value.s).map_err(|e| e.at(format!("{source}:{}", value.line)))?;
     let frame_time: f64 = value.s.parse().expect("checked by rate_from_frame_time");
     let rest = p.toks.rest_of_line();
     if !rest.is_empty() {
@@ -460,7 +461,7 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// Two roots; End Sites; a 6-channel root in ZXY; joints in ZYX and XYZ; a joint with
@@ -600,7 +601,10 @@ Frame Time: 0.0333333
         assert_eq!(other.values(), clip.values());
         assert_eq!(other.joints().len(), clip.joints().len());
         for (a, b) in other.joints().iter().zip(clip.joints()) {
-            assert_eq!((a.name(), a.offset(), a.channels()), (b.name(), b.offset(), b.channels()));
+            assert_eq!(
+                (a.name(), a.offset(), a.channels()),
+                (b.name(), b.offset(), b.channels())
+            );
             assert_eq!(a.line(), b.line() + 1);
         }
         // The hierarchy text keeps the CRLF line ends and starts at HIERARCHY.
@@ -643,46 +647,188 @@ Frame Time: 0.0333333
     #[test]
     fn every_error_names_the_line_what_was_expected_and_what_was_found() {
         let cases: Vec<(String, &str)> = vec![
-            (String::new(), "clip.bvh: expected a BVH file starting with \"HIERARCHY\", found an empty input"),
-            ("\u{feff} \n\r\n".to_string(), "clip.bvh: expected a BVH file starting with \"HIERARCHY\", found an empty input"),
-            (small_with("HIERARCHY", "hierarchy"), "clip.bvh:1: expected \"HIERARCHY\", found \"hierarchy\""),
-            (small_with("ROOT Hips", "JOINT Hips"), "clip.bvh:2: expected \"ROOT\", found \"JOINT\""),
-            ("HIERARCHY\nMOTION\n".to_string(), "clip.bvh:2: expected \"ROOT\", found \"MOTION\""),
-            ("HIERARCHY\n".to_string(), "clip.bvh: expected \"ROOT\", found the end of the file"),
-            (small_with("ROOT Hips", "ROOT"), "clip.bvh:2: expected a joint name after ROOT, found the end of the line"),
-            (small_with("ROOT Hips\n{", "ROOT Hips\n("), "clip.bvh:3: expected \"{\", found \"(\""),
-            (small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 abc 0.0"), "clip.bvh:4: expected a number for OFFSET, found \"abc\""),
-            (small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 nan 0.0"), "clip.bvh:4: expected a finite number for OFFSET, found \"nan\""),
-            (small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 1e999 0.0"), "clip.bvh:4: expected a finite number for OFFSET, found \"1e999\""),
-            (small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 0.0"), "clip.bvh:5: expected a number for OFFSET, found \"CHANNELS\""),
-            (small_with("\tOFFSET 0.0 0.0 0.0\n", ""), "clip.bvh:4: expected \"OFFSET\", found \"CHANNELS\""),
-            (small_with("CHANNELS 0", "CHANNELS none"), "clip.bvh:23: expected a channel count from 0 to 6 for CHANNELS, found \"none\""),
-            (small_with("CHANNELS 0", "CHANNELS 7"), "clip.bvh:23: expected a channel count from 0 to 6 for CHANNELS, found \"7\""),
-            (small_with("CHANNELS 3 Zrotation Yrotation Xrotation", "CHANNELS 3 Zrotation Yrotation xrotation"), "clip.bvh:9: expected channel 3 of 3 for CHANNELS (Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation), found \"xrotation\""),
-            (small_with("CHANNELS 3 Zrotation Yrotation Xrotation", "CHANNELS 4 Zrotation Yrotation Xrotation"), "clip.bvh:10: expected channel 4 of 4 for CHANNELS (Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation), found \"JOINT\""),
-            (small_with("CHANNELS 3 Xrotation Yrotation Zrotation", "CHANNELS 3 Xrotation Yrotation Xrotation"), "clip.bvh:13: joint \"Bip01 L Hand\" lists Xrotation twice in CHANNELS"),
-            (small_with("\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n", "\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n"), "clip.bvh:28: joint \"Marker\" has a second End Site"),
-            (small_with("\t\t\tEnd Site\n", "\t\t\tEnd site\n"), "clip.bvh:14: expected \"Site\", found \"site\""),
-            (small_with("\t\tJOINT Bip01", "\t\tJoint Bip01"), "clip.bvh:10: expected \"JOINT\", \"End Site\" or \"}\" in joint \"Chest\", found \"Joint\""),
-            (small_with("}\nROOT Prop {", "ROOT Prop {"), "clip.bvh:29: expected \"JOINT\", \"End Site\" or \"}\" in joint \"Hips\", found \"ROOT\""),
-            (small_with("}\nMOTION", "}\nmotion"), "clip.bvh:34: expected \"ROOT\" or \"MOTION\", found \"motion\""),
-            (SMALL[..SMALL.find("\t}\n\tJOINT Marker").unwrap()].to_string(), "clip.bvh: expected \"}\" closing joint \"Chest\" (line 6), found the end of the file"),
-            (SMALL[..SMALL.find("MOTION").unwrap()].to_string(), "clip.bvh: expected \"MOTION\", found the end of the file"),
-            (small_with("Frames: 3", "Frames 3"), "clip.bvh:35: expected \"Frames:\", found \"Frames\""),
-            (small_with("Frames: 3", "Frames: three"), "clip.bvh:35: expected a whole number of frames after \"Frames:\", found \"three\""),
-            (small_with("Frames: 3", "Frames: -3"), "clip.bvh:35: expected a whole number of frames after \"Frames:\", found \"-3\""),
-            (small_with("Frame Time: 0.0333333", "FrameTime: 0.0333333"), "clip.bvh:36: expected \"Frame Time:\", found \"FrameTime: 0.0333333\""),
-            (small_with("Frame Time: 0.0333333", "Frame Time:\n0.0333333"), "clip.bvh:36: expected a frame time after \"Frame Time:\", found the end of the line"),
-            (small_with("Frame Time: 0.0333333", "Frame Time: 0"), "clip.bvh:36: expected a positive frame time, found 0"),
-            (small_with("Frame Time: 0.0333333", "Frame Time: -0.01"), "clip.bvh:36: expected a positive frame time, found -0.01"),
-            (small_with("Frame Time: 0.0333333", "Frame Time: NaN"), "clip.bvh:36: expected a finite frame time, found \"NaN\""),
-            (small_with("Frame Time: 0.0333333", "Frame Time: 30fps"), "clip.bvh:36: expected a frame time in seconds such as 0.0333333, found \"30fps\""),
-            (small_with("Frame Time: 0.0333333", "Frame Time: 0.0333333 s"), "clip.bvh:36: expected the end of the line after the frame time, found \"s\""),
-            (small_with("1.5 35.25 -2 10", "1.5 35.25 abc 10"), "clip.bvh:38: value 3 (joint \"Hips\", Zposition): expected a number, found \"abc\""),
-            (small_with("1.5 35.25 -2 10 20 30 -5", "1.5 35.25 -2 10 20 30 inf"), "clip.bvh:38: value 7 (joint \"Chest\", Zrotation): expected a finite number, found \"inf\""),
-            (small_with(" 11 12\n-0.0000", " 11\n-0.0000"), "clip.bvh:38: expected 18 values (one per channel), found 17"),
-            (small_with(" 11 12\n-0.0000", " 11 12 13 14\n-0.0000"), "clip.bvh:38: expected 18 values (one per channel), found 20"),
-            (SMALL.replace("CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation", "CHANNELS 0").replace("CHANNELS 3 Zrotation Yrotation Xrotation", "CHANNELS 0").replace("CHANNELS 3 Xrotation Yrotation Zrotation", "CHANNELS 0").replace("CHANNELS 6 Zrotation Xposition Yrotation Yposition Xrotation Zposition", "CHANNELS 0"), "clip.bvh:34: expected at least one channel in the hierarchy, found none"),
+            (
+                String::new(),
+                "clip.bvh: expected a BVH file starting with \"HIERARCHY\", found an empty input",
+            ),
+            (
+                "\u{feff} \n\r\n".to_string(),
+                "clip.bvh: expected a BVH file starting with \"HIERARCHY\", found an empty input",
+            ),
+            (
+                small_with("HIERARCHY", "hierarchy"),
+                "clip.bvh:1: expected \"HIERARCHY\", found \"hierarchy\"",
+            ),
+            (
+                small_with("ROOT Hips", "JOINT Hips"),
+                "clip.bvh:2: expected \"ROOT\", found \"JOINT\"",
+            ),
+            (
+                "HIERARCHY\nMOTION\n".to_string(),
+                "clip.bvh:2: expected \"ROOT\", found \"MOTION\"",
+            ),
+            (
+                "HIERARCHY\n".to_string(),
+                "clip.bvh: expected \"ROOT\", found the end of the file",
+            ),
+            (
+                small_with("ROOT Hips", "ROOT"),
+                "clip.bvh:2: expected a joint name after ROOT, found the end of the line",
+            ),
+            (
+                small_with("ROOT Hips\n{", "ROOT Hips\n("),
+                "clip.bvh:3: expected \"{\", found \"(\"",
+            ),
+            (
+                small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 abc 0.0"),
+                "clip.bvh:4: expected a number for OFFSET, found \"abc\"",
+            ),
+            (
+                small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 nan 0.0"),
+                "clip.bvh:4: expected a finite number for OFFSET, found \"nan\"",
+            ),
+            (
+                small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 1e999 0.0"),
+                "clip.bvh:4: expected a finite number for OFFSET, found \"1e999\"",
+            ),
+            (
+                small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 0.0"),
+                "clip.bvh:5: expected a number for OFFSET, found \"CHANNELS\"",
+            ),
+            (
+                small_with("\tOFFSET 0.0 0.0 0.0\n", ""),
+                "clip.bvh:4: expected \"OFFSET\", found \"CHANNELS\"",
+            ),
+            (
+                small_with("CHANNELS 0", "CHANNELS none"),
+                "clip.bvh:23: expected a channel count from 0 to 6 for CHANNELS, found \"none\"",
+            ),
+            (
+                small_with("CHANNELS 0", "CHANNELS 7"),
+                "clip.bvh:23: expected a channel count from 0 to 6 for CHANNELS, found \"7\"",
+            ),
+            (
+                small_with(
+                    "CHANNELS 3 Zrotation Yrotation Xrotation",
+                    "CHANNELS 3 Zrotation Yrotation xrotation",
+                ),
+                "clip.bvh:9: expected channel 3 of 3 for CHANNELS (Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation), found \"xrotation\"",
+            ),
+            (
+                small_with(
+                    "CHANNELS 3 Zrotation Yrotation Xrotation",
+                    "CHANNELS 4 Zrotation Yrotation Xrotation",
+                ),
+                "clip.bvh:10: expected channel 4 of 4 for CHANNELS (Xposition, Yposition, Zposition, Xrotation, Yrotation or Zrotation), found \"JOINT\"",
+            ),
+            (
+                small_with(
+                    "CHANNELS 3 Xrotation Yrotation Zrotation",
+                    "CHANNELS 3 Xrotation Yrotation Xrotation",
+                ),
+                "clip.bvh:13: joint \"Bip01 L Hand\" lists Xrotation twice in CHANNELS",
+            ),
+            (
+                small_with(
+                    "\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n",
+                    "\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n\t\tEnd Site\n\t\t{\n\t\t\tOFFSET 0 1 0\n\t\t}\n",
+                ),
+                "clip.bvh:28: joint \"Marker\" has a second End Site",
+            ),
+            (
+                small_with("\t\t\tEnd Site\n", "\t\t\tEnd site\n"),
+                "clip.bvh:14: expected \"Site\", found \"site\"",
+            ),
+            (
+                small_with("\t\tJOINT Bip01", "\t\tJoint Bip01"),
+                "clip.bvh:10: expected \"JOINT\", \"End Site\" or \"}\" in joint \"Chest\", found \"Joint\"",
+            ),
+            (
+                small_with("}\nROOT Prop {", "ROOT Prop {"),
+                "clip.bvh:29: expected \"JOINT\", \"End Site\" or \"}\" in joint \"Hips\", found \"ROOT\"",
+            ),
+            (
+                small_with("}\nMOTION", "}\nmotion"),
+                "clip.bvh:34: expected \"ROOT\" or \"MOTION\", found \"motion\"",
+            ),
+            (
+                SMALL[..SMALL.find("\t}\n\tJOINT Marker").unwrap()].to_string(),
+                "clip.bvh: expected \"}\" closing joint \"Chest\" (line 6), found the end of the file",
+            ),
+            (
+                SMALL[..SMALL.find("MOTION").unwrap()].to_string(),
+                "clip.bvh: expected \"MOTION\", found the end of the file",
+            ),
+            (
+                small_with("Frames: 3", "Frames 3"),
+                "clip.bvh:35: expected \"Frames:\", found \"Frames\"",
+            ),
+            (
+                small_with("Frames: 3", "Frames: three"),
+                "clip.bvh:35: expected a whole number of frames after \"Frames:\", found \"three\"",
+            ),
+            (
+                small_with("Frames: 3", "Frames: -3"),
+                "clip.bvh:35: expected a whole number of frames after \"Frames:\", found \"-3\"",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "FrameTime: 0.0333333"),
+                "clip.bvh:36: expected \"Frame Time:\", found \"FrameTime: 0.0333333\"",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time:\n0.0333333"),
+                "clip.bvh:36: expected a frame time after \"Frame Time:\", found the end of the line",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time: 0"),
+                "clip.bvh:36: expected a positive frame time, found 0",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time: -0.01"),
+                "clip.bvh:36: expected a positive frame time, found -0.01",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time: NaN"),
+                "clip.bvh:36: expected a finite frame time, found \"NaN\"",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time: 30fps"),
+                "clip.bvh:36: expected a frame time in seconds such as 0.0333333, found \"30fps\"",
+            ),
+            (
+                small_with("Frame Time: 0.0333333", "Frame Time: 0.0333333 s"),
+                "clip.bvh:36: expected the end of the line after the frame time, found \"s\"",
+            ),
+            (
+                small_with("1.5 35.25 -2 10", "1.5 35.25 abc 10"),
+                "clip.bvh:38: value 3 (joint \"Hips\", Zposition): expected a number, found \"abc\"",
+            ),
+            (
+                small_with("1.5 35.25 -2 10 20 30 -5", "1.5 35.25 -2 10 20 30 inf"),
+                "clip.bvh:38: value 7 (joint \"Chest\", Zrotation): expected a finite number, found \"inf\"",
+            ),
+            (
+                small_with(" 11 12\n-0.0000", " 11\n-0.0000"),
+                "clip.bvh:38: expected 18 values (one per channel), found 17",
+            ),
+            (
+                small_with(" 11 12\n-0.0000", " 11 12 13 14\n-0.0000"),
+                "clip.bvh:38: expected 18 values (one per channel), found 20",
+            ),
+            (
+                SMALL
+                    .replace(
+                        "CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation",
+                        "CHANNELS 0",
+                    )
+                    .replace("CHANNELS 3 Zrotation Yrotation Xrotation", "CHANNELS 0")
+                    .replace("CHANNELS 3 Xrotation Yrotation Zrotation", "CHANNELS 0")
+                    .replace(
+                        "CHANNELS 6 Zrotation Xposition Yrotation Yposition Xrotation Zposition",
+                        "CHANNELS 0",
+                    ),
+                "clip.bvh:34: expected at least one channel in the hierarchy, found none",
+            ),
         ];
         let wrong: Vec<String> = cases
             .iter()
@@ -698,7 +844,10 @@ Frame Time: 0.0333333
         let text = small_with("OFFSET 0.0 0.0 0.0", &format!("OFFSET 0.0 {long} 0.0"));
         assert_eq!(
             parse_err(&text),
-            format!("clip.bvh:4: expected a number for OFFSET, found \"{}…\"", "x".repeat(60))
+            format!(
+                "clip.bvh:4: expected a number for OFFSET, found \"{}…\"",
+                "x".repeat(60)
+            )
         );
         let text = small_with("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 \u{1b}[31m 0.0");
         assert_eq!(

@@ -170,7 +170,7 @@ pub fn write<W: Write>(
     channels: usize,
     values: &[f64],
 ) -> io::Result<()> {
-    if channels == 0 || values.len() % channels != 0 {
+    if channels == 0 || !values.len().is_multiple_of(channels) {
         return Err(invalid(
             io::ErrorKind::InvalidInput,
             format!(
@@ -185,4 +185,128 @@ pub fn write<W: Write>(
         w.row(row)?;
     }
     w.finish().map(drop)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const H: &str =
+        "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 3 Zrotation Xrotation Yrotation\n}\n";
+
+    fn fps(n: u64, d: u64) -> Fps {
+        Fps::new(n, d).unwrap()
+    }
+
+    fn written(hierarchy: &str, fps: Fps, channels: usize, values: &[f64]) -> String {
+        let mut out = Vec::new();
+        write(&mut out, hierarchy, fps, channels, values).unwrap();
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn writes_the_hierarchy_then_the_motion() {
+        let values = [0.0, -0.0, 21.0, 0.1, -179.99, 1e-7, 1.0 / 3.0, 1e21, -2.5];
+        assert_eq!(
+            written(H, fps(30, 1), 3, &values),
+            format!(
+                "{H}MOTION\nFrames: 3\nFrame Time: 0.0333333333\n0 0 21\n0.1 -179.99 1e-7\n\
+                 0.3333333333333333 1e+21 -2.5\n"
+            )
+        );
+        assert_eq!(
+            written(H, fps(120, 1), 3, &[]),
+            format!("{H}MOTION\nFrames: 0\nFrame Time: 0.00833333333\n")
+        );
+    }
+
+    #[test]
+    fn every_written_number_reads_back_exactly() {
+        let mut state = 0x9E3779B97F4A7C15u64;
+        let mut values = Vec::new();
+        for _ in 0..30_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let unit = (state >> 11) as f64 / (1u64 << 53) as f64;
+            values.push((unit - 0.5) * 10f64.powi((state % 12) as i32 - 4));
+        }
+        let text = written(H, fps(24, 1), 3, &values);
+        let body = text.split_once("Frame Time: 0.0416666667\n").unwrap().1;
+        let back: Vec<f64> = body
+            .split_ascii_whitespace()
+            .map(|s| s.parse().unwrap())
+            .collect();
+        assert_eq!(back, values);
+    }
+
+    #[test]
+    fn a_hierarchy_without_a_final_line_end_gets_one() {
+        let h = H.trim_end();
+        assert_eq!(
+            written(h, fps(100, 1), 3, &[1.0, 2.0, 3.0]),
+            format!("{h}\nMOTION\nFrames: 1\nFrame Time: 0.01\n1 2 3\n")
+        );
+    }
+
+    #[test]
+    fn the_streaming_writer_equals_the_whole_file_writer() {
+        let values: Vec<f64> = (0..60_000).map(|i| i as f64 * 0.37 - 999.5).collect();
+        let whole = written(H, fps(60, 1), 3, &values);
+        let mut w = BvhWriter::new(Vec::new(), H, fps(60, 1), 3, 20_000).unwrap();
+        for row in values.chunks(3) {
+            w.row(row).unwrap();
+        }
+        assert_eq!(String::from_utf8(w.finish().unwrap()).unwrap(), whole);
+    }
+
+    #[test]
+    fn bad_rows_are_internal_errors() {
+        let err = |e: io::Error| (e.kind(), e.to_string());
+        let mut w = BvhWriter::new(Vec::new(), H, fps(30, 1), 3, 1).unwrap();
+        assert_eq!(
+            err(w.row(&[1.0, f64::NAN, 0.0]).unwrap_err()),
+            (
+                io::ErrorKind::InvalidData,
+                "internal error: non-finite value in frame 0, column 2 (NaN)".to_string()
+            )
+        );
+        assert_eq!(
+            err(w.row(&[1.0, 2.0]).unwrap_err()),
+            (
+                io::ErrorKind::InvalidInput,
+                "internal error: a row of 2 values for 3 channels".to_string()
+            )
+        );
+        w.row(&[1.0, 2.0, 3.0]).unwrap();
+        assert_eq!(
+            err(w.row(&[1.0, 2.0, 3.0]).unwrap_err()).1,
+            "internal error: more rows than the 1 announced in \"Frames:\""
+        );
+        let w = BvhWriter::new(Vec::new(), H, fps(30, 1), 3, 2).unwrap();
+        assert_eq!(
+            err(w.finish().unwrap_err()).1,
+            "internal error: 0 rows written after \"Frames: 2\""
+        );
+        assert_eq!(
+            err(write(Vec::new(), H, fps(30, 1), 3, &[1.0; 4]).unwrap_err()).1,
+            "internal error: 4 values do not make rows of 3 channels"
+        );
+        assert!(BvhWriter::new(Vec::new(), H, fps(30, 1), 0, 0).is_err());
+    }
+
+    #[test]
+    fn a_failing_destination_is_an_io_error() {
+        struct Broken;
+        impl Write for Broken {
+            fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+                Err(io::Error::from(io::ErrorKind::BrokenPipe))
+            }
+            fn flush(&mut self) -> io::Result<()> {
+                Ok(())
+            }
+        }
+        let e = write(Broken, H, fps(30, 1), 3, &[0.0; 3]).unwrap_err();
+        assert_eq!(e.kind(), io::ErrorKind::BrokenPipe);
+    }
 }
