@@ -395,3 +395,63 @@ mod tests {
         assert_eq!(clip.joints()[0].position(), None);
     }
 }
+
+#[cfg(test)]
+mod fixtures {
+    use super::*;
+
+    #[test]
+    fn the_cmu_fixture_parses_and_round_trips() {
+        let text = include_str!("../../../fixtures/bvh/cmu_07_01_walk.bvh");
+        let (clip, warnings) = parse(text, "cmu_07_01_walk.bvh").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        assert_eq!(clip.joints().len(), 31);
+        assert_eq!(clip.channel_count(), 96);
+        assert_eq!(clip.frame_count(), 16);
+        assert_eq!(clip.frame_time_text(), ".0083333");
+        assert_eq!((clip.fps().num(), clip.fps().den()), (120, 1));
+        // The root lists "Zrotation Yrotation Xrotation " (a trailing space, kept in the text).
+        assert!(
+            clip.hierarchy()
+                .contains("Zposition Zrotation Yrotation Xrotation \n")
+        );
+        for j in clip.joints() {
+            let (seq, _) = j.rotation().unwrap();
+            assert_eq!(seq.as_str(), "ZYX", "{}", j.name());
+        }
+        let hips = clip.joint("Hips").unwrap();
+        assert_eq!(hips.position(), Some([0, 1, 2]));
+        assert_eq!(
+            clip.row(1)[..6],
+            [8.8721, 15.7511, -31.7081, 3.7012, 4.9122, 5.5217]
+        );
+        let end = clip.joint("RThumb").unwrap().end_site();
+        assert_eq!(end, Some([-0.50786, -0.0, 0.50786]));
+        let mut out = Vec::new();
+        write(&mut out, clip.hierarchy(), clip.fps(), 96, clip.values()).unwrap();
+        let (back, _) = parse(std::str::from_utf8(&out).unwrap(), "out.bvh").unwrap();
+        assert_eq!(back.values(), clip.values());
+        assert_eq!(back.hierarchy(), clip.hierarchy());
+        assert_eq!(back.fps(), clip.fps());
+    }
+
+    #[test]
+    fn the_mixed_order_fixture_has_each_joints_own_sequence() {
+        let text = include_str!("../../../fixtures/bvh/mixed_orders.bvh");
+        let (clip, warnings) = parse(text, "mixed_orders.bvh").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let seqs: Vec<Option<String>> = clip
+            .joints()
+            .iter()
+            .map(|j| j.rotation().map(|(s, _)| s.as_str().to_string()))
+            .collect();
+        let want = [Some("ZXY"), Some("ZYX"), Some("YXZ"), None, Some("ZXY")];
+        assert_eq!(seqs, want.map(|s| s.map(String::from)));
+        assert_eq!(clip.joint("Tail").unwrap().position(), Some([13, 15, 17]));
+        assert_eq!(
+            clip.joint("Tail").unwrap().rotation().unwrap().1,
+            [12, 14, 16]
+        );
+        assert_eq!((clip.frame_count(), clip.channel_count()), (4, 18));
+    }
+}
