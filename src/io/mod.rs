@@ -6,6 +6,7 @@
 //! - [`mod@write`]: frame and key writers (CSV, JSON, npy), number formatting.
 //! - [`output`]: standard output or an atomically replaced file, and the write-behind thread.
 
+pub mod bvh;
 pub mod document;
 pub mod gltf;
 pub mod output;

@@ -544,6 +544,11 @@ fn validator() -> Option<PathBuf> {
     if installed && node {
         Some(dir.join("validate.js"))
     } else {
+        // CI installs it and sets this, so that a missing validator fails instead of skipping.
+        assert!(
+            std::env::var_os("INBETWEEN_REQUIRE_GLTF_VALIDATOR").is_none(),
+            "the glTF Validator is required but not installed: npm ci --prefix tools/gltf-validator"
+        );
         eprintln!(
             "note: glTF Validator test skipped: needs node and `npm ci --prefix tools/gltf-validator`"
         );
