@@ -217,10 +217,27 @@ pub struct CurveArgs {
     #[arg(long, value_enum, default_value = "cubic")]
     pub blend: BlendArg,
 
-    /// End condition without a given velocity: chord (along the first/last chord) or rest
-    /// (zero velocity). minaccel's ends are free unless rest or a velocity is given.
+    /// End condition without a given velocity: chord (along the first/last chord), rest (zero
+    /// velocity), or cyclic (a loop: the last key is the first key's rotation, and the tangent
+    /// there is computed across the seam). minaccel's ends are free unless rest or a velocity
+    /// is given.
     #[arg(long, value_enum, default_value = "chord")]
     pub ends: EndsArg,
+
+    /// Kochanek–Bartels tension T in [-1, 1] at every interior key without its own (a `tension`
+    /// column or field): 1 stops at the key, -1 doubles the tangent.
+    #[arg(long, value_name = "T", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_unit_interval)]
+    pub tension: f64,
+
+    /// Kochanek–Bartels continuity C in [-1, 1]: non-zero gives the key a corner (different
+    /// incoming and outgoing tangents).
+    #[arg(long, value_name = "C", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_unit_interval)]
+    pub continuity: f64,
+
+    /// Kochanek–Bartels bias B in [-1, 1]: positive leans the tangent towards the incoming
+    /// chord, negative towards the outgoing one.
+    #[arg(long, value_name = "B", default_value_t = 0.0, allow_hyphen_values = true, value_parser = parse_unit_interval)]
+    pub bias: f64,
 
     /// World-frame angular velocity at the first key, X,Y,Z in --angles units per second
     /// (overrides the document's start_velocity).
@@ -354,6 +371,7 @@ pub enum BlendArg {
 pub enum EndsArg {
     Chord,
     Rest,
+    Cyclic,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -361,6 +379,13 @@ pub enum PathArg {
     Shortest,
     AsGiven,
     Euler,
+}
+
+fn parse_unit_interval(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x.abs() <= 1.0 => Ok(x),
+        _ => Err(format!("expected a number between -1 and 1, found \"{s}\"")),
+    }
 }
 
 fn parse_vec3(s: &str) -> Result<[f64; 3], String> {

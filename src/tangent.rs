@@ -52,6 +52,56 @@ pub enum Ends {
     Chord,
     /// Zero velocity at both ends.
     Rest,
+    /// A loop: the last key is the first key's rotation, and the tangent there is computed
+    /// across the seam from the keys on both sides (time-aware), as at an interior key, so the
+    /// loop has no velocity jump. No end velocity applies.
+    Cyclic,
+}
+
+/// Kochanek–Bartels tension, continuity and bias of a key (each in `[−1, 1]`; all zero gives
+/// the ordinary tangent). See [`Knots`] for how they shape the tangents on S³.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Tcb {
+    /// Tension `t`: 1 stops at the key, −1 doubles the tangent.
+    pub tension: f64,
+    /// Continuity `c`: non-zero makes the incoming and outgoing tangents differ (a corner).
+    pub continuity: f64,
+    /// Bias `b`: positive leans the tangent towards the incoming chord, negative the outgoing.
+    pub bias: f64,
+}
+
+impl Tcb {
+    /// All zero: the ordinary tangent.
+    pub const ZERO: Tcb = Tcb {
+        tension: 0.0,
+        continuity: 0.0,
+        bias: 0.0,
+    };
+
+    /// Whether all three are zero.
+    pub fn is_zero(&self) -> bool {
+        *self == Tcb::ZERO
+    }
+
+    /// Whether all three are finite and within `[−1, 1]`.
+    pub fn is_valid(&self) -> bool {
+        [self.tension, self.continuity, self.bias]
+            .iter()
+            .all(|x| x.is_finite() && x.abs() <= 1.0)
+    }
+
+    /// Kochanek & Bartels' weights `((a_in, b_in), (a_out, b_out))` of the incoming chord `L⁻`
+    /// and the outgoing chord `L⁺` in the tangent arriving at the key and the one leaving it:
+    /// `a_in = (1−t)(1+b)(1+c)/2`, `b_in = (1−t)(1−b)(1−c)/2`, `a_out = (1−t)(1+b)(1−c)/2`,
+    /// `b_out = (1−t)(1−b)(1+c)/2` (all ½ for zero).
+    pub fn weights(&self) -> ((f64, f64), (f64, f64)) {
+        let (t, c, b) = (self.tension, self.continuity, self.bias);
+        let k = (1.0 - t) * 0.5;
+        (
+            (k * (1.0 + b) * (1.0 + c), k * (1.0 - b) * (1.0 - c)),
+            (k * (1.0 + b) * (1.0 - c), k * (1.0 - b) * (1.0 + c)),
+        )
+    }
 }
 
 /// End conditions of a track: the default rule and optional given angular velocities (rad/s,
@@ -83,8 +133,17 @@ impl From<Ends> for EndConditions {
 pub struct Knots {
     pub(crate) times: Vec<f64>,
     pub(crate) quats: Vec<DQuat>,
-    /// Per-second half angular velocities: `v_i = w[i]·q_i`.
+    /// Per-second half angular velocities leaving each key: `v_i = w[i]·q_i`.
     pub(crate) w: Vec<DVec3>,
+    /// Per-second half angular velocities arriving at each key (differ from `w` only where a
+    /// key's continuity is non-zero).
+    pub(crate) w_in: Vec<DVec3>,
+    /// Keys whose tangents were given or shaped (a key's own velocity, non-zero TCB, a cyclic
+    /// seam's given velocity): squad builds its inner points from them instead of its own
+    /// estimate.
+    pub(crate) shaped: Vec<bool>,
+    /// The track loops (`Ends::Cyclic`).
+    pub(crate) cyclic: bool,
     /// Whether the end tangents were given (a velocity or `rest`) rather than `chord`.
     pub(crate) start_given: bool,
     pub(crate) end_given: bool,
@@ -103,6 +162,23 @@ pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
             }
         }
     }
+}
+
+/// Kochanek–Bartels tangents `(w_in, w_out)` per second of a key between chords `lm` and `lp`
+/// over `span` seconds, the chords composed as rotations (see [`Knots::shaped`]).
+fn kb_tangents(lm: DVec3, lp: DVec3, span: f64, tcb: Tcb) -> (DVec3, DVec3) {
+    let ((ai, bi), (ao, bo)) = tcb.weights();
+    let one = |a: f64, b: f64| {
+        if lm.length() + lp.length() > std::f64::consts::PI {
+            (lm * (2.0 * a) + lp * (2.0 * b)) / span
+        } else {
+            crate::rotation::quat::log(
+                crate::rotation::quat::exp(lp * (2.0 * b))
+                    * crate::rotation::quat::exp(lm * (2.0 * a)),
+            ) / span
+        }
+    };
+    (one(ai, bi), one(ao, bo))
 }
 
 /// `--path euler`'s half-angle chords from the keys' Euler angles, and each key's sign set so
@@ -129,8 +205,26 @@ pub fn step(a: DQuat, b: DQuat) -> DVec3 {
 impl Knots {
     /// Prepares a track: path mode, then tangents. Velocities in `ends` override the track's.
     /// `PathMode::Euler` on a track without Euler angles is `AsGiven` (a curve refuses it
-    /// before: [`crate::Curve::new`]).
+    /// before: [`crate::Curve::new`]). The same as [`Knots::shaped`] with [`Tcb::ZERO`].
     pub fn new(track: &Track, path: PathMode, ends: EndConditions) -> Knots {
+        Knots::shaped(track, path, ends, Tcb::ZERO)
+    }
+
+    /// [`Knots::new`] with `tcb` for the keys without their own Kochanek–Bartels values
+    /// (docs/spec.md §4.1):
+    ///
+    /// - A key's own angular velocity ω ([`Track::with_key_velocities`]) gives both its tangents,
+    ///   `w = ω/2`, over any estimate and TCB values.
+    /// - An interior key with zero TCB: `w = log(q_{i+1} q_{i−1}⁻¹)/(t_{i+1} − t_{i−1})`, or
+    ///   `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` when `‖L⁻‖ + ‖L⁺‖ > π` (the alias rule).
+    /// - Otherwise, with Kochanek & Bartels' weights ([`Tcb::weights`]):
+    ///   `w_out = log(exp(2b_out·L⁺)·exp(2a_out·L⁻))/(t_{i+1} − t_{i−1})` and `w_in` likewise —
+    ///   their tangent `a·L⁻ + b·L⁺` per unit spacing, adjusted for unequal spacing as in their
+    ///   paper, with the sum of chords composed as rotations (for zero TCB it is the line above);
+    ///   past the alias bound `(2a·L⁻ + 2b·L⁺)/(t_{i+1} − t_{i−1})`.
+    /// - Ends: the rule of `ends` ([`Ends`]); `Cyclic` computes the first key as an interior key
+    ///   whose previous key is the one before the last, and gives the last key the same tangents.
+    pub fn shaped(track: &Track, path: PathMode, ends: EndConditions, tcb: Tcb) -> Knots {
         let mut quats = track.rotations().to_vec();
         apply_path(&mut quats, path);
         let chords = match (path, track.euler_angles()) {
@@ -151,40 +245,75 @@ impl Knots {
                 times: t.to_vec(),
                 quats,
                 w: vec![DVec3::ZERO],
+                w_in: vec![DVec3::ZERO],
+                shaped: vec![false],
+                cyclic: false,
                 start_given: true,
                 end_given: true,
                 chords: None,
             };
         }
+        let velocity = |i: usize| track.key_velocities().and_then(|v| v[i]);
+        let key_tcb = |i: usize| track.key_tcb().and_then(|v| v[i]).unwrap_or(tcb);
         let mut w = vec![DVec3::ZERO; n];
+        let mut w_in = vec![DVec3::ZERO; n];
+        let mut shaped = vec![false; n];
         for i in 1..n - 1 {
-            let lm = chord(i - 1, &quats);
-            let lp = chord(i, &quats);
+            let (lm, lp) = (chord(i - 1, &quats), chord(i, &quats));
             let span = t[i + 1] - t[i - 1];
-            w[i] = if lm.length() + lp.length() > std::f64::consts::PI {
-                (lm + lp) / span
-            } else {
-                step(quats[i - 1], quats[i + 1]) / span
+            let (wi, wo) = match (velocity(i), key_tcb(i)) {
+                (Some(omega), _) => (omega * 0.5, omega * 0.5),
+                (None, k) if k.is_zero() => {
+                    let x = if lm.length() + lp.length() > std::f64::consts::PI {
+                        (lm + lp) / span
+                    } else {
+                        step(quats[i - 1], quats[i + 1]) / span
+                    };
+                    (x, x)
+                }
+                (None, k) => kb_tangents(lm, lp, span, k),
             };
+            (w_in[i], w[i]) = (wi, wo);
+            shaped[i] = velocity(i).is_some() || !key_tcb(i).is_zero();
         }
-        let start = ends.start.or(track.start_velocity());
-        let end = ends.end.or(track.end_velocity());
-        w[0] = match (start, ends.ends) {
-            (Some(omega), _) => omega * 0.5,
-            (None, Ends::Rest) => DVec3::ZERO,
-            (None, Ends::Chord) => chord(0, &quats) / (t[1] - t[0]),
-        };
-        w[n - 1] = match (end, ends.ends) {
-            (Some(omega), _) => omega * 0.5,
-            (None, Ends::Rest) => DVec3::ZERO,
-            (None, Ends::Chord) => chord(n - 2, &quats) / (t[n - 1] - t[n - 2]),
+        let cyclic = ends.ends == Ends::Cyclic;
+        let (start, end) = if cyclic {
+            let (lm, lp) = (chord(n - 2, &quats), chord(0, &quats));
+            let span = (t[n - 1] - t[n - 2]) + (t[1] - t[0]);
+            let given = velocity(0).or(velocity(n - 1));
+            let (wi, wo) = match given {
+                Some(omega) => (omega * 0.5, omega * 0.5),
+                None => kb_tangents(lm, lp, span, key_tcb(0)),
+            };
+            (w_in[0], w[0], w_in[n - 1], w[n - 1]) = (wi, wo, wi, wo);
+            let s = given.is_some() || !key_tcb(0).is_zero();
+            (shaped[0], shaped[n - 1]) = (s, s);
+            (None, None)
+        } else {
+            let start = ends.start.or(velocity(0)).or(track.start_velocity());
+            let end = ends.end.or(velocity(n - 1)).or(track.end_velocity());
+            w[0] = match (start, ends.ends) {
+                (Some(omega), _) => omega * 0.5,
+                (None, Ends::Rest) => DVec3::ZERO,
+                (None, _) => chord(0, &quats) / (t[1] - t[0]),
+            };
+            w[n - 1] = match (end, ends.ends) {
+                (Some(omega), _) => omega * 0.5,
+                (None, Ends::Rest) => DVec3::ZERO,
+                (None, _) => chord(n - 2, &quats) / (t[n - 1] - t[n - 2]),
+            };
+            (w_in[0], w_in[n - 1]) = (w[0], w[n - 1]);
+            (start, end)
         };
         Knots {
             times: t.to_vec(),
             quats,
             w,
-            start_given: start.is_some() || ends.ends == Ends::Rest,
-            end_given: end.is_some() || ends.ends == Ends::Rest,
+            w_in,
+            shaped,
+            cyclic,
+            start_given: cyclic || start.is_some() || ends.ends == Ends::Rest,
+            end_given: cyclic || end.is_some() || ends.ends == Ends::Rest,
             chords,
         }
     }
@@ -232,7 +361,8 @@ impl Knots {
         &self.quats
     }
 
-    /// Tangents: per-second half angular velocities `w_i` (world frame), `v_i = w_i·q_i`.
+    /// Tangents leaving each key: per-second half angular velocities `w_i` (world frame),
+    /// `v_i = w_i·q_i`.
     pub fn w(&self) -> &[DVec3] {
         &self.w
     }
@@ -253,9 +383,17 @@ impl Knots {
         self.times[s + 1] - self.times[s]
     }
 
-    /// Segment-scaled tangent `V = (w_i·Δ_s)·q_i` of key `i` in segment `s`.
+    /// Tangents arriving at each key, per second (they differ from [`Knots::w`] only where a
+    /// key's continuity is non-zero).
+    pub fn w_in(&self) -> &[DVec3] {
+        &self.w_in
+    }
+
+    /// Segment-scaled tangent `V = (w_i·Δ_s)·q_i` of key `i` in segment `s` (the tangent leaving
+    /// key `i` when `s = i`, the one arriving when `s = i − 1`).
     pub fn tangent(&self, i: usize, s: usize) -> DQuat {
-        crate::rotation::quat::pure_mul(self.w[i] * self.delta(s), self.quats[i])
+        let w = if s == i { self.w[i] } else { self.w_in[i] };
+        crate::rotation::quat::pure_mul(w * self.delta(s), self.quats[i])
     }
 }
 

@@ -6,6 +6,7 @@
 //! documents ([`check_times`]), so a file and a program are held to one contract.
 
 use crate::rotation::EulerSeq;
+use crate::tangent::Tcb;
 use glam::{DQuat, DVec3};
 use std::fmt;
 
@@ -77,6 +78,26 @@ pub enum TrackError {
         /// Number of triples.
         angles: usize,
     },
+    /// A per-key list ([`Track::with_key_velocities`], [`Track::with_key_tcb`]) does not have one
+    /// entry per key.
+    KeyCount {
+        /// What the list holds.
+        what: &'static str,
+        /// Number of keys.
+        keys: usize,
+        /// Number of entries.
+        found: usize,
+    },
+    /// A key's angular velocity is not finite.
+    KeyVelocity {
+        /// The key.
+        index: usize,
+    },
+    /// A key's tension, continuity or bias is not a finite number in `[−1, 1]`.
+    KeyTcb {
+        /// The key.
+        index: usize,
+    },
     /// A key's Euler angles are not finite, beyond ±1e15 rad, or not its rotation.
     EulerAngles {
         /// The key.
@@ -95,7 +116,9 @@ impl TrackError {
             | TrackError::NotIncreasing { index, .. }
             | TrackError::TooClose { index, .. }
             | TrackError::NotUnit { index, .. }
-            | TrackError::EulerAngles { index, .. } => Some(index),
+            | TrackError::EulerAngles { index, .. }
+            | TrackError::KeyVelocity { index }
+            | TrackError::KeyTcb { index } => Some(index),
             _ => None,
         }
     }
@@ -136,6 +159,16 @@ impl fmt::Display for TrackError {
             ),
             TrackError::NonFiniteVelocity => {
                 write!(f, "expected a finite end velocity")
+            }
+            TrackError::KeyCount { what, keys, found } => write!(
+                f,
+                "expected one {what} per key, found {found} for {keys} keys"
+            ),
+            TrackError::KeyVelocity { .. } => {
+                write!(f, "expected a finite angular velocity")
+            }
+            TrackError::KeyTcb { .. } => {
+                write!(f, "expected tension, continuity and bias between -1 and 1")
             }
             TrackError::EulerCount { keys, angles } => write!(
                 f,
@@ -217,6 +250,8 @@ pub struct Track {
     start_velocity: Option<DVec3>,
     end_velocity: Option<DVec3>,
     euler: Option<(EulerSeq, Vec<DVec3>)>,
+    key_velocities: Option<Vec<Option<DVec3>>>,
+    key_tcb: Option<Vec<Option<Tcb>>>,
 }
 
 impl Track {
@@ -260,7 +295,68 @@ impl Track {
             start_velocity: None,
             end_velocity: None,
             euler: None,
+            key_velocities: None,
+            key_tcb: None,
         })
+    }
+
+    /// Gives keys their own world-frame angular velocities (rad/s; `None` for a key without
+    /// one), one entry per key. At such a key the curve's tangent is that velocity, over any
+    /// estimate and Kochanek–Bartels values; at the first or last key it is the end velocity
+    /// unless the curve options give one ([`crate::EndConditions`]).
+    ///
+    /// ```
+    /// use inbetween::{Curve, CurveOptions, Track};
+    /// use glam::{DQuat, DVec3};
+    ///
+    /// let q = [DQuat::IDENTITY, DQuat::from_rotation_z(1.0), DQuat::from_rotation_z(2.0)];
+    /// let track = Track::new(vec![0.0, 1.0, 2.0], q.to_vec())?
+    ///     .with_key_velocities(vec![None, Some(DVec3::new(0.0, 0.0, 3.0)), None])?;
+    /// let curve = Curve::new(&track, &CurveOptions::default())?;
+    /// assert!((curve.angular_velocity(1.0) - DVec3::new(0.0, 0.0, 3.0)).length() < 1e-9);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn with_key_velocities(mut self, v: Vec<Option<DVec3>>) -> Result<Track, TrackError> {
+        if v.len() != self.len() {
+            return Err(TrackError::KeyCount {
+                what: "angular velocity",
+                keys: self.len(),
+                found: v.len(),
+            });
+        }
+        if let Some(index) = v.iter().position(|x| x.is_some_and(|x| !x.is_finite())) {
+            return Err(TrackError::KeyVelocity { index });
+        }
+        self.key_velocities = v.iter().any(Option::is_some).then_some(v);
+        Ok(self)
+    }
+
+    /// Gives keys their own Kochanek–Bartels tension, continuity and bias (`None` for a key that
+    /// takes the curve options' [`crate::CurveOptions::tcb`]), one entry per key; each value in
+    /// `[−1, 1]`. They shape interior keys (and the seam of a cyclic track).
+    pub fn with_key_tcb(mut self, v: Vec<Option<Tcb>>) -> Result<Track, TrackError> {
+        if v.len() != self.len() {
+            return Err(TrackError::KeyCount {
+                what: "tension/continuity/bias",
+                keys: self.len(),
+                found: v.len(),
+            });
+        }
+        if let Some(index) = v.iter().position(|x| x.is_some_and(|x| !x.is_valid())) {
+            return Err(TrackError::KeyTcb { index });
+        }
+        self.key_tcb = v.iter().any(Option::is_some).then_some(v);
+        Ok(self)
+    }
+
+    /// The keys' own angular velocities (rad/s, world frame), when any key has one.
+    pub fn key_velocities(&self) -> Option<&[Option<DVec3>]> {
+        self.key_velocities.as_deref()
+    }
+
+    /// The keys' own Kochanek–Bartels values, when any key has them.
+    pub fn key_tcb(&self) -> Option<&[Option<Tcb>]> {
+        self.key_tcb.as_deref()
     }
 
     /// Keeps the Euler angles the keys were given as (radians, as written: not wrapped), one
@@ -310,6 +406,22 @@ impl Track {
     /// The Euler angles the keys were given as, when they were ([`Track::with_euler_angles`]).
     pub fn euler_angles(&self) -> Option<(EulerSeq, &[DVec3])> {
         self.euler.as_ref().map(|(s, a)| (*s, a.as_slice()))
+    }
+
+    /// The same track with its keys at other `times` (one per key; everything else kept), by
+    /// the time rule of [`Track::new`].
+    pub fn retimed(&self, times: Vec<f64>) -> Result<Track, TrackError> {
+        if times.len() != self.len() {
+            return Err(TrackError::LengthMismatch {
+                times: times.len(),
+                rotations: self.len(),
+            });
+        }
+        check_times(&times)?;
+        Ok(Track {
+            times,
+            ..self.clone()
+        })
     }
 
     /// Names the track (used in warnings and in multi-track output).

@@ -12,7 +12,7 @@ use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
 use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
-    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Track,
+    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
 };
 use std::io::Read;
 
@@ -111,7 +111,7 @@ pub fn read_curves(
     if let Some(w) = key_rate_warning(&doc, frame_fps) {
         warn(&w);
     }
-    let mut tracks = doc.tracks(frame_fps)?;
+    let mut tracks = doc.tracks_shaped(frame_fps, tcb_flags(curve))?;
     if let Some(eps) = curve.snap_keys {
         for t in &mut tracks {
             *t = snap_keys(t, fps, eps).map_err(|e| e.at(track_label(&doc.source, t)))?;
@@ -207,20 +207,16 @@ fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
             num(times[i])
         )));
     }
-    let snapped = match times[..] {
-        [time] => Track::constant(time, t.rotations()[0]),
-        _ => Track::new(times, t.rotations().to_vec()),
+    t.retimed(times).map_err(InputError::from)
+}
+
+/// `--tension`, `--continuity`, `--bias`.
+fn tcb_flags(args: &CurveArgs) -> Tcb {
+    Tcb {
+        tension: args.tension,
+        continuity: args.continuity,
+        bias: args.bias,
     }
-    .and_then(|s| s.with_end_velocities(t.start_velocity(), t.end_velocity()))
-    .and_then(|s| match t.euler_angles() {
-        Some((seq, angles)) => s.with_euler_angles(seq, angles.to_vec()),
-        None => Ok(s),
-    })
-    .map_err(InputError::from)?;
-    Ok(match t.name() {
-        Some(n) => snapped.with_name(n),
-        None => snapped,
-    })
 }
 
 /// The curve options of the command line; given velocities are in `unit` per second.
@@ -241,10 +237,12 @@ fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) ->
             ends: match args.ends {
                 EndsArg::Chord => Ends::Chord,
                 EndsArg::Rest => Ends::Rest,
+                EndsArg::Cyclic => Ends::Cyclic,
             },
             start: omega(args.start_velocity),
             end: omega(args.end_velocity),
         },
         grid_rate: fps,
+        tcb: tcb_flags(args),
     }
 }

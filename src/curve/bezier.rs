@@ -82,7 +82,7 @@ impl Segment for Bezier {
         let r2 = Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s) / 3.0);
         let r1 = if keys.spins() {
             // The middle leg stands in for the chord less the two outer legs.
-            let target = keys.chord(s) - (keys.w[s] + keys.w[s + 1]) * (keys.delta(s) / 3.0);
+            let target = keys.chord(s) - (keys.w[s] + keys.w_in[s + 1]) * (keys.delta(s) / 3.0);
             Arc::near(r0.eval(1.0), r2.eval(0.0), target)
         } else {
             Arc::between(r0.eval(1.0), r2.eval(0.0))

@@ -112,7 +112,7 @@ impl Segment for Hermite {
             spin: keys.spins().then(|| Spin {
                 chord: keys.chord(s),
                 start: keys.w[s] * keys.delta(s),
-                end: keys.w[s + 1] * keys.delta(s),
+                end: keys.w_in[s + 1] * keys.delta(s),
             }),
         }
     }

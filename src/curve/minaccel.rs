@@ -59,6 +59,10 @@ pub const REL_TOL: f64 = 1e-9;
 /// Absolute projected-gradient tolerance (docs/spec.md §4.4).
 pub const ABS_TOL: f64 = 1e-14;
 
+/// A cyclic track is solved on its loop repeated until at least this many keys stand on each
+/// side of the middle period ([`solve`]).
+pub const SEAM_KEYS: usize = 40;
+
 /// What the solver did.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Report {
@@ -132,6 +136,13 @@ impl Problem {
         };
         let mut steps = base_steps(keys, fps);
         let n = keys.quats.len();
+        // A key's own velocity fixes the grid points beside it: at least two steps in each
+        // segment next to it, three when both ends of the segment are held.
+        let held = |i: usize| keys.shaped[i] && i > 0 && i < n - 1;
+        for (s, st) in steps.iter_mut().enumerate() {
+            let need = 1 + usize::from(held(s)) + usize::from(held(s + 1));
+            *st = (*st).max(need);
+        }
         // Phantoms keep within 45° of their keys (S³ angle h·|ω|/2).
         if keys.start_given {
             let need = (keys.delta(0) * keys.w[0].length() / FRAC_PI_4).ceil() as usize;
@@ -213,6 +224,22 @@ impl Problem {
             ext_t.push(times[m - 1] + h);
             ext_q.push(exp(keys.w[n - 1] * h) * keys.quats[n - 1]);
             fixed.push(true);
+        }
+        // Interior keys with their own velocity ω: the neighbours are exp(∓h·ω/2)·q, fixed.
+        let mut key = 0;
+        for p in 0..times.len() {
+            if !is_key[p] {
+                continue;
+            }
+            if held(key) {
+                let (e, w_in, w_out) = (first + p, keys.w_in[key], keys.w[key]);
+                let q = keys.quats[key];
+                ext_q[e - 1] = exp(-w_in * (times[p] - times[p - 1])) * q;
+                ext_q[e + 1] = exp(w_out * (times[p + 1] - times[p])) * q;
+                fixed[e - 1] = true;
+                fixed[e + 1] = true;
+            }
+            key += 1;
         }
         Ok(Problem {
             times: ext_t,
@@ -569,8 +596,71 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
 }
 
 /// Solves the minaccel problem for a track at `fps`.
+///
+/// A cyclic track solves the periodic problem (its seam an interior key like any other): the
+/// loop is repeated until [`SEAM_KEYS`] keys stand on each side of a middle copy, the repeated
+/// track is solved with free ends, and the middle copy is the answer. The effect of the far
+/// free ends on it decays through every fixed key between them (by about 0.27 a key for a
+/// cubic spline, at worst ½), so at 40 keys it is below f64 resolution; a test checks the middle
+/// copy against its neighbours.
 pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
-    Ok(Problem::new(keys, fps)?.solve())
+    if !keys.cyclic {
+        return Ok(Problem::new(keys, fps)?.solve());
+    }
+    let n = keys.quats.len();
+    let segs = n - 1;
+    let reps = SEAM_KEYS.div_ceil(segs);
+    let period = keys.times[n - 1] - keys.times[0];
+    // The loop ends on the first key's rotation, on the same or the opposite sheet of S³.
+    let sign = if keys.quats[0].dot(keys.quats[n - 1]) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    };
+    let copies = 2 * reps + 1;
+    let len = copies * segs + 1;
+    let mut unrolled = Knots {
+        times: Vec::with_capacity(len),
+        quats: Vec::with_capacity(len),
+        w: Vec::with_capacity(len),
+        w_in: Vec::with_capacity(len),
+        shaped: Vec::with_capacity(len),
+        cyclic: false,
+        start_given: false,
+        end_given: false,
+        chords: keys.chords.as_ref().map(|_| Vec::with_capacity(len - 1)),
+    };
+    for c in 0..copies {
+        // The middle copy (c = reps) has the track's own times and signs exactly.
+        let offset = (c as f64 - reps as f64) * period;
+        let s = if (c + reps).is_multiple_of(2) { 1.0 } else { sign };
+        if c > 0 {
+            // The seam key is shared: it takes this copy's time, exact in the middle copy.
+            let last = unrolled.times.len() - 1;
+            unrolled.times[last] = keys.times[0] + offset;
+        }
+        for i in usize::from(c > 0)..n {
+            unrolled.times.push(keys.times[i] + offset);
+            unrolled.quats.push(keys.quats[i] * s);
+            unrolled.w.push(keys.w[i]);
+            unrolled.w_in.push(keys.w_in[i]);
+            unrolled.shaped.push(keys.shaped[i]);
+        }
+        if let (Some(all), Some(own)) = (&mut unrolled.chords, &keys.chords) {
+            all.extend_from_slice(own);
+        }
+    }
+    let whole = Problem::new(&unrolled, fps)?.solve();
+    let (t0, t1) = (keys.times[0], keys.times[n - 1]);
+    let lo = whole.times.partition_point(|&t| t < t0);
+    let hi = whole.times.partition_point(|&t| t <= t1);
+    let mut report = whole.report;
+    report.points = hi - lo;
+    Ok(Solution {
+        times: whole.times[lo..hi].to_vec(),
+        points: whole.points[lo..hi].to_vec(),
+        report,
+    })
 }
 
 #[cfg(test)]

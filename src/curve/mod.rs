@@ -26,7 +26,7 @@ pub mod squad;
 pub use piecewise::Curve;
 
 use crate::clock::Fps;
-use crate::tangent::{EndConditions, Knots, PathMode};
+use crate::tangent::{EndConditions, Knots, PathMode, Tcb};
 use glam::DQuat;
 use std::fmt;
 
@@ -153,6 +153,10 @@ pub struct CurveOptions {
     /// minaccel's grid rate: the grid has at least this many points per second (interp uses
     /// its output rate, so that every frame is a grid point or between two).
     pub grid_rate: Fps,
+    /// Kochanek–Bartels tension, continuity and bias of the keys without their own
+    /// ([`crate::Track::with_key_tcb`]); zero gives the ordinary tangents. minaccel refuses
+    /// non-zero values.
+    pub tcb: Tcb,
 }
 
 impl Default for CurveOptions {
@@ -164,6 +168,7 @@ impl Default for CurveOptions {
             path: PathMode::Shortest,
             ends: EndConditions::default(),
             grid_rate: Fps::DEFAULT,
+            tcb: Tcb::ZERO,
         }
     }
 }

@@ -24,7 +24,7 @@ use crate::curve::squad::Squad;
 use crate::curve::{Blend, CurveOptions, Scheme, Segment};
 use crate::error::{InputError, InputResult};
 use crate::rotation::quat::{geodesic, log};
-use crate::tangent::{Knots, PathMode};
+use crate::tangent::{Ends, Knots, PathMode};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
 use std::sync::OnceLock;
@@ -41,6 +41,9 @@ pub enum Side {
 /// Largest accepted end velocity, rad/s: beyond it the tangents' products overflow (and a frame
 /// period cannot resolve the motion anyway).
 pub const MAX_SPEED: f64 = 1e15;
+
+/// How far apart (rad) the first and last key of a cyclic track may be.
+pub const CYCLIC_TOL: f64 = 1e-6;
 
 /// Step in `u` of the finite differences.
 const H: f64 = 1e-3;
@@ -159,7 +162,7 @@ where
 /// truncation error (~(step·turn)⁴) stays below 1e-9 relative however fast the spin.
 pub(crate) fn step_in(keys: &Knots, s: usize) -> f64 {
     let turn = 2.0
-        * (keys.w[s].length().max(keys.w[s + 1].length()) * keys.delta(s))
+        * (keys.w[s].length().max(keys.w_in[s + 1].length()) * keys.delta(s))
             .max(keys.chords.as_ref().map_or(0.0, |c| c[s].length()));
     H.min(0.01 / turn)
 }
@@ -200,16 +203,65 @@ impl Curve {
             }
         }
         let name = track.name().map(str::to_string);
-        if opts.path == PathMode::Euler && track.len() > 1 && track.euler_angles().is_none() {
-            let e = InputError::new(
-                "path euler: the track's keys carry no Euler angles (Track::with_euler_angles)",
-            );
-            return Err(match &name {
-                Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
-                None => e,
-            });
+        let named = |e: InputError| match &name {
+            Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
+            None => e,
+        };
+        if let Some(v) = track.key_velocities() {
+            for (i, w) in v.iter().enumerate() {
+                let speed = w.map_or(0.0, |w| crate::rotation::magnitude::length(w.to_array()));
+                if speed > MAX_SPEED {
+                    return Err(named(InputError::new(format!(
+                        "key {i}: angular velocity: expected at most {MAX_SPEED:e} rad/s, found {} \
+                         rad/s",
+                        crate::error::num(speed)
+                    ))));
+                }
+            }
         }
-        let keys = Knots::new(track, opts.path, opts.ends);
+        if opts.path == PathMode::Euler && track.len() > 1 && track.euler_angles().is_none() {
+            return Err(named(InputError::new(
+                "path euler: the track's keys carry no Euler angles (Track::with_euler_angles)",
+            )));
+        }
+        if !opts.tcb.is_valid() {
+            let t = opts.tcb;
+            return Err(InputError::new(format!(
+                "tension, continuity and bias: expected values between -1 and 1, found {}, {}, {}",
+                t.tension, t.continuity, t.bias
+            )));
+        }
+        let shaped = !opts.tcb.is_zero()
+            || track
+                .key_tcb()
+                .is_some_and(|v| v.iter().flatten().any(|t| !t.is_zero()));
+        if opts.scheme == Scheme::MinAccel && shaped {
+            return Err(named(InputError::new(
+                "minaccel has no tangents to shape: tension, continuity and bias must be 0 (use \
+                 hermite, bezier or squad)",
+            )));
+        }
+        if opts.ends.ends == Ends::Cyclic && track.len() > 1 {
+            let (first, last) = (track.rotations()[0], track.rotations()[track.len() - 1]);
+            let apart = crate::rotation::quat::rotation_angle_between(first, last);
+            if apart > CYCLIC_TOL {
+                return Err(named(InputError::new(format!(
+                    "ends cyclic: the last key is {}° from the first key's rotation (a loop needs \
+                     them equal within {CYCLIC_TOL:e} rad)",
+                    crate::error::num(apart.to_degrees())
+                ))));
+            }
+            let given = opts.ends.start.is_some()
+                || opts.ends.end.is_some()
+                || track.start_velocity().is_some()
+                || track.end_velocity().is_some();
+            if given {
+                return Err(named(InputError::new(
+                    "ends cyclic: a loop has no ends, so start and end velocities do not apply",
+                )));
+            }
+        }
+        let keys = Knots::shaped(track, opts.path, opts.ends, opts.tcb);
         let (pieces, report) = match opts.scheme {
             // One key: a constant, whatever the scheme.
             _ if track.len() == 1 => (

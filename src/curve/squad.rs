@@ -38,8 +38,10 @@ pub struct Squad {
     aliased: bool,
 }
 
-/// `P = log(q_{i+1} q_i⁻¹)`: the chord leaving key `i` (`--path euler`: the segment's chord).
+/// `P = log(q_{i+1} q_i⁻¹)`: the chord leaving key `i` (`--path euler`: the segment's chord;
+/// a cyclic track's last key: the first segment's).
 fn ahead(k: &Knots, i: usize) -> DVec3 {
+    let i = if i == k.quats.len() - 1 { 0 } else { i };
     match &k.chords {
         Some(c) => c[i],
         None => step(k.quats[i], k.quats[i + 1]),
@@ -47,37 +49,57 @@ fn ahead(k: &Knots, i: usize) -> DVec3 {
 }
 
 /// `M = log(q_{i−1} q_i⁻¹)`: the chord back from key `i` (`--path euler`: minus the previous
-/// segment's chord).
+/// segment's chord; a cyclic track's first key: minus the last segment's).
 fn behind(k: &Knots, i: usize) -> DVec3 {
+    let i = if i == 0 { k.quats.len() - 1 } else { i };
     match &k.chords {
         Some(c) => -c[i - 1],
         None => step(k.quats[i], k.quats[i - 1]),
     }
 }
 
-/// The exponent `X` of the inner control point `a_i = exp(X)·q_i` (leaving key `i`).
-fn a_exponent(k: &Knots, i: usize) -> DVec3 {
-    let p = ahead(k, i);
-    if i == 0 {
-        let w = k.w[0] * k.delta(0);
-        return (w - p) * 0.5;
-    }
-    let m = behind(k, i);
-    let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
-    (mid * k.delta(i) - p) * 0.5
+/// Length of the segment before key `i` (across the seam of a cyclic track).
+fn delta_before(k: &Knots, i: usize) -> f64 {
+    k.delta(if i == 0 { k.quats.len() - 2 } else { i - 1 })
 }
 
-/// The exponent `X` of the inner control point `b_i = exp(X)·q_i` (arriving at key `i`).
-fn b_exponent(k: &Knots, i: usize) -> DVec3 {
-    let m = behind(k, i);
-    let n = k.quats.len();
-    if i == n - 1 {
-        let w = k.w[i] * k.delta(i - 1);
-        return (-m - w) * 0.5;
-    }
+/// Length of the segment after key `i` (across the seam of a cyclic track).
+fn delta_after(k: &Knots, i: usize) -> f64 {
+    k.delta(if i == k.quats.len() - 1 { 0 } else { i })
+}
+
+/// Squad's own tangent at key `i`, per second: `m_i = (P/Δ_i − M/Δ_{i−1})/2`.
+fn own(k: &Knots, i: usize) -> DVec3 {
+    (ahead(k, i) / delta_after(k, i) - behind(k, i) / delta_before(k, i)) * 0.5
+}
+
+/// Whether key `i` is an end of an open track (its tangent is the end rule's).
+fn open_end(k: &Knots, i: usize) -> bool {
+    !k.cyclic && (i == 0 || i == k.quats.len() - 1)
+}
+
+/// The exponent `X` of the inner control point `a_i = exp(X)·q_i` (leaving key `i`):
+/// `(Δ_i m − P)/2` with `m` squad's own tangent, or the key's given or shaped one.
+fn a_exponent(k: &Knots, i: usize) -> DVec3 {
     let p = ahead(k, i);
-    let mid = (p / k.delta(i) - m / k.delta(i - 1)) * 0.5;
-    (-m - mid * k.delta(i - 1)) * 0.5
+    let m = if k.shaped[i] || open_end(k, i) {
+        k.w[i]
+    } else {
+        own(k, i)
+    };
+    (m * k.delta(i) - p) * 0.5
+}
+
+/// The exponent `X` of the inner control point `b_i = exp(X)·q_i` (arriving at key `i`):
+/// `(−M − Δ_{i−1} m)/2`.
+fn b_exponent(k: &Knots, i: usize) -> DVec3 {
+    let m_back = behind(k, i);
+    let m = if k.shaped[i] || open_end(k, i) {
+        k.w_in[i]
+    } else {
+        own(k, i)
+    };
+    (-m_back - m * k.delta(i - 1)) * 0.5
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ use crate::clock::Fps;
 use crate::error::InputResult;
 use crate::error::input_err;
 use crate::rotation::Repr;
+use crate::tangent::Tcb;
 use crate::track::{Track, TrackError, check_times};
 use glam::{DQuat, DVec3};
 use std::fmt;
@@ -121,9 +122,27 @@ pub struct DocTrack {
     /// given as Euler angles in one sequence: `--path euler` and continuous Euler output start
     /// from them ([`Track::with_euler_angles`]).
     pub euler: Option<EulerKeys>,
+    /// Each key's own angular velocity (rad/s, world frame), when any key has one (empty when
+    /// none has).
+    pub velocities: Vec<Option<DVec3>>,
+    /// Each key's own tension, continuity and bias (each optional: a missing one takes the
+    /// command line's), when any key has one (empty when none has).
+    pub tcb: Vec<[Option<f64>; 3]>,
 }
 
 impl DocTrack {
+    /// Records the just-pushed key's own velocity and TCB values (the lists stay empty until a
+    /// key has one, then are filled for every key).
+    pub fn push_shape(&mut self, velocity: Option<DVec3>, tcb: [Option<f64>; 3]) {
+        push_shape(
+            &mut self.velocities,
+            &mut self.tcb,
+            self.keys.len(),
+            velocity,
+            tcb,
+        );
+    }
+
     /// Where key `i` was read.
     pub fn loc(&self, i: usize) -> Loc {
         match &self.origin {
@@ -134,6 +153,25 @@ impl DocTrack {
                 frames: *frames,
             },
         }
+    }
+}
+
+/// Records key `n − 1`'s own velocity and TCB values in lists that stay empty until a key has
+/// one ([`DocTrack::velocities`], [`DocTrack::tcb`]).
+pub fn push_shape(
+    velocities: &mut Vec<Option<DVec3>>,
+    tcbs: &mut Vec<[Option<f64>; 3]>,
+    n: usize,
+    velocity: Option<DVec3>,
+    tcb: [Option<f64>; 3],
+) {
+    if velocity.is_some() || !velocities.is_empty() {
+        velocities.resize(n - 1, None);
+        velocities.push(velocity);
+    }
+    if tcb.iter().any(Option::is_some) || !tcbs.is_empty() {
+        tcbs.resize(n - 1, [None; 3]);
+        tcbs.push(tcb);
     }
 }
 
@@ -200,9 +238,15 @@ impl Document {
         Ok(times)
     }
 
-    /// Validated tracks for interpolation: `frame` keys read at `frame_fps`, at least two keys
-    /// per track, at least one track.
+    /// Validated tracks for interpolation: `frame` keys read at `frame_fps`, at least one key
+    /// per track, at least one track; keys' own TCB values complete with zeros.
     pub fn tracks(&self, frame_fps: Fps) -> InputResult<Vec<Track>> {
+        self.tracks_shaped(frame_fps, Tcb::ZERO)
+    }
+
+    /// [`Document::tracks`], a key's missing tension, continuity or bias (beside one it has)
+    /// taken from `defaults` (the command line's).
+    pub fn tracks_shaped(&self, frame_fps: Fps, defaults: Tcb) -> InputResult<Vec<Track>> {
         if self.tracks.is_empty() {
             return Err(input_err!(
                 "{}: expected at least one track, found none",
@@ -226,6 +270,30 @@ impl Document {
                 }
                 .and_then(|t| t.with_end_velocities(track.start_velocity, track.end_velocity))
                 .map_err(located)?;
+                let t = if track.velocities.is_empty() {
+                    t
+                } else {
+                    let mut v = track.velocities.clone();
+                    v.resize(track.keys.len(), None);
+                    t.with_key_velocities(v).map_err(located)?
+                };
+                let t = if track.tcb.is_empty() {
+                    t
+                } else {
+                    let mut v: Vec<Option<Tcb>> = track
+                        .tcb
+                        .iter()
+                        .map(|k| {
+                            k.iter().any(Option::is_some).then(|| Tcb {
+                                tension: k[0].unwrap_or(defaults.tension),
+                                continuity: k[1].unwrap_or(defaults.continuity),
+                                bias: k[2].unwrap_or(defaults.bias),
+                            })
+                        })
+                        .collect();
+                    v.resize(track.keys.len(), None);
+                    t.with_key_tcb(v).map_err(located)?
+                };
                 // Angles beyond ±1e15 rad (possible in degrees, which are reduced exactly)
                 // are not kept: such a track has no Euler path.
                 let t = match &track.euler {

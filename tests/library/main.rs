@@ -9,4 +9,5 @@ mod conventions;
 mod minaccel;
 mod properties;
 mod spins;
+mod tangents;
 mod unwrap;

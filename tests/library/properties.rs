@@ -161,11 +161,13 @@ proptest! {
             (Some(w), _) => w * 0.5,
             (None, Ends::Rest) => DVec3::ZERO,
             (None, Ends::Chord) => chord0,
+            (None, Ends::Cyclic) => unreachable!("not generated"),
         };
         let want1 = match (ends.end, ends.ends) {
             (Some(w), _) => w * 0.5,
             (None, Ends::Rest) => DVec3::ZERO,
             (None, Ends::Chord) => chord1,
+            (None, Ends::Cyclic) => unreachable!("not generated"),
         };
         let v0 = pure_mul(want0, q[0]);
         let v1 = pure_mul(want1, q[n - 1]);

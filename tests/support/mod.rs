@@ -121,6 +121,7 @@ impl Settings {
             path: self.path,
             ends: self.ends,
             grid_rate: self.fps,
+            tcb: Default::default(),
         }
     }
 }

@@ -19,8 +19,12 @@ use crate::rotation::{MAX_WIDTH, Repr};
 use glam::DVec3;
 use std::collections::{HashMap, HashSet};
 
-/// interp's angular velocity columns (`--velocity`): accepted together and ignored.
+/// A key's own angular velocity (the columns `interp --velocity` writes): all three or none;
+/// a key without one leaves its cells empty.
 const VELOCITY_COLUMNS: [&str; 3] = ["wx", "wy", "wz"];
+
+/// A key's own Kochanek–Bartels values: any of them; an empty cell takes the flag's value.
+const TCB_COLUMNS: [&str; 3] = ["tension", "continuity", "bias"];
 
 /// Column sets that name a representation, with their aliases.
 const QUAT_ALIASES: [&str; 4] = ["qw", "qx", "qy", "qz"];
@@ -82,22 +86,35 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let col = |n: &str| names.iter().position(|c| *c == n);
     let (repr, rot_cols) = choose_rotation(&written, &seen, opts, &hloc)?;
     let track_col = col("track");
-    // interp's `--velocity` columns, read and ignored (all three or none).
+    // Per-key angular velocities: all three columns or none.
     let velocity = VELOCITY_COLUMNS.iter().all(|c| seen.contains(c));
     for (n, w) in names.iter().zip(&written) {
         let known = *n == "track"
             || *n == "time"
             || *n == "frame"
             || rot_cols.contains(n)
-            || (velocity && VELOCITY_COLUMNS.contains(n));
+            || (velocity && VELOCITY_COLUMNS.contains(n))
+            || TCB_COLUMNS.contains(n);
         if !known {
             let mut expected = vec!["track", "time", "frame"];
             expected.extend(&rot_cols);
+            if VELOCITY_COLUMNS.contains(n) {
+                return Err(input_err!(
+                    "{hloc}: column \"{}\": a key's angular velocity needs all three columns \
+                     wx, wy, wz",
+                    shorten(w)
+                ));
+            }
+            let mut all = expected.clone();
+            all.extend(VELOCITY_COLUMNS);
+            all.extend(TCB_COLUMNS);
             return Err(input_err!(
-                "{hloc}: unknown column \"{}\": expected {}{}",
+                "{hloc}: unknown column \"{}\": expected {} (optional: {}, {}){}",
                 shorten(w),
                 expected.join(", "),
-                suggestion(n, &expected)
+                VELOCITY_COLUMNS.join(", "),
+                TCB_COLUMNS.join(", "),
+                suggestion(n, &all)
             ));
         }
     }
@@ -117,6 +134,9 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         }
     };
     let rot_idx: Vec<usize> = rot_cols.iter().filter_map(|n| col(n)).collect();
+    let vel_idx: Option<Vec<usize>> =
+        velocity.then(|| VELOCITY_COLUMNS.iter().filter_map(|n| col(n)).collect());
+    let tcb_idx: [Option<usize>; 3] = TCB_COLUMNS.map(col);
 
     let mut doc = Document {
         source: source.to_string(),
@@ -179,6 +199,39 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         let (rot, warning) = repr
             .to_quat(&values[..repr.width()], opts.undeclared_angles())
             .map_err(|e| e.at(format!("{}: columns {}", loc(), rot_cols.join(","))))?;
+        // Optional cells: empty is "none".
+        let optional = |i: usize| -> InputResult<Option<f64>> {
+            if record[i].trim().is_empty() {
+                Ok(None)
+            } else {
+                number(i).map(Some)
+            }
+        };
+        let key_velocity = match &vel_idx {
+            Some(idx) => {
+                let v = [optional(idx[0])?, optional(idx[1])?, optional(idx[2])?];
+                match v {
+                    [Some(x), Some(y), Some(z)] => {
+                        let unit = opts.undeclared_angles();
+                        Some(DVec3::new(unit.to_rad(x), unit.to_rad(y), unit.to_rad(z)))
+                    }
+                    [None, None, None] => None,
+                    _ => {
+                        return Err(input_err!(
+                            "{}: columns wx,wy,wz: expected three numbers or three empty cells",
+                            loc()
+                        ));
+                    }
+                }
+            }
+            None => None,
+        };
+        let mut key_tcb = [None; 3];
+        for (slot, i) in key_tcb.iter_mut().zip(tcb_idx) {
+            if let Some(i) = i {
+                *slot = optional(i)?;
+            }
+        }
         if let Some(w) = warning {
             doc.warnings.push(format!("{}: {w}", loc()));
         }
@@ -215,6 +268,8 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                     Repr::Euler(seq) => Some((seq, Vec::new())),
                     _ => None,
                 },
+                velocities: Vec::new(),
+                tcb: Vec::new(),
             });
         }
         let track = &mut doc.tracks[index];
@@ -229,6 +284,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         if let KeyOrigin::Lines(lines) = &mut track.origin {
             lines.push(line);
         }
+        track.push_shape(key_velocity, key_tcb);
         if let Some((_, angles)) = &mut track.euler {
             let unit = opts.undeclared_angles();
             angles.push(DVec3::new(
@@ -453,7 +509,9 @@ mod tests {
         );
         assert_eq!(
             err(&format!("time,w,x,y,z,{long}\n")),
-            format!("k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z")
+            format!(
+                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias)"
+            )
         );
         assert_eq!(
             err(&format!("time,w,x,y,z,{long},{long}\n")),
@@ -463,7 +521,9 @@ mod tests {
         // known names only.
         assert_eq!(
             err(&format!("w,x,y,z,{long}\n")),
-            format!("k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z")
+            format!(
+                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias)"
+            )
         );
         assert_eq!(
             err("W,X,Y,Z,Track\n"),
@@ -497,7 +557,8 @@ mod tests {
         };
         assert_eq!(
             err("TIME,w,x,y,z,Trak\n"),
-            "k.csv:1: unknown column \"Trak\": expected track, time, frame, w, x, y, z; did you \
+            "k.csv:1: unknown column \"Trak\": expected track, time, frame, w, x, y, z (optional: wx, \
+             wy, wz, tension, continuity, bias); did you \
              mean \"track\"?"
         );
         assert_eq!(

@@ -17,7 +17,9 @@
 use crate::clock::Fps;
 use crate::error::input_err;
 use crate::error::{InputError, InputResult};
-use crate::io::document::{DocTrack, Document, EulerKeys, Key, KeyOrigin, KeyTime, Loc, shorten};
+use crate::io::document::{
+    DocTrack, Document, EulerKeys, Key, KeyOrigin, KeyTime, Loc, push_shape, shorten,
+};
 use crate::io::{ReadOptions, settle};
 use crate::rotation::{AngleUnit, Repr};
 use glam::DVec3;
@@ -55,6 +57,10 @@ const KEY_FIELDS: &[&str] = &[
     "axis_angle",
     "rotvec",
     "angular_velocity",
+    "velocity",
+    "tension",
+    "continuity",
+    "bias",
 ];
 /// Index in [`KEY_FIELDS`] of the first rotation field.
 const FIRST_ROTATION: usize = 2;
@@ -91,8 +97,13 @@ struct KeyWire {
     rotations: u8,
     /// The values of the last rotation field read (the only one, when the key is valid).
     values: [f64; 9],
-    /// An `angular_velocity` was given (interp's frames; read and ignored).
+    /// An `angular_velocity` was given (interp's frames).
     angular_velocity: bool,
+    /// The key's own angular velocity (`velocity`, or `angular_velocity` in frames), in the
+    /// document's angle unit per second.
+    velocity: Option<[f64; 3]>,
+    /// The key's own tension, continuity and bias.
+    tcb: [Option<f64>; 3],
 }
 
 /// `fps` as read: a number, a string, or something else (shown in the message, cut).
@@ -377,9 +388,21 @@ impl<'de> Visitor<'de> for KeyVisitor {
                         .as_ref()
                         .map(|a| &a[..]),
                 ),
-                "angular_velocity" => {
-                    key.angular_velocity = map.next_value::<Option<Fixed<Num, 3>>>()?.is_some();
+                "angular_velocity" | "velocity" => {
+                    let v = map.next_value::<Option<Fixed<Num, 3>>>()?.map(nums);
+                    if v.is_some() {
+                        if key.velocity.is_some() {
+                            return Err(A::Error::custom(
+                                "expected one of `velocity` and `angular_velocity`, found both",
+                            ));
+                        }
+                        key.angular_velocity |= KEY_FIELDS[i] == "angular_velocity";
+                        key.velocity = v;
+                    }
                 }
+                "tension" => key.tcb[0] = map.next_value::<Option<Num>>()?.map(|n| n.0),
+                "continuity" => key.tcb[1] = map.next_value::<Option<Num>>()?.map(|n| n.0),
+                "bias" => key.tcb[2] = map.next_value::<Option<Num>>()?.map(|n| n.0),
                 _ => {
                     let m = map.next_value::<Option<Fixed<Fixed<Num, 3>, 3>>>()?;
                     let flat = m.map(|m| {
@@ -741,11 +764,13 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     };
     match (keys, wire.tracks) {
         (Some((keys, frames)), None) => {
-            let (keys, euler) = ctx.keys(keys, None, frames, &mut doc)?;
+            let read = ctx.keys(keys, None, frames, &mut doc)?;
             doc.tracks.push(DocTrack {
                 name: None,
-                keys,
-                euler,
+                keys: read.keys,
+                euler: read.euler,
+                velocities: read.velocities,
+                tcb: read.tcb,
                 start_velocity: doc_start,
                 end_velocity: doc_end,
                 origin: KeyOrigin::Json {
@@ -761,7 +786,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             for (ti, t) in tracks.into_iter().enumerate() {
                 let start = velocity(t.start_velocity, &|| format!("tracks[{ti}].start_velocity"))?;
                 let end = velocity(t.end_velocity, &|| format!("tracks[{ti}].end_velocity"))?;
-                let (keys, euler) = ctx.keys(t.keys, Some(ti), t.frames, &mut doc)?;
+                let read = ctx.keys(t.keys, Some(ti), t.frames, &mut doc)?;
                 let name = t.name.unwrap_or_else(|| format!("track{ti}"));
                 if !names.insert(name.clone()) {
                     return Err(input_err!(
@@ -771,8 +796,10 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 }
                 doc.tracks.push(DocTrack {
                     name: Some(name),
-                    keys,
-                    euler,
+                    keys: read.keys,
+                    euler: read.euler,
+                    velocities: read.velocities,
+                    tcb: read.tcb,
                     start_velocity: start.or(doc_start),
                     end_velocity: end.or(doc_end),
                     origin: KeyOrigin::Json {
@@ -834,6 +861,15 @@ pub fn check_frame_time(frame: f64, time: f64, rate: Fps, rate_from: &str) -> In
     ))
 }
 
+/// A track's keys as read, with their Euler angles and their own velocities and TCB values
+/// (see [`DocTrack`]).
+struct KeysRead {
+    keys: Vec<Key>,
+    euler: Option<EulerKeys>,
+    velocities: Vec<Option<DVec3>>,
+    tcb: Vec<[Option<f64>; 3]>,
+}
+
 impl KeyContext<'_> {
     fn keys(
         &self,
@@ -841,8 +877,9 @@ impl KeyContext<'_> {
         track: Option<usize>,
         frames: bool,
         doc: &mut Document,
-    ) -> InputResult<(Vec<Key>, Option<EulerKeys>)> {
+    ) -> InputResult<KeysRead> {
         let mut keys = Vec::with_capacity(wires.len());
+        let (mut velocities, mut tcbs) = (Vec::new(), Vec::new());
         // The keys' Euler angles as written, while every key so far is Euler in one sequence.
         let mut euler: Option<EulerKeys> = None;
         let mut all_euler = true;
@@ -908,7 +945,7 @@ impl KeyContext<'_> {
                 _ => {
                     return Err(here(input_err!(
                         "expected one rotation, found {}",
-                        KEY_FIELDS[FIRST_ROTATION..]
+                        KEY_FIELDS[FIRST_ROTATION..FIRST_ROTATION + 5]
                             .iter()
                             .enumerate()
                             .filter(|&(r, _)| present(r))
@@ -944,8 +981,17 @@ impl KeyContext<'_> {
                 angles.push(DVec3::new(r(values[0]), r(values[1]), r(values[2])));
             }
             keys.push(Key { when, rot });
+            let velocity = w
+                .velocity
+                .map(|v| DVec3::from_array(v.map(|x| self.angles.to_rad(x))));
+            push_shape(&mut velocities, &mut tcbs, keys.len(), velocity, w.tcb);
         }
-        Ok((keys, euler.filter(|_| all_euler)))
+        Ok(KeysRead {
+            keys,
+            euler: euler.filter(|_| all_euler),
+            velocities,
+            tcb: tcbs,
+        })
     }
 }
 

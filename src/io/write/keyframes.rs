@@ -203,6 +203,8 @@ mod tests {
                 end_velocity: None,
                 origin: KeyOrigin::Lines(vec![2, 3]),
                 euler: None,
+                velocities: Vec::new(),
+                tcb: Vec::new(),
             }],
             named_tracks: true,
             warnings: Vec::new(),
