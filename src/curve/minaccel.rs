@@ -633,7 +633,11 @@ pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
     for c in 0..copies {
         // The middle copy (c = reps) has the track's own times and signs exactly.
         let offset = (c as f64 - reps as f64) * period;
-        let s = if (c + reps).is_multiple_of(2) { 1.0 } else { sign };
+        let s = if (c + reps).is_multiple_of(2) {
+            1.0
+        } else {
+            sign
+        };
         if c > 0 {
             // The seam key is shared: it takes this copy's time, exact in the middle copy.
             let last = unrolled.times.len() - 1;
