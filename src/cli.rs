@@ -176,8 +176,8 @@ pub struct InterpArgs {
     #[command(flatten)]
     pub output: OutputArgs,
 
-    /// Interpolation scheme.
-    #[arg(long, value_enum, default_value = "hermite")]
+    /// Interpolation scheme (bezier: third order, C¹, local; see docs/schemes.md).
+    #[arg(long, value_enum, default_value = "bezier")]
     pub scheme: SchemeArg,
 
     #[command(flatten)]

@@ -91,15 +91,17 @@ impl Tcb {
     }
 
     /// Kochanek & Bartels' weights `((a_in, b_in), (a_out, b_out))` of the incoming chord `L⁻`
-    /// and the outgoing chord `L⁺` in the tangent arriving at the key and the one leaving it:
-    /// `a_in = (1−t)(1+b)(1+c)/2`, `b_in = (1−t)(1−b)(1−c)/2`, `a_out = (1−t)(1+b)(1−c)/2`,
-    /// `b_out = (1−t)(1−b)(1+c)/2` (all ½ for zero).
+    /// and the outgoing chord `L⁺` in the tangent arriving at the key (their source derivative)
+    /// and the one leaving it (their destination derivative):
+    /// `a_in = (1−t)(1+b)(1−c)/2`, `b_in = (1−t)(1−b)(1+c)/2`, `a_out = (1−t)(1+b)(1+c)/2`,
+    /// `b_out = (1−t)(1−b)(1−c)/2` (all ½ for zero). So `c = −1` makes each segment leave and
+    /// arrive along its own chord (box corners), as in VTK, Gamebryo and 3ds Max.
     pub fn weights(&self) -> ((f64, f64), (f64, f64)) {
         let (t, c, b) = (self.tension, self.continuity, self.bias);
         let k = (1.0 - t) * 0.5;
         (
-            (k * (1.0 + b) * (1.0 + c), k * (1.0 - b) * (1.0 - c)),
             (k * (1.0 + b) * (1.0 - c), k * (1.0 - b) * (1.0 + c)),
+            (k * (1.0 + b) * (1.0 + c), k * (1.0 - b) * (1.0 - c)),
         )
     }
 }

@@ -73,11 +73,13 @@ pub trait Segment: Sized {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Scheme {
     /// Nam & Kim's Hermite by blending two great arcs ([`hermite`]); C¹.
-    #[default]
     Hermite,
     /// Shoemake's squad ([`squad`]); C¹.
     Squad,
-    /// Spherical cubic Bézier by de Casteljau's construction ([`bezier`]); C¹.
+    /// Spherical cubic Bézier by de Casteljau's construction ([`bezier`]); C¹. The default:
+    /// third order in the key spacing (hermite is second), local, and the spherical counterpart
+    /// of the cubic Hermite of the same tangents (docs/schemes.md).
+    #[default]
     Bezier,
     /// Piecewise great arcs ([`slerp`]); C⁰.
     Slerp,
@@ -160,10 +162,10 @@ pub struct CurveOptions {
 }
 
 impl Default for CurveOptions {
-    /// hermite, cubic blend, shortest path, chord ends, 30 fps grid.
+    /// bezier, cubic blend (for hermite), shortest path, chord ends, 30 fps grid, zero TCB.
     fn default() -> CurveOptions {
         CurveOptions {
-            scheme: Scheme::Hermite,
+            scheme: Scheme::Bezier,
             blend: Blend::Cubic,
             path: PathMode::Shortest,
             ends: EndConditions::default(),

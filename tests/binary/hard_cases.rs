@@ -177,6 +177,8 @@ fn antipodal_blend_is_reported() {
         .args([
             "interp",
             "-",
+            "--scheme",
+            "hermite",
             "--fps",
             "10",
             "--start-velocity",

@@ -276,6 +276,8 @@ fn fast_given_spins_report_their_velocity() {
                 start: Some(w),
                 end: None,
             },
+            // hermite follows a tangent of many turns per segment (bezier warns instead).
+            scheme: Scheme::Hermite,
             ..CurveOptions::default()
         };
         let curve = Curve::new(&track, &opts).unwrap();

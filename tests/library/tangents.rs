@@ -70,8 +70,9 @@ fn tcb_on_one_axis_is_kochanek_and_bartels_formula() {
         for i in 1..times.len() - 1 {
             let (dm, dp) = (angles[i] - angles[i - 1], angles[i + 1] - angles[i]);
             let span = times[i + 1] - times[i - 1];
-            let out = (1.0 - t) * ((1.0 + b) * (1.0 - c) * dm + (1.0 - b) * (1.0 + c) * dp) / span;
-            let inc = (1.0 - t) * ((1.0 + b) * (1.0 + c) * dm + (1.0 - b) * (1.0 - c) * dp) / span;
+            // Destination (leaving) and source (arriving) derivatives of their eqs. 8-9.
+            let out = (1.0 - t) * ((1.0 + b) * (1.0 + c) * dm + (1.0 - b) * (1.0 - c) * dp) / span;
+            let inc = (1.0 - t) * ((1.0 + b) * (1.0 - c) * dm + (1.0 - b) * (1.0 + c) * dp) / span;
             let (left, right) = sides(&curve, times[i]);
             assert!(
                 (right.z - out).abs() < 1e-5,
