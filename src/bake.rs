@@ -60,6 +60,18 @@ pub trait FrameSink {
     /// One frame: its number `k` on the grid, its time `k/fps` in seconds, the rotation, and
     /// the world-frame angular velocity in rad/s when it was asked for.
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()>;
+    /// One frame of a track with translations: [`FrameSink::frame`] and the position. A sink
+    /// that writes positions overrides it; the default drops the position.
+    fn frame_at(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        _position: DVec3,
+    ) -> io::Result<()> {
+        self.frame(k, time, q, omega)
+    }
     /// The track's last frame has been given.
     fn end_track(&mut self) -> io::Result<()> {
         Ok(())
@@ -101,6 +113,48 @@ pub fn bake(
 /// before the first key hold the first key and those after the last key hold the last key, at
 /// rest (glTF's clamp). This is how several tracks are written over one clip.
 pub fn bake_over(
+    curve: &Curve,
+    fps: Fps,
+    (lo, hi): (f64, f64),
+    opts: BakeOptions,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    if curve.has_positions() {
+        let mut with = WithPositions { sink, curve };
+        return frames_over(curve, fps, (lo, hi), opts, &mut with, warn);
+    }
+    frames_over(curve, fps, (lo, hi), opts, sink, warn)
+}
+
+/// A sink that adds each frame's position (of a track with translations) and hands it on.
+struct WithPositions<'a> {
+    sink: &'a mut dyn FrameSink,
+    curve: &'a Curve,
+}
+
+impl FrameSink for WithPositions<'_> {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
+        self.sink.begin_track(name)
+    }
+    fn euler_start(&mut self, seq: crate::EulerSeq, angles: [f64; 3]) {
+        self.sink.euler_start(seq, angles)
+    }
+    #[inline]
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
+        let p = self.curve.position(time).unwrap_or(DVec3::ZERO);
+        self.sink.frame_at(k, time, q, omega, p)
+    }
+    fn end_track(&mut self) -> io::Result<()> {
+        self.sink.end_track()
+    }
+    fn finish(&mut self) -> io::Result<()> {
+        self.sink.finish()
+    }
+}
+
+/// [`bake_over`]'s frames, into `sink`.
+fn frames_over(
     curve: &Curve,
     fps: Fps,
     (lo, hi): (f64, f64),

@@ -51,6 +51,7 @@ pub mod error;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod metrics;
+pub mod position;
 pub mod rotation;
 pub mod tangent;
 pub mod track;

@@ -93,6 +93,11 @@ pub enum TrackError {
         /// The key.
         index: usize,
     },
+    /// A key's translation is not finite.
+    KeyTranslation {
+        /// The key.
+        index: usize,
+    },
     /// A key's tension, continuity or bias is not a finite number in `[−1, 1]`.
     KeyTcb {
         /// The key.
@@ -118,7 +123,8 @@ impl TrackError {
             | TrackError::NotUnit { index, .. }
             | TrackError::EulerAngles { index, .. }
             | TrackError::KeyVelocity { index }
-            | TrackError::KeyTcb { index } => Some(index),
+            | TrackError::KeyTcb { index }
+            | TrackError::KeyTranslation { index } => Some(index),
             _ => None,
         }
     }
@@ -164,6 +170,9 @@ impl fmt::Display for TrackError {
                 f,
                 "expected one {what} per key, found {found} for {keys} keys"
             ),
+            TrackError::KeyTranslation { .. } => {
+                write!(f, "expected a finite translation")
+            }
             TrackError::KeyVelocity { .. } => {
                 write!(f, "expected a finite angular velocity")
             }
@@ -252,6 +261,7 @@ pub struct Track {
     euler: Option<(EulerSeq, Vec<DVec3>)>,
     key_velocities: Option<Vec<Option<DVec3>>>,
     key_tcb: Option<Vec<Option<Tcb>>>,
+    translations: Option<Vec<DVec3>>,
 }
 
 impl Track {
@@ -297,7 +307,30 @@ impl Track {
             euler: None,
             key_velocities: None,
             key_tcb: None,
+            translations: None,
         })
+    }
+
+    /// Gives every key a position (a BVH or glTF translation, in the file's length unit), one per
+    /// key, finite. A curve interpolates them beside the rotations ([`crate::position`]).
+    pub fn with_translations(mut self, p: Vec<DVec3>) -> Result<Track, TrackError> {
+        if p.len() != self.len() {
+            return Err(TrackError::KeyCount {
+                what: "translation",
+                keys: self.len(),
+                found: p.len(),
+            });
+        }
+        if let Some(index) = p.iter().position(|x| !x.is_finite()) {
+            return Err(TrackError::KeyTranslation { index });
+        }
+        self.translations = Some(p);
+        Ok(self)
+    }
+
+    /// The keys' positions, when the track has them.
+    pub fn translations(&self) -> Option<&[DVec3]> {
+        self.translations.as_deref()
     }
 
     /// Gives keys their own world-frame angular velocities (rad/s; `None` for a key without

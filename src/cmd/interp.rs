@@ -85,16 +85,20 @@ pub fn run(
         euler: args.output.euler_mode(),
     };
     let track_column = doc.named_tracks || tracks.len() > 1;
+    let positions = tracks.iter().any(|t| t.translations().is_some());
+    if positions && format == OutputFormat::Npy {
+        return Err(InputError::new(format!(
+            "{}: the tracks have translations, which npy output does not carry; write csv or json",
+            doc.source
+        ))
+        .into());
+    }
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
     let mut sink: Box<dyn Sink> = match format {
-        OutputFormat::Doc(format) => Box::new(FrameWriter::new(
-            out,
-            format,
-            style,
-            fps,
-            track_column,
-            args.velocity,
-        )),
+        OutputFormat::Doc(format) => {
+            let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);
+            Box::new(if positions { w.with_positions() } else { w })
+        }
         OutputFormat::Npy => Box::new(NpyWriter::new(
             out,
             style,

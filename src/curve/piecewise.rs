@@ -80,6 +80,7 @@ const H: f64 = 1e-3;
 #[derive(Debug, Clone)]
 pub struct Curve {
     name: Option<String>,
+    positions: Option<crate::position::Positions>,
     euler_start: Option<(crate::EulerSeq, [f64; 3])>,
     scheme: Scheme,
     pieces: Pieces,
@@ -295,6 +296,10 @@ impl Curve {
             ),
         };
         Ok(Curve {
+            positions: track.translations().map(|p| {
+                let linear = opts.scheme == Scheme::Slerp;
+                crate::position::Positions::new(track.times(), p, linear, opts.ends.ends)
+            }),
             name,
             euler_start: track
                 .euler_angles()
@@ -314,6 +319,17 @@ impl Curve {
     /// Euler angles ([`Track::with_euler_angles`]): where continuous Euler output starts.
     pub fn euler_start(&self) -> Option<(crate::EulerSeq, [f64; 3])> {
         self.euler_start
+    }
+
+    /// The position at `t` (clamped to the span) when the track has translations: the
+    /// Euclidean counterpart of the scheme ([`crate::position`]).
+    pub fn position(&self, t: f64) -> Option<glam::DVec3> {
+        self.positions.as_ref().map(|p| p.at(t))
+    }
+
+    /// Whether the track has translations.
+    pub fn has_positions(&self) -> bool {
+        self.positions.is_some()
     }
 
     /// The scheme.

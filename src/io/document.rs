@@ -128,6 +128,9 @@ pub struct DocTrack {
     /// Each key's own tension, continuity and bias (each optional: a missing one takes the
     /// command line's), when any key has one (empty when none has).
     pub tcb: Vec<[Option<f64>; 3]>,
+    /// Each key's position (CSV `tx,ty,tz`, JSON `translation`, BVH position channels), when any
+    /// key has one (empty when none has); a track has them on every key or on none.
+    pub translations: Vec<Option<DVec3>>,
 }
 
 impl DocTrack {
@@ -141,6 +144,11 @@ impl DocTrack {
             velocity,
             tcb,
         );
+    }
+
+    /// Records the just-pushed key's position (the list stays empty until a key has one).
+    pub fn push_translation(&mut self, p: Option<DVec3>) {
+        push_sparse(&mut self.translations, self.keys.len(), p);
     }
 
     /// Where key `i` was read.
@@ -172,6 +180,14 @@ pub fn push_shape(
     if tcb.iter().any(Option::is_some) || !tcbs.is_empty() {
         tcbs.resize(n - 1, [None; 3]);
         tcbs.push(tcb);
+    }
+}
+
+/// Records key `n − 1`'s optional value in a list that stays empty until a key has one.
+pub fn push_sparse(list: &mut Vec<Option<DVec3>>, n: usize, value: Option<DVec3>) {
+    if value.is_some() || !list.is_empty() {
+        list.resize(n - 1, None);
+        list.push(value);
     }
 }
 
@@ -276,6 +292,21 @@ impl Document {
                     let mut v = track.velocities.clone();
                     v.resize(track.keys.len(), None);
                     t.with_key_velocities(v).map_err(located)?
+                };
+                let t = if track.translations.is_empty() {
+                    t
+                } else {
+                    let mut v = track.translations.clone();
+                    v.resize(track.keys.len(), None);
+                    if let Some(i) = v.iter().position(Option::is_none) {
+                        return Err(input_err!(
+                            "expected a translation on every key of the track or on none, \
+                             found none on this key"
+                        )
+                        .at(format!("{}: translation", at(&self.source, track.loc(i)))));
+                    }
+                    t.with_translations(v.into_iter().flatten().collect())
+                        .map_err(located)?
                 };
                 let t = if track.tcb.is_empty() {
                     t

@@ -23,6 +23,10 @@ use std::collections::{HashMap, HashSet};
 /// a key without one leaves its cells empty.
 const VELOCITY_COLUMNS: [&str; 3] = ["wx", "wy", "wz"];
 
+/// A key's position (BVH and glTF translations): all three columns or none; a track without
+/// positions leaves its cells empty.
+const TRANSLATION_COLUMNS: [&str; 3] = ["tx", "ty", "tz"];
+
 /// A key's own Kochanek–Bartels values: any of them; an empty cell takes the flag's value.
 const TCB_COLUMNS: [&str; 3] = ["tension", "continuity", "bias"];
 
@@ -88,16 +92,24 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let track_col = col("track");
     // Per-key angular velocities: all three columns or none.
     let velocity = VELOCITY_COLUMNS.iter().all(|c| seen.contains(c));
+    let translation = TRANSLATION_COLUMNS.iter().all(|c| seen.contains(c));
     for (n, w) in names.iter().zip(&written) {
         let known = *n == "track"
             || *n == "time"
             || *n == "frame"
             || rot_cols.contains(n)
             || (velocity && VELOCITY_COLUMNS.contains(n))
+            || (translation && TRANSLATION_COLUMNS.contains(n))
             || TCB_COLUMNS.contains(n);
         if !known {
             let mut expected = vec!["track", "time", "frame"];
             expected.extend(&rot_cols);
+            if TRANSLATION_COLUMNS.contains(n) {
+                return Err(input_err!(
+                    "{hloc}: column \"{}\": a key's translation needs all three columns tx, ty, tz",
+                    shorten(w)
+                ));
+            }
             if VELOCITY_COLUMNS.contains(n) {
                 return Err(input_err!(
                     "{hloc}: column \"{}\": a key's angular velocity needs all three columns \
@@ -108,12 +120,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             let mut all = expected.clone();
             all.extend(VELOCITY_COLUMNS);
             all.extend(TCB_COLUMNS);
+            all.extend(TRANSLATION_COLUMNS);
             return Err(input_err!(
-                "{hloc}: unknown column \"{}\": expected {} (optional: {}, {}){}",
+                "{hloc}: unknown column \"{}\": expected {} (optional: {}, {}, {}){}",
                 shorten(w),
                 expected.join(", "),
                 VELOCITY_COLUMNS.join(", "),
                 TCB_COLUMNS.join(", "),
+                TRANSLATION_COLUMNS.join(", "),
                 suggestion(n, &all)
             ));
         }
@@ -137,6 +151,8 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let vel_idx: Option<Vec<usize>> =
         velocity.then(|| VELOCITY_COLUMNS.iter().filter_map(|n| col(n)).collect());
     let tcb_idx: [Option<usize>; 3] = TCB_COLUMNS.map(col);
+    let pos_idx: Option<Vec<usize>> =
+        translation.then(|| TRANSLATION_COLUMNS.iter().filter_map(|n| col(n)).collect());
 
     let mut doc = Document {
         source: source.to_string(),
@@ -226,6 +242,19 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             }
             None => None,
         };
+        let key_translation = match &pos_idx {
+            Some(idx) => match [optional(idx[0])?, optional(idx[1])?, optional(idx[2])?] {
+                [Some(x), Some(y), Some(z)] => Some(DVec3::new(x, y, z)),
+                [None, None, None] => None,
+                _ => {
+                    return Err(input_err!(
+                        "{}: columns tx,ty,tz: expected three numbers or three empty cells",
+                        loc()
+                    ));
+                }
+            },
+            None => None,
+        };
         let mut key_tcb = [None; 3];
         for (slot, i) in key_tcb.iter_mut().zip(tcb_idx) {
             if let Some(i) = i {
@@ -270,6 +299,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 },
                 velocities: Vec::new(),
                 tcb: Vec::new(),
+                translations: Vec::new(),
             });
         }
         let track = &mut doc.tracks[index];
@@ -285,6 +315,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             lines.push(line);
         }
         track.push_shape(key_velocity, key_tcb);
+        track.push_translation(key_translation);
         if let Some((_, angles)) = &mut track.euler {
             let unit = opts.undeclared_angles();
             angles.push(DVec3::new(
@@ -510,7 +541,7 @@ mod tests {
         assert_eq!(
             err(&format!("time,w,x,y,z,{long}\n")),
             format!(
-                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias)"
+                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias, tx, ty, tz)"
             )
         );
         assert_eq!(
@@ -522,7 +553,7 @@ mod tests {
         assert_eq!(
             err(&format!("w,x,y,z,{long}\n")),
             format!(
-                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias)"
+                "k.csv:1: unknown column \"{cut}\": expected track, time, frame, w, x, y, z (optional: wx, wy, wz, tension, continuity, bias, tx, ty, tz)"
             )
         );
         assert_eq!(
@@ -558,7 +589,7 @@ mod tests {
         assert_eq!(
             err("TIME,w,x,y,z,Trak\n"),
             "k.csv:1: unknown column \"Trak\": expected track, time, frame, w, x, y, z (optional: wx, \
-             wy, wz, tension, continuity, bias); did you \
+             wy, wz, tension, continuity, bias, tx, ty, tz); did you \
              mean \"track\"?"
         );
         assert_eq!(

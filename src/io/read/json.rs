@@ -18,7 +18,7 @@ use crate::clock::Fps;
 use crate::error::input_err;
 use crate::error::{InputError, InputResult};
 use crate::io::document::{
-    DocTrack, Document, EulerKeys, Key, KeyOrigin, KeyTime, Loc, push_shape, shorten,
+    DocTrack, Document, EulerKeys, Key, KeyOrigin, KeyTime, Loc, push_shape, push_sparse, shorten,
 };
 use crate::io::{ReadOptions, settle};
 use crate::rotation::{AngleUnit, Repr};
@@ -61,6 +61,7 @@ const KEY_FIELDS: &[&str] = &[
     "tension",
     "continuity",
     "bias",
+    "translation",
 ];
 /// Index in [`KEY_FIELDS`] of the first rotation field.
 const FIRST_ROTATION: usize = 2;
@@ -104,6 +105,8 @@ struct KeyWire {
     velocity: Option<[f64; 3]>,
     /// The key's own tension, continuity and bias.
     tcb: [Option<f64>; 3],
+    /// The key's position.
+    translation: Option<[f64; 3]>,
 }
 
 /// `fps` as read: a number, a string, or something else (shown in the message, cut).
@@ -403,6 +406,9 @@ impl<'de> Visitor<'de> for KeyVisitor {
                 "tension" => key.tcb[0] = map.next_value::<Option<Num>>()?.map(|n| n.0),
                 "continuity" => key.tcb[1] = map.next_value::<Option<Num>>()?.map(|n| n.0),
                 "bias" => key.tcb[2] = map.next_value::<Option<Num>>()?.map(|n| n.0),
+                "translation" => {
+                    key.translation = map.next_value::<Option<Fixed<Num, 3>>>()?.map(nums);
+                }
                 _ => {
                     let m = map.next_value::<Option<Fixed<Fixed<Num, 3>, 3>>>()?;
                     let flat = m.map(|m| {
@@ -771,6 +777,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 euler: read.euler,
                 velocities: read.velocities,
                 tcb: read.tcb,
+                translations: read.translations,
                 start_velocity: doc_start,
                 end_velocity: doc_end,
                 origin: KeyOrigin::Json {
@@ -800,6 +807,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                     euler: read.euler,
                     velocities: read.velocities,
                     tcb: read.tcb,
+                    translations: read.translations,
                     start_velocity: start.or(doc_start),
                     end_velocity: end.or(doc_end),
                     origin: KeyOrigin::Json {
@@ -864,6 +872,7 @@ pub fn check_frame_time(frame: f64, time: f64, rate: Fps, rate_from: &str) -> In
 /// A track's keys as read, with their Euler angles and their own velocities and TCB values
 /// (see [`DocTrack`]).
 struct KeysRead {
+    translations: Vec<Option<DVec3>>,
     keys: Vec<Key>,
     euler: Option<EulerKeys>,
     velocities: Vec<Option<DVec3>>,
@@ -879,7 +888,7 @@ impl KeyContext<'_> {
         doc: &mut Document,
     ) -> InputResult<KeysRead> {
         let mut keys = Vec::with_capacity(wires.len());
-        let (mut velocities, mut tcbs) = (Vec::new(), Vec::new());
+        let (mut velocities, mut tcbs, mut translations) = (Vec::new(), Vec::new(), Vec::new());
         // The keys' Euler angles as written, while every key so far is Euler in one sequence.
         let mut euler: Option<EulerKeys> = None;
         let mut all_euler = true;
@@ -985,8 +994,14 @@ impl KeyContext<'_> {
                 .velocity
                 .map(|v| DVec3::from_array(v.map(|x| self.angles.to_rad(x))));
             push_shape(&mut velocities, &mut tcbs, keys.len(), velocity, w.tcb);
+            push_sparse(
+                &mut translations,
+                keys.len(),
+                w.translation.map(DVec3::from_array),
+            );
         }
         Ok(KeysRead {
+            translations,
             keys,
             euler: euler.filter(|_| all_euler),
             velocities,

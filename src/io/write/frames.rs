@@ -24,6 +24,8 @@ pub(super) struct Frame {
     omega: Option<DVec3>,
     /// Continuous Euler angles (radians), computed in order on the writer's thread.
     euler: Option<[f64; 3]>,
+    /// The frame's position (tracks with translations).
+    position: Option<DVec3>,
 }
 
 /// Frames per block; blocks alternate between this thread and the formatting worker.
@@ -39,6 +41,9 @@ pub(super) struct RowFormatter {
     track_column: bool,
     velocity: bool,
     angles: AngleUnit,
+    /// Write `tx,ty,tz` columns (CSV; empty for a track without translations) and
+    /// `"translation"` fields (JSON, where a frame has one).
+    positions: bool,
 }
 
 /// A frame [`RowFormatter::rows`] refused: its number and what was wrong.
@@ -81,6 +86,18 @@ impl RowFormatter {
                             self.nums.float(out, x);
                         }
                     }
+                    if self.positions {
+                        match f.position {
+                            Some(p) => {
+                                for x in p.to_array() {
+                                    out.push(b',');
+                                    ok &= x.is_finite();
+                                    self.nums.float(out, x);
+                                }
+                            }
+                            None => out.extend_from_slice(b",,,"),
+                        }
+                    }
                     out.push(b'\n');
                 }
                 Format::Json => {
@@ -105,6 +122,17 @@ impl RowFormatter {
                         }
                         out.push(b']');
                     }
+                    if let Some(p) = f.position.filter(|_| self.positions) {
+                        out.extend_from_slice(b", \"translation\": [");
+                        for (j, x) in p.to_array().iter().enumerate() {
+                            if j > 0 {
+                                out.extend_from_slice(b", ");
+                            }
+                            ok &= x.is_finite();
+                            self.nums.float(out, *x);
+                        }
+                        out.push(b']');
+                    }
                     out.push(b'}');
                 }
             }
@@ -120,6 +148,12 @@ impl RowFormatter {
     fn fault(&mut self, f: &Frame, omega: Option<[f64; 3]>) -> Bad {
         if !f.time.is_finite() {
             return Bad::NonFinite("time", f.time);
+        }
+        if let Some(x) = f
+            .position
+            .and_then(|p| p.to_array().into_iter().find(|x| !x.is_finite()))
+        {
+            return Bad::NonFinite("translation", x);
         }
         if let Some(bad) = self.rot.fault(f.q) {
             return bad;
@@ -204,6 +238,7 @@ impl<W: Write> FrameWriter<W> {
                 track_column,
                 velocity,
                 angles: style.angles,
+                positions: false,
             },
             track: Vec::new(),
             track_name: None,
@@ -219,6 +254,20 @@ impl<W: Write> FrameWriter<W> {
             style,
             unwrap: None,
         }
+    }
+
+    /// Writes positions too (tracks with translations): CSV columns `tx,ty,tz` after the others
+    /// (empty cells for a track without), JSON `"translation": [x, y, z]`. Call before the first
+    /// track.
+    pub fn with_positions(mut self) -> Self {
+        if self.format == Format::Csv && !self.rows.positions {
+            let nl = self.buf.len() - 1;
+            debug_assert_eq!(self.buf[nl], b'\n', "called before any row");
+            self.buf.truncate(nl);
+            self.buf.extend_from_slice(b",tx,ty,tz\n");
+        }
+        self.rows.positions = true;
+        self
     }
 
     /// Formats everything in this thread (for comparison with the parallel writer).
@@ -328,6 +377,32 @@ impl<W: Write> FrameWriter<W> {
     }
 }
 
+impl<W: Write> FrameWriter<W> {
+    #[inline]
+    fn push(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: Option<DVec3>,
+    ) -> io::Result<()> {
+        let euler = self.unwrap.as_mut().map(|u| u.next(q));
+        self.block.push(Frame {
+            k,
+            time,
+            q,
+            omega,
+            euler,
+            position,
+        });
+        if self.block.len() == BLOCK {
+            self.flush_block(true)?;
+        }
+        Ok(())
+    }
+}
+
 impl<W: Write> FrameSink for FrameWriter<W> {
     fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
         self.unwrap = self.style.unwrapper();
@@ -360,18 +435,19 @@ impl<W: Write> FrameSink for FrameWriter<W> {
 
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
-        let euler = self.unwrap.as_mut().map(|u| u.next(q));
-        self.block.push(Frame {
-            k,
-            time,
-            q,
-            omega,
-            euler,
-        });
-        if self.block.len() == BLOCK {
-            self.flush_block(true)?;
-        }
-        Ok(())
+        self.push(k, time, q, omega, None)
+    }
+
+    #[inline]
+    fn frame_at(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: DVec3,
+    ) -> io::Result<()> {
+        self.push(k, time, q, omega, Some(position))
     }
 
     fn end_track(&mut self) -> io::Result<()> {

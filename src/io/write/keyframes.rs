@@ -205,6 +205,7 @@ mod tests {
                 euler: None,
                 velocities: Vec::new(),
                 tcb: Vec::new(),
+                translations: Vec::new(),
             }],
             named_tracks: true,
             warnings: Vec::new(),
