@@ -28,8 +28,24 @@ pub fn run(
     {
         warn(&w.replace("at the output rate, ", "at the default rate, "));
     }
-    let format = match output_format(&args.output, in_format) {
+    let chosen = match (output_format(&args.output, in_format), in_format) {
+        // Keys of a BVH input default to JSON (tracks = joints, with translations).
+        (OutputFormat::Bvh, Format::Bvh)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
+        (f, _) => f,
+    };
+    let format = match chosen {
         OutputFormat::Doc(f) => f,
+        OutputFormat::Bvh => {
+            return Err(InputError::new(
+                "convert does not write BVH yet (a --skeleton template is planned); resample \
+                 a BVH clip into BVH with interp",
+            )
+            .into());
+        }
         OutputFormat::Npy => {
             let what = match (&args.output.output_format, &args.output.output) {
                 (None, Some(path)) => format!("-o {}", path.display()),

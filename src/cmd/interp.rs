@@ -4,6 +4,7 @@ use super::settings::{output_format, read_curves, track_label};
 use crate::cli::{InterpArgs, SpanArg};
 use inbetween::error::num;
 use inbetween::io::OutputFormat;
+use inbetween::io::bvh::frames::BvhFrames;
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter, Style};
 use inbetween::{BakeOptions, Curve, Error, FrameSink, InputError, Track, bake_over};
@@ -93,8 +94,35 @@ pub fn run(
         ))
         .into());
     }
+    let skeleton = match format {
+        OutputFormat::Bvh => {
+            let Some(skeleton) = doc.skeleton.clone() else {
+                return Err(InputError::new(format!(
+                    "{}: BVH output is written on a BVH input's skeleton; this input is not BVH \
+                     (write csv or json)",
+                    doc.source
+                ))
+                .into());
+            };
+            if args.span == SpanArg::Track {
+                return Err(InputError::new(
+                    "--span track: a BVH file has one frame range for every joint; use --span clip",
+                )
+                .into());
+            }
+            if args.velocity {
+                return Err(InputError::new(
+                    "--velocity: BVH has no place for angular velocities; write csv or json",
+                )
+                .into());
+            }
+            Some(skeleton)
+        }
+        _ => None,
+    };
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
     let mut sink: Box<dyn Sink> = match format {
+        OutputFormat::Bvh => Box::new(BvhFrames::new(out, skeleton.expect("checked above"), fps)),
         OutputFormat::Doc(format) => {
             let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);
             Box::new(if positions { w.with_positions() } else { w })
@@ -139,6 +167,12 @@ trait Sink: FrameSink {
 impl Sink for FrameWriter<WriteBehind> {
     fn into_output(self: Box<Self>) -> std::io::Result<Output> {
         self.into_inner().finish()
+    }
+}
+
+impl Sink for BvhFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
     }
 }
 

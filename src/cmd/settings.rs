@@ -186,7 +186,10 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
     };
     args.output_format
         .or_else(by_extension)
-        .unwrap_or(OutputFormat::Doc(input))
+        .unwrap_or(match input {
+            Format::Bvh => OutputFormat::Bvh,
+            f => OutputFormat::Doc(f),
+        })
 }
 
 /// `file` or `file: track "name"`, for messages about a whole track.

@@ -27,12 +27,15 @@ pub enum Loc {
         /// The list is called `frames` (interp's output) rather than `keys`.
         frames: bool,
     },
+    /// A motion row of a BVH file: frame `i` (0-based).
+    Frame(usize),
 }
 
 impl fmt::Display for Loc {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Loc::Line(l) => write!(f, "{l}"),
+            Loc::Frame(i) => write!(f, " frame {i}"),
             Loc::Json {
                 track: Some(t),
                 key,
@@ -92,6 +95,8 @@ pub struct Key {
 pub enum KeyOrigin {
     /// CSV: the line of each key, in key order.
     Lines(Vec<u64>),
+    /// BVH: key `i` is motion row (frame) `i`.
+    Frames,
     /// JSON: key `i` is `keys[i]`, or `tracks[t].keys[i]` for `Some(t)` (`frames` for
     /// interp's output).
     Json {
@@ -155,6 +160,7 @@ impl DocTrack {
     pub fn loc(&self, i: usize) -> Loc {
         match &self.origin {
             KeyOrigin::Lines(lines) => Loc::Line(lines[i]),
+            KeyOrigin::Frames => Loc::Frame(i),
             KeyOrigin::Json { track, frames } => Loc::Json {
                 track: *track,
                 key: i,
@@ -207,6 +213,8 @@ pub struct Document {
     pub named_tracks: bool,
     /// Non-fatal findings, already located (e.g. a quaternion norm off 1).
     pub warnings: Vec<String>,
+    /// The skeleton of a BVH input: what BVH output is written against.
+    pub skeleton: Option<std::sync::Arc<crate::io::bvh::Clip>>,
 }
 
 impl Document {

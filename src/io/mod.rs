@@ -28,6 +28,8 @@ pub enum Format {
     Csv,
     /// A JSON document.
     Json,
+    /// A BVH motion-capture file (input; as output, [`OutputFormat::Bvh`]).
+    Bvh,
 }
 
 impl Format {
@@ -36,7 +38,10 @@ impl Format {
         match s {
             "csv" => Ok(Format::Csv),
             "json" => Ok(Format::Json),
-            _ => Err(input_err!("expected \"csv\" or \"json\", found \"{s}\"")),
+            "bvh" => Ok(Format::Bvh),
+            _ => Err(input_err!(
+                "expected \"csv\", \"json\" or \"bvh\", found \"{s}\""
+            )),
         }
     }
 
@@ -46,6 +51,7 @@ impl Format {
         match ext.as_str() {
             "csv" => Some(Format::Csv),
             "json" => Some(Format::Json),
+            "bvh" => Some(Format::Bvh),
             _ => None,
         }
     }
@@ -55,6 +61,8 @@ impl Format {
         let t = text.strip_prefix('\u{feff}').unwrap_or(text).trim_start();
         if t.starts_with('{') || t.starts_with('[') {
             Format::Json
+        } else if t.starts_with("HIERARCHY") {
+            Format::Bvh
         } else {
             Format::Csv
         }
@@ -68,6 +76,8 @@ pub enum OutputFormat {
     Doc(Format),
     /// A NumPy `.npy` array of float64 rows.
     Npy,
+    /// A BVH file on the input's skeleton (BVH input only).
+    Bvh,
 }
 
 impl OutputFormat {
@@ -75,9 +85,10 @@ impl OutputFormat {
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
-            _ => Format::parse(s)
-                .map(OutputFormat::Doc)
-                .map_err(|_| input_err!("expected \"csv\", \"json\" or \"npy\", found \"{s}\"")),
+            "bvh" => Ok(OutputFormat::Bvh),
+            _ => Format::parse(s).map(OutputFormat::Doc).map_err(|_| {
+                input_err!("expected \"csv\", \"json\", \"npy\" or \"bvh\", found \"{s}\"")
+            }),
         }
     }
 }
@@ -241,6 +252,10 @@ pub fn read_document(
     match format {
         Format::Csv => read::csv::read(text, source, opts),
         Format::Json => read::json::read(text, source, opts),
+        Format::Bvh => {
+            let (clip, warnings) = bvh::parse(text, source)?;
+            Ok(bvh::document::document(clip, source, warnings))
+        }
     }
 }
 

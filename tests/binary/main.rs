@@ -6,6 +6,7 @@ mod support;
 mod analyze;
 mod animator;
 mod app_conventions;
+mod bvh;
 mod errors;
 mod hard_cases;
 mod numbers;

@@ -55,6 +55,8 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod document;
+pub mod frames;
 pub mod rate;
 pub mod read;
 pub mod write;

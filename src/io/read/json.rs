@@ -750,6 +750,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         tracks: Vec::new(),
         named_tracks: wire.tracks.is_some(),
         warnings: Vec::new(),
+        skeleton: None,
     };
     let ctx = KeyContext {
         source,

@@ -71,7 +71,7 @@ impl RowFormatter {
             // One `is_finite` per written value and one norm per rotation.
             let mut ok = f.time.is_finite() && is_rotation(f.q);
             match self.format {
-                Format::Csv => {
+                Format::Csv | Format::Bvh => {
                     if self.track_column {
                         out.extend_from_slice(track);
                     }
@@ -205,9 +205,16 @@ impl<W: Write> FrameWriter<W> {
         track_column: bool,
         velocity: bool,
     ) -> Self {
+        // BVH is written by `io::bvh` on its skeleton; the commands never route it here.
+        debug_assert!(format != Format::Bvh, "FrameWriter writes CSV or JSON");
+        let format = if format == Format::Json {
+            Format::Json
+        } else {
+            Format::Csv
+        };
         let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
         match format {
-            Format::Csv => {
+            Format::Csv | Format::Bvh => {
                 if track_column {
                     buf.extend_from_slice(b"track,");
                 }
@@ -409,7 +416,7 @@ impl<W: Write> FrameSink for FrameWriter<W> {
         self.frames_in_track = 0;
         self.track_name = name.map(str::to_string);
         match self.format {
-            Format::Csv => {
+            Format::Csv | Format::Bvh => {
                 self.track = csv_field(name.unwrap_or(""));
                 self.track.push(b',');
             }

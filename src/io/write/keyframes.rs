@@ -59,6 +59,8 @@ pub fn write_keys<W: Write>(
     let mut nums = NumWriter::new(style.num);
     let mut buf = Vec::new();
     let named = doc.named_tracks || doc.tracks.len() > 1;
+    // Translations are finite by construction (readers refuse anything else).
+    let positions = doc.tracks.iter().any(|t| !t.translations.is_empty());
     // The last line of defence: one check per written value (see the module `write`).
     let refuse = |ti: usize, item: &str, bad: Bad| {
         internal_error(item, doc.tracks[ti].name.as_deref(), ti, bad)
@@ -75,8 +77,10 @@ pub fn write_keys<W: Write>(
         };
         Err(refuse(ti, &format!("key {i}"), bad))
     };
+    // BVH keys are written by `io::bvh` on its skeleton; the commands never route them here.
+    debug_assert!(format != Format::Bvh, "write_keys writes CSV or JSON");
     match format {
-        Format::Csv => {
+        Format::Csv | Format::Bvh => {
             if named {
                 buf.extend_from_slice(b"track,");
             }
@@ -84,6 +88,9 @@ pub fn write_keys<W: Write>(
             for c in style.repr.columns() {
                 buf.push(b',');
                 buf.extend_from_slice(c.as_bytes());
+            }
+            if positions {
+                buf.extend_from_slice(b",tx,ty,tz");
             }
             buf.push(b'\n');
             for (ti, track) in doc.tracks.iter().enumerate() {
@@ -98,6 +105,17 @@ pub fn write_keys<W: Write>(
                     let euler = unwrap.as_mut().map(|u| u.next(key.rot));
                     let ok = rot.csv(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
+                    if positions {
+                        match track.translations.get(i).copied().flatten() {
+                            Some(p) => {
+                                for x in p.to_array() {
+                                    buf.push(b',');
+                                    nums.shortest(&mut buf, x);
+                                }
+                            }
+                            None => buf.extend_from_slice(b",,,"),
+                        }
+                    }
                     buf.push(b'\n');
                 }
             }
@@ -165,6 +183,16 @@ pub fn write_keys<W: Write>(
                     let euler = unwrap.as_mut().map(|u| u.next(key.rot));
                     let ok = rot.json(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
+                    if let Some(p) = track.translations.get(i).copied().flatten() {
+                        buf.extend_from_slice(b", \"translation\": [");
+                        for (j, x) in p.to_array().iter().enumerate() {
+                            if j > 0 {
+                                buf.extend_from_slice(b", ");
+                            }
+                            nums.shortest(&mut buf, *x);
+                        }
+                        buf.push(b']');
+                    }
                     buf.push(b'}');
                 }
                 buf.extend_from_slice(b"\n]");
@@ -209,6 +237,7 @@ mod tests {
             }],
             named_tracks: true,
             warnings: Vec::new(),
+            skeleton: None,
         }
     }
 

@@ -1,0 +1,169 @@
+//! BVH in and out (issue 14): a clip resampled at its own rate comes back with the hierarchy
+//! byte for byte and every rotation and position; resampling 120 → 100 and 30 → 24 fps keeps the
+//! duration (⌊duration·fps⌋ + 1 frames) and reproduces the frames both grids share; the output
+//! is read back by an independent BVH reader (bvhio, `fixtures/bvh/read_bvh.py`).
+
+use crate::support::rot_angle;
+use glam::{DQuat, EulerRot};
+use inbetween::io::bvh;
+
+const HIERARCHY: &str = "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 35 0\n  CHANNELS 6 Xposition \
+Yposition Zposition Zrotation Xrotation Yrotation\n  JOINT Arm\n  {\n    OFFSET 5 0 0\n    \
+CHANNELS 3 Yrotation Xrotation Zrotation\n    End Site\n    {\n      OFFSET 10 0 0\n    }\n  \
+}\n}\n";
+
+/// A smooth clip of `frames` rows at `frame_time` (as written), spinning past ±180°.
+fn clip(frames: usize, rate: f64, frame_time: &str) -> String {
+    let mut text = format!("{HIERARCHY}MOTION\nFrames: {frames}\nFrame Time: {frame_time}\n");
+    for i in 0..frames {
+        let t = i as f64 / rate;
+        let row = [
+            10.0 * t,
+            35.0 + (3.0 * t).sin(),
+            -4.0 * t * t,
+            200.0 * t,
+            30.0 * (2.0 * t).sin(),
+            -50.0 * t,
+            40.0 * (1.5 * t).cos(),
+            80.0 * t,
+            -20.0 * t,
+        ];
+        let cells: Vec<String> = row.iter().map(|x| format!("{x:.6}")).collect();
+        text += &(cells.join(" ") + "\n");
+    }
+    text
+}
+
+/// (Hips rotation, Arm rotation, Hips position) of every frame, from our own parser.
+fn poses(text: &str) -> (bvh::Clip, Vec<(DQuat, DQuat, [f64; 3])>) {
+    let (clip, _) = bvh::parse(text, "x.bvh").unwrap();
+    let rows = clip
+        .rows()
+        .map(|r| {
+            let d = |x: f64| x.to_radians();
+            let hips = DQuat::from_euler(EulerRot::ZXY, d(r[3]), d(r[4]), d(r[5]));
+            let arm = DQuat::from_euler(EulerRot::YXZ, d(r[6]), d(r[7]), d(r[8]));
+            (hips, arm, [r[0], r[1], r[2]])
+        })
+        .collect();
+    (clip, rows)
+}
+
+fn interp(input: &std::path::Path, fps: Option<&str>, out: &std::path::Path) -> String {
+    let mut cmd = crate::support::bin();
+    cmd.arg("interp").arg(input).arg("-o").arg(out);
+    if let Some(f) = fps {
+        cmd.args(["--fps", f]);
+    }
+    let o = cmd.output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    std::fs::read_to_string(out).unwrap()
+}
+
+#[test]
+fn a_clip_at_its_own_rate_comes_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, out) = (dir.path().join("clip.bvh"), dir.path().join("out.bvh"));
+    let text = clip(31, 30.0, "0.0333333");
+    std::fs::write(&src, &text).unwrap();
+    let back = interp(&src, None, &out);
+    assert!(back.starts_with(HIERARCHY), "hierarchy byte for byte");
+    assert!(back.contains("MOTION\nFrames: 31\nFrame Time: 0.0333333333\n"));
+    let ((_, want), (_, got)) = (poses(&text), poses(&back));
+    assert_eq!(got.len(), want.len());
+    for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+        assert!(rot_angle(g.0, w.0) < 1e-12, "frame {i} hips");
+        assert!(rot_angle(g.1, w.1) < 1e-12, "frame {i} arm");
+        assert_eq!(g.2, w.2, "frame {i} position");
+    }
+    // Continuous angles: the root's Z channel goes on past 180° as written.
+    let last: Vec<f64> = back
+        .lines()
+        .last()
+        .unwrap()
+        .split(' ')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!((last[3] - 200.0).abs() < 1e-9, "{last:?}");
+}
+
+#[test]
+fn resampling_keeps_the_duration_and_the_shared_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    for (frames, rate, time, fps, want_frames, every) in [
+        (121, 120.0, "0.008333", "100", 101, (6, 5)),
+        (31, 30.0, "0.0333333", "24", 25, (5, 4)),
+    ] {
+        let (src, out) = (dir.path().join("c.bvh"), dir.path().join("o.bvh"));
+        let text = clip(frames, rate, time);
+        std::fs::write(&src, &text).unwrap();
+        let back = interp(&src, Some(fps), &out);
+        let ((_, want), (clip_out, got)) = (poses(&text), poses(&back));
+        assert_eq!(got.len(), want_frames, "{rate} → {fps}");
+        assert_eq!(clip_out.fps().to_string(), fps);
+        // Frames at times both grids share are the input's own.
+        let (a, b) = every;
+        for j in 0..(want.len() - 1) / a + 1 {
+            let (w, g) = (&want[j * a], &got[j * b]);
+            assert!(
+                rot_angle(w.0, g.0) < 1e-12 && rot_angle(w.1, g.1) < 1e-12,
+                "{fps}: {j}"
+            );
+            for k in 0..3 {
+                assert!((w.2[k] - g.2[k]).abs() < 1e-12);
+            }
+        }
+    }
+}
+
+/// The output as bvhio reads it: channel orders, frame count and time, rotations. Runs where
+/// the checkers' venv exists (CI builds it; set INBETWEEN_REQUIRE_PYTHON_CHECKS to fail
+/// instead of skipping).
+#[test]
+fn an_independent_reader_agrees() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let python = root.join("target/ci-venv/bin/python");
+    if !python.exists() {
+        assert!(
+            std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
+            "target/ci-venv is missing"
+        );
+        eprintln!("note: bvhio check skipped (no target/ci-venv)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let (src, out) = (dir.path().join("c.bvh"), dir.path().join("o.bvh"));
+    let text = clip(31, 30.0, "0.0333333");
+    std::fs::write(&src, &text).unwrap();
+    interp(&src, Some("24"), &out);
+    let o = std::process::Command::new(&python)
+        .arg(root.join("fixtures/bvh/read_bvh.py"))
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(doc["frame_count"], 25);
+    assert!((doc["frame_time"].as_f64().unwrap() - 1.0 / 24.0).abs() < 1e-9);
+    let orders: Vec<&str> = doc["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["rotation_order"].as_str().unwrap())
+        .collect();
+    assert_eq!(orders, ["ZXY", "YXZ"]);
+    let (_, ours) = poses(&std::fs::read_to_string(&out).unwrap());
+    for (i, frame) in doc["frames"].as_array().unwrap().iter().enumerate() {
+        for (j, q) in [ours[i].0, ours[i].1].iter().enumerate() {
+            let r: Vec<f64> = frame[j]["rotation"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let theirs = DQuat::from_xyzw(r[1], r[2], r[3], r[0]).normalize();
+            // bvhio works in float32.
+            assert!(rot_angle(theirs, *q) < 1e-5, "frame {i} joint {j}");
+        }
+    }
+}
