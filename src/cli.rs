@@ -105,6 +105,12 @@ pub struct InputArgs {
     /// it passes the limit).
     #[arg(long, value_name = "N", default_value_t = inbetween::io::DEFAULT_MAX_INPUT_BYTES)]
     pub max_input_bytes: u64,
+
+    /// Only these tracks (joints), by name, comma-separated; `*` and `?` match any characters
+    /// and one character (e.g. --tracks 'Left*,Hips'). A pattern that matches nothing is an
+    /// error listing the names there are.
+    #[arg(long, value_name = "NAME,NAME…")]
+    pub tracks: Option<String>,
 }
 
 /// Where the output goes and how it is written.

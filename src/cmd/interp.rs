@@ -116,6 +116,13 @@ pub fn run(
                 )
                 .into());
             }
+            if args.input.tracks.is_some() {
+                return Err(InputError::new(
+                    "--tracks: a BVH file is written with every joint of its skeleton; select \
+                     tracks for csv or json output",
+                )
+                .into());
+            }
             Some(skeleton)
         }
         _ => None,

@@ -81,7 +81,99 @@ pub fn read_input(
     for w in &doc.warnings {
         warn(w);
     }
+    let doc = match &args.tracks {
+        Some(patterns) => select_tracks(doc, patterns)?,
+        None => doc,
+    };
     Ok((doc, format))
+}
+
+/// `--tracks`: the document's tracks whose names match one of the comma-separated patterns, in
+/// document order. A pattern that matches nothing is an error listing the names there are.
+fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputError> {
+    let patterns: Vec<&str> = patterns
+        .split(',')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+        .collect();
+    let name_of = |i: usize, t: &inbetween::io::document::DocTrack| {
+        t.name.clone().unwrap_or_else(|| format!("track{i}"))
+    };
+    let names: Vec<String> = doc
+        .tracks
+        .iter()
+        .enumerate()
+        .map(|(i, t)| name_of(i, t))
+        .collect();
+    for p in &patterns {
+        if !names.iter().any(|n| glob(p, n)) {
+            let shown: Vec<String> = names
+                .iter()
+                .take(20)
+                .map(|n| format!("\"{}\"", inbetween::error::shorten(n)))
+                .collect();
+            let more = if names.len() > 20 { ", …" } else { "" };
+            return Err(InputError::new(format!(
+                "--tracks: \"{}\" matches no track of {}; its tracks are {}{more}",
+                inbetween::error::shorten(p),
+                doc.source,
+                shown.join(", ")
+            )));
+        }
+    }
+    if patterns.is_empty() {
+        return Err(InputError::new("--tracks: expected at least one name"));
+    }
+    let keep: Vec<bool> = names
+        .iter()
+        .map(|n| patterns.iter().any(|p| glob(p, n)))
+        .collect();
+    let mut i = 0;
+    doc.tracks.retain(|_| {
+        i += 1;
+        keep[i - 1]
+    });
+    doc.named_tracks = true;
+    Ok(doc)
+}
+
+/// Whether `name` matches `pattern`: `*` any run of characters, `?` one character, anything else
+/// itself.
+fn glob(pattern: &str, name: &str) -> bool {
+    let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
+    // Classic two-pointer match with backtracking to the last `*`.
+    let (mut i, mut j) = (0, 0);
+    let mut star: Option<(usize, usize)> = None;
+    while j < n.len() {
+        if i < p.len() && (p[i] == '?' || p[i] == n[j]) {
+            i += 1;
+            j += 1;
+        } else if i < p.len() && p[i] == '*' {
+            star = Some((i, j));
+            i += 1;
+        } else if let Some((si, sj)) = star {
+            i = si + 1;
+            j = sj + 1;
+            star = Some((si, sj + 1));
+        } else {
+            return false;
+        }
+    }
+    p[i..].iter().all(|&c| c == '*')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::glob;
+
+    #[test]
+    fn globs() {
+        assert!(glob("Left*", "LeftArm") && glob("Left*", "Left"));
+        assert!(glob("*Arm", "LeftArm") && !glob("*Arm", "LeftArms"));
+        assert!(glob("L?ft*m", "LeftArm") && !glob("L?ft", "Lft"));
+        assert!(glob("*", "") && glob("a*b*c", "aXbYbZc") && !glob("a*b*c", "aXbY"));
+        assert!(glob("hip", "hip") && !glob("hip", "Hip"));
+    }
 }
 
 /// The input of interp, analyze and plot, read and validated.

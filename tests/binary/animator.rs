@@ -339,3 +339,49 @@ fn continuous_euler_starts_from_the_first_keys_own_triple() {
     let (row, _) = first(&[&interp[..], &["--to", "euler:ZYX", "--euler", "wrapped"]].concat());
     assert!(row.starts_with("0,0.0,9.99999999999"), "{row}");
 }
+
+/// `--tracks` keeps the named tracks (globs allowed) in every command, and names the tracks
+/// there are when a pattern matches none.
+#[test]
+fn tracks_selects_by_name_and_glob() {
+    let csv = "track,time,w,x,y,z\nLeftArm,0,1,0,0,0\nLeftArm,1,0,0,0,1\nRightArm,0,1,0,0,0\n\
+               RightArm,1,0,1,0,0\nHips,0,1,0,0,0\nHips,1,0,0,1,0\n";
+    let names = |args: &[&str]| {
+        let out = bin().args(args).write_stdin(csv).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let text = String::from_utf8(out.stdout).unwrap();
+        let mut seen: Vec<String> = Vec::new();
+        for l in text.lines().skip(1) {
+            let n = l.split(',').next().unwrap().to_string();
+            if !seen.contains(&n) {
+                seen.push(n);
+            }
+        }
+        seen
+    };
+    let base = ["--input-format", "csv", "--tracks", "Hips,*Arm"];
+    let interp: Vec<&str> = ["interp", "-", "--fps", "2"]
+        .iter()
+        .chain(&base)
+        .copied()
+        .collect();
+    assert_eq!(names(&interp), ["LeftArm", "RightArm", "Hips"]);
+    let convert: Vec<&str> =
+        ["convert", "-", "--input-format", "csv", "--tracks", "L?ft*"].to_vec();
+    assert_eq!(names(&convert), ["LeftArm"]);
+    let out = bin()
+        .args(["interp", "-", "--input-format", "csv", "--tracks", "Spine"])
+        .write_stdin(csv)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert_eq!(
+        String::from_utf8_lossy(&out.stderr),
+        "inbetween: error: --tracks: \"Spine\" matches no track of <stdin>; its tracks are \
+         \"LeftArm\", \"RightArm\", \"Hips\"\n"
+    );
+}
