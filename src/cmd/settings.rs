@@ -162,20 +162,6 @@ fn glob(pattern: &str, name: &str) -> bool {
     p[i..].iter().all(|&c| c == '*')
 }
 
-#[cfg(test)]
-mod tests {
-    use super::glob;
-
-    #[test]
-    fn globs() {
-        assert!(glob("Left*", "LeftArm") && glob("Left*", "Left"));
-        assert!(glob("*Arm", "LeftArm") && !glob("*Arm", "LeftArms"));
-        assert!(glob("L?ft*m", "LeftArm") && !glob("L?ft", "Lft"));
-        assert!(glob("*", "") && glob("a*b*c", "aXbYbZc") && !glob("a*b*c", "aXbY"));
-        assert!(glob("hip", "hip") && !glob("hip", "Hip"));
-    }
-}
-
 /// The input of interp, analyze and plot, read and validated.
 pub struct Curves {
     /// The document as read.
@@ -339,5 +325,19 @@ fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) ->
         },
         grid_rate: fps,
         tcb: tcb_flags(args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::glob;
+
+    #[test]
+    fn globs() {
+        assert!(glob("Left*", "LeftArm") && glob("Left*", "Left"));
+        assert!(glob("*Arm", "LeftArm") && !glob("*Arm", "LeftArms"));
+        assert!(glob("L?ft*m", "LeftArm") && !glob("L?ft", "Lft"));
+        assert!(glob("*", "") && glob("a*b*c", "aXbYbZc") && !glob("a*b*c", "aXbY"));
+        assert!(glob("hip", "hip") && !glob("hip", "Hip"));
     }
 }
