@@ -172,6 +172,12 @@ pub struct ConvertArgs {
     /// frames): 24, 29.97, 30000/1001, ...
     #[arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true)]
     pub fps: Option<Fps>,
+
+    /// Write BVH on this BVH file's skeleton (its hierarchy and channel orders): every track a
+    /// joint, keys on one grid of consecutive frames. Output is BVH unless -o or
+    /// --output-format says otherwise.
+    #[arg(long, value_name = "BVH")]
+    pub skeleton: Option<PathBuf>,
 }
 
 #[derive(Debug, Args)]

@@ -2,12 +2,38 @@
 
 use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
-use inbetween::io::document::KeyTime;
+use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
 use inbetween::io::{Format, OutputFormat};
 use inbetween::{Error, InputError};
 use std::io::Read;
+
+/// `convert … --skeleton clip.bvh -o out.bvh`: the keys as the motion of the skeleton (of the
+/// input itself when it is BVH).
+fn write_bvh(args: &ConvertArgs, doc: &Document, fps: inbetween::Fps) -> Result<(), Error> {
+    let skeleton = match (&args.skeleton, &doc.skeleton) {
+        (Some(path), _) => {
+            let source = path.display().to_string();
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
+            std::sync::Arc::new(inbetween::io::bvh::parse(&text, &source)?.0)
+        }
+        (None, Some(own)) => own.clone(),
+        (None, None) => {
+            return Err(InputError::new(format!(
+                "{}: BVH output needs a skeleton: --skeleton clip.bvh (its hierarchy and channel \
+                 orders)",
+                doc.source
+            ))
+            .into());
+        }
+    };
+    let mut out = Output::open(args.output.output.as_deref())?;
+    inbetween::io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps)?;
+    out.commit()?;
+    Ok(())
+}
 
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
 /// `interp`, a track of one key is fine.
@@ -35,17 +61,25 @@ pub fn run(
         {
             OutputFormat::Doc(Format::Json)
         }
+        // --skeleton writes BVH unless another format is asked for.
+        (OutputFormat::Doc(_), _)
+            if args.skeleton.is_some()
+                && args.output.output_format.is_none()
+                && args.output.output.is_none() =>
+        {
+            OutputFormat::Bvh
+        }
         (f, _) => f,
     };
+    if args.skeleton.is_some() && chosen != OutputFormat::Bvh {
+        return Err(InputError::new(
+            "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
+        )
+        .into());
+    }
     let format = match chosen {
         OutputFormat::Doc(f) => f,
-        OutputFormat::Bvh => {
-            return Err(InputError::new(
-                "convert does not write BVH yet (a --skeleton template is planned); resample \
-                 a BVH clip into BVH with interp",
-            )
-            .into());
-        }
+        OutputFormat::Bvh => return write_bvh(args, &doc, frame_fps),
         OutputFormat::Npy => {
             let what = match (&args.output.output_format, &args.output.output) {
                 (None, Some(path)) => format!("-o {}", path.display()),

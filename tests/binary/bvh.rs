@@ -167,3 +167,61 @@ fn an_independent_reader_agrees() {
         }
     }
 }
+
+/// BVH → `convert` → JSON keys → `convert --skeleton` → BVH gives back every rotation and
+/// position of the file, on its hierarchy byte for byte; keys that are not one grid are refused.
+#[test]
+fn keys_go_back_onto_the_skeleton() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, keys, out) = (
+        dir.path().join("clip.bvh"),
+        dir.path().join("keys.json"),
+        dir.path().join("back.bvh"),
+    );
+    let text = clip(31, 30.0, "0.0333333");
+    std::fs::write(&src, &text).unwrap();
+    let run = |args: &[&std::ffi::OsStr]| crate::support::bin().args(args).output().unwrap();
+    let o = run(&[
+        "convert".as_ref(),
+        src.as_os_str(),
+        "-o".as_ref(),
+        keys.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(&[
+        "convert".as_ref(),
+        keys.as_os_str(),
+        "--skeleton".as_ref(),
+        src.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let back = std::fs::read_to_string(&out).unwrap();
+    assert!(back.starts_with(HIERARCHY));
+    let ((_, want), (_, got)) = (poses(&text), poses(&back));
+    assert_eq!(got.len(), want.len());
+    for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+        assert!(
+            rot_angle(g.0, w.0) < 1e-12 && rot_angle(g.1, w.1) < 1e-12,
+            "frame {i}"
+        );
+        assert_eq!(g.2, w.2, "frame {i}");
+    }
+    // Keys at uneven times are not one grid.
+    let o = crate::support::bin()
+        .args(["convert", "-", "--input-format", "csv", "--skeleton"])
+        .arg(&src)
+        .arg("-o")
+        .arg(dir.path().join("x.bvh"))
+        .write_stdin("track,time,w,x,y,z\nHips,0,1,0,0,0\nHips,0.5,1,0,0,0\n")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("--skeleton writes keys that are frames of one grid"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

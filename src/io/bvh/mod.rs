@@ -57,6 +57,7 @@
 
 pub mod document;
 pub mod frames;
+pub mod keys;
 pub mod rate;
 pub mod read;
 pub mod write;
