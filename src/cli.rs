@@ -57,6 +57,74 @@ pub enum Command {
     ///   inbetween convert keys.csv --from euler:zxz --angles rad --to quat -o keys.json
     #[command(verbatim_doc_comment)]
     Convert(ConvertArgs),
+
+    /// The fewest keys that interp turns back into the motion: every input frame within the
+    /// tolerance, checked before writing.
+    ///
+    /// Examples:
+    ///   inbetween reduce clip.csv --tolerance 0.5 -o keys.json
+    ///   inbetween reduce clip.bvh --tolerance 1 --method optimal --shared-keys -o keys.json
+    ///   inbetween reduce frames.csv --tolerance 0.2 --distance 50 --scheme slerp
+    #[command(verbatim_doc_comment)]
+    Reduce(ReduceArgs),
+}
+
+#[derive(Debug, Args)]
+pub struct ReduceArgs {
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    #[command(flatten)]
+    pub output: OutputArgs,
+
+    /// Largest rotation error of any input frame, in --angles units (with --distance, a length).
+    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    pub tolerance: f64,
+
+    /// The scheme the keys are for (interp's --scheme; use the same with interp).
+    #[arg(long, value_enum, default_value = "bezier")]
+    pub scheme: SchemeArg,
+
+    #[command(flatten)]
+    pub curve: CurveArgs,
+
+    /// greedy (near-linear) or optimal (fewest keys by shortest path; never more than greedy).
+    #[arg(long, value_enum, default_value = "greedy")]
+    pub method: MethodArg,
+
+    /// Measure the error as the displacement 2·D·sin(θ/2) of a point D length units from the
+    /// joint (the tolerance is then a length).
+    #[arg(long, value_name = "D", value_parser = parse_positive)]
+    pub distance: Option<f64>,
+
+    /// Largest position error (length units) for tracks with translations (required for them).
+    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    pub translation_tolerance: Option<f64>,
+
+    /// One set of key times for all tracks (pose keys), every track within the tolerance.
+    #[arg(long)]
+    pub shared_keys: bool,
+
+    /// Write keys alone (interp estimates their tangents), not each key's angular velocity.
+    #[arg(long)]
+    pub no_velocities: bool,
+
+    /// Report per track on stderr: frames in, keys out, ratio, max and mean error.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MethodArg {
+    Greedy,
+    Optimal,
+}
+
+fn parse_positive(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("expected a positive number, found \"{s}\"")),
+    }
 }
 
 /// Where the keys come from and how to read them.

@@ -52,6 +52,7 @@ pub mod error;
 pub mod io;
 pub mod metrics;
 pub mod position;
+pub mod reduce;
 pub mod rotation;
 pub mod tangent;
 pub mod track;

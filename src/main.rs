@@ -26,6 +26,7 @@ fn main() -> ExitCode {
         Command::Interp(args) => cmd::interp::run(args, &mut stdin, &mut warn),
         Command::Analyze(args) => cmd::analyze::run(args, &mut stdin, &mut warn),
         Command::Plot(args) => cmd::plot::run(args, &mut stdin, &mut warn),
+        Command::Reduce(args) => cmd::reduce::run(args, &mut stdin, &mut warn),
     };
     for line in warnings.summary() {
         eprintln!("{line}");

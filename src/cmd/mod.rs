@@ -4,4 +4,5 @@ pub mod analyze;
 pub mod convert;
 pub mod interp;
 pub mod plot;
+pub mod reduce;
 pub mod settings;

@@ -205,3 +205,90 @@ fn dense_output_with_velocities_reads_back_as_itself() {
         }
     }
 }
+
+/// `reduce` as a user runs it: `reduce clip.csv --tolerance 0.5 -o keys.json && interp keys.json
+/// --fps 30 -o back.csv` gives every frame of the clip within 0.5°, for every scheme (the same
+/// `--scheme` both times), with and without velocities.
+#[test]
+fn reduce_then_interp_gives_every_frame_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let mut cmd = Command::cargo_bin("inbetween").unwrap();
+        let out = cmd
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .args(args)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out.stdout
+    };
+    let clip = dir.path().join("clip.csv");
+    let clip = clip.to_str().unwrap();
+    run(&[
+        "interp",
+        "fixtures/interp/nonuniform.csv",
+        "--fps",
+        "30",
+        "-o",
+        clip,
+    ]);
+    let want = frame_rows_q(&std::fs::read(clip).unwrap());
+    for scheme in ["bezier", "hermite", "squad", "slerp", "minaccel"] {
+        for extra in [
+            &[][..],
+            &["--no-velocities"][..],
+            &["--method", "optimal"][..],
+        ] {
+            let keys = dir.path().join(format!("{scheme}.json"));
+            let keys = keys.to_str().unwrap();
+            let mut args = vec![
+                "reduce",
+                clip,
+                "--tolerance",
+                "0.5",
+                "--scheme",
+                scheme,
+                "-o",
+                keys,
+            ];
+            args.extend(extra);
+            run(&args);
+            let back = run(&[
+                "interp",
+                keys,
+                "--fps",
+                "30",
+                "--scheme",
+                scheme,
+                "--output-format",
+                "csv",
+            ]);
+            let got = frame_rows_q(&back);
+            assert_eq!(got.len(), want.len(), "{scheme} {extra:?}");
+            for (g, w) in got.iter().zip(&want) {
+                assert_eq!(g.0, w.0);
+                let e = rot_angle(g.1, w.1).to_degrees();
+                assert!(e <= 0.5, "{scheme} {extra:?} at {}: {e}°", g.0);
+            }
+        }
+    }
+}
+
+/// (time, rotation) rows of interp's CSV output.
+fn frame_rows_q(text: &[u8]) -> Vec<(f64, DQuat)> {
+    let mut rdr = csv::Reader::from_reader(text);
+    let h = rdr.headers().unwrap().clone();
+    let c = |n: &str| h.iter().position(|x| x == n).unwrap();
+    let (t, w, x, y, z) = (c("time"), c("w"), c("x"), c("y"), c("z"));
+    rdr.records()
+        .map(|r| {
+            let r = r.unwrap();
+            let f = |i: usize| r[i].parse::<f64>().unwrap();
+            (f(t), DQuat::from_xyzw(f(x), f(y), f(z), f(w)))
+        })
+        .collect()
+}

@@ -8,6 +8,7 @@ mod api;
 mod conventions;
 mod minaccel;
 mod properties;
+mod reduce;
 mod spins;
 mod tangents;
 mod unwrap;

@@ -61,6 +61,16 @@ pub fn write_keys<W: Write>(
     let named = doc.named_tracks || doc.tracks.len() > 1;
     // Translations are finite by construction (readers refuse anything else).
     let positions = doc.tracks.iter().any(|t| !t.translations.is_empty());
+    // A key's own angular velocity, in the output angle unit per second.
+    let key_velocities = doc.tracks.iter().any(|t| !t.velocities.is_empty());
+    let key_velocity = |track: &crate::io::document::DocTrack, i: usize| {
+        track
+            .velocities
+            .get(i)
+            .copied()
+            .flatten()
+            .map(|w| w.to_array().map(|x| style.angles.from_rad(x)))
+    };
     // The last line of defence: one check per written value (see the module `write`).
     let refuse = |ti: usize, item: &str, bad: Bad| {
         internal_error(item, doc.tracks[ti].name.as_deref(), ti, bad)
@@ -89,6 +99,9 @@ pub fn write_keys<W: Write>(
                 buf.push(b',');
                 buf.extend_from_slice(c.as_bytes());
             }
+            if key_velocities {
+                buf.extend_from_slice(b",wx,wy,wz");
+            }
             if positions {
                 buf.extend_from_slice(b",tx,ty,tz");
             }
@@ -105,6 +118,17 @@ pub fn write_keys<W: Write>(
                     let euler = unwrap.as_mut().map(|u| u.next(key.rot));
                     let ok = rot.csv(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
+                    if key_velocities {
+                        match key_velocity(track, i) {
+                            Some(w) => {
+                                for x in w {
+                                    buf.push(b',');
+                                    nums.shortest(&mut buf, x);
+                                }
+                            }
+                            None => buf.extend_from_slice(b",,,"),
+                        }
+                    }
                     if positions {
                         match track.translations.get(i).copied().flatten() {
                             Some(p) => {
@@ -124,7 +148,8 @@ pub fn write_keys<W: Write>(
             let velocities = doc
                 .tracks
                 .iter()
-                .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some());
+                .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some())
+                || key_velocities;
             json_head(
                 &mut buf,
                 all_frames.then_some(frame_fps),
@@ -183,6 +208,16 @@ pub fn write_keys<W: Write>(
                     let euler = unwrap.as_mut().map(|u| u.next(key.rot));
                     let ok = rot.json(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
+                    if let Some(w) = key_velocity(track, i) {
+                        buf.extend_from_slice(b", \"velocity\": [");
+                        for (j, x) in w.iter().enumerate() {
+                            if j > 0 {
+                                buf.extend_from_slice(b", ");
+                            }
+                            nums.shortest(&mut buf, *x);
+                        }
+                        buf.push(b']');
+                    }
                     if let Some(p) = track.translations.get(i).copied().flatten() {
                         buf.extend_from_slice(b", \"translation\": [");
                         for (j, x) in p.to_array().iter().enumerate() {
