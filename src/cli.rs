@@ -96,10 +96,15 @@ pub struct InputArgs {
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
     pub quat_order: QuatOrder,
 
-    /// Input format; by default from the file extension, and standard input is sniffed
-    /// (`{` or `[` first means JSON).
+    /// Input format (csv, json, bvh, gltf or glb); by default from the file extension, and
+    /// standard input is sniffed (`{` or `[` first means JSON, `glTF` a GLB).
     #[arg(long, value_name = "F", value_parser = parse_format)]
     pub input_format: Option<Format>,
+
+    /// glTF input: the animation to read, by name, else by index; default every animation
+    /// (tracks named animation/node).
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<String>,
 
     /// Refuse an input larger than this many bytes (a file from its size, standard input once
     /// it passes the limit).

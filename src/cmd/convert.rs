@@ -3,6 +3,7 @@
 use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use inbetween::io::document::KeyTime;
+use inbetween::io::gltf::document::Mode;
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
 use inbetween::io::{Format, OutputFormat};
@@ -16,7 +17,7 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    let (doc, in_format) = read_input(&args.input, stdin, warn)?;
+    let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
     let (frame_fps, _) = rates(&doc, args.fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
@@ -35,6 +36,12 @@ pub fn run(
         {
             OutputFormat::Doc(Format::Json)
         }
+        // So do a glTF input's (tracks = rotation channels).
+        (OutputFormat::Gltf(_), Format::Gltf)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
         (f, _) => f,
     };
     let format = match chosen {
@@ -43,6 +50,13 @@ pub fn run(
             return Err(InputError::new(
                 "convert does not write BVH yet (a --skeleton template is planned); resample \
                  a BVH clip into BVH with interp",
+            )
+            .into());
+        }
+        OutputFormat::Gltf(_) => {
+            return Err(InputError::new(
+                "convert does not write glTF; resample a glTF asset's rotation channels into \
+                 glTF with interp",
             )
             .into());
         }
@@ -65,6 +79,18 @@ pub fn run(
             .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some())
     {
         warn("CSV has no place for start_velocity/end_velocity; they are not written");
+    }
+    if doc.tracks.iter().any(|t| !t.velocities.is_empty()) {
+        let what = if in_format == Format::Gltf {
+            "the CUBICSPLINE tangents, as keys' own angular velocities,"
+        } else {
+            "keys' own angular velocities"
+        };
+        warn(&format!(
+            "{}: {what} are not written: convert does not write per-key velocities yet \
+             (interp uses them)",
+            doc.source
+        ));
     }
     let all_frames = doc
         .tracks

@@ -29,6 +29,8 @@
 
 mod accessor;
 mod channel;
+pub mod document;
+pub mod frames;
 mod write;
 
 pub use channel::{
