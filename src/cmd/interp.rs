@@ -179,9 +179,11 @@ pub fn run(
             check_grid(&clip, fps)?;
             // Without --output-format or a .gltf/.glb name, the input's container.
             let named = args.output.output_format.is_some()
-                || args.output.output.as_deref().is_some_and(|p| {
-                    ContainerFormat::from_path(p).is_some()
-                });
+                || args
+                    .output
+                    .output
+                    .as_deref()
+                    .is_some_and(|p| ContainerFormat::from_path(p).is_some());
             let container = if named {
                 container
             } else {

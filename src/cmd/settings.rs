@@ -9,15 +9,15 @@ use glam::DVec3;
 use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
 use inbetween::io::document::{Document, KeyTime};
-use inbetween::io::gltf::{Asset, ContainerFormat};
 use inbetween::io::gltf::document::{GltfClip, Mode};
+use inbetween::io::gltf::{Asset, ContainerFormat};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
-use std::sync::Arc;
 use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
 };
 use std::io::Read;
+use std::sync::Arc;
 
 impl From<SchemeArg> for Scheme {
     fn from(s: SchemeArg) -> Scheme {

@@ -440,7 +440,10 @@ mod tests {
             "Other"
         );
         let e = clip("samplers.glb", Some("Run")).unwrap_err();
-        assert!(e.message().contains("--animation Run: no such animation"), "{e}");
+        assert!(
+            e.message().contains("--animation Run: no such animation"),
+            "{e}"
+        );
     }
 
     #[test]
