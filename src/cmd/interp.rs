@@ -92,7 +92,7 @@ pub fn run(
     // those frames reproduces them.
     let baked = CurveOptions {
         scheme: Scheme::Slerp,
-        ..input.opts.clone()
+        ..input.opts
     };
     let curves = tracks
         .iter()
