@@ -82,15 +82,13 @@ pub fn run(
     }
     if doc.tracks.iter().any(|t| !t.velocities.is_empty()) {
         let what = if in_format == Format::Gltf {
-            "the CUBICSPLINE tangents, as keys' own angular velocities,"
+            "the CUBICSPLINE tangents, as keys' own angular velocities, are not written: convert \
+             does not write per-key velocities yet (interp bakes the spline exactly)"
         } else {
-            "keys' own angular velocities"
+            "keys' own angular velocities are not written: convert does not write per-key \
+             velocities yet (interp uses them)"
         };
-        warn(&format!(
-            "{}: {what} are not written: convert does not write per-key velocities yet \
-             (interp uses them)",
-            doc.source
-        ));
+        warn(&format!("{}: {what}", doc.source));
     }
     let all_frames = doc
         .tracks
