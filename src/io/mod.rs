@@ -354,6 +354,27 @@ mod tests {
     }
 
     #[test]
+    fn gltf_is_read_from_bytes_before_the_utf8_check() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/gltf/samplers.glb");
+        let opts = ReadOptions::default();
+        let (doc, format) = read_path(&path, None, &opts).unwrap();
+        assert_eq!(format, Format::Gltf);
+        assert_eq!(doc.tracks[0].name.as_deref(), Some("Mixed/step"));
+        // Sniffed from the GLB magic, without a name.
+        let bytes = std::fs::read(&path).unwrap();
+        let (sniffed, format) = parse_bytes(bytes, "<stdin>", None, None, &opts).unwrap();
+        assert_eq!(
+            (sniffed.tracks.len(), format),
+            (doc.tracks.len(), Format::Gltf)
+        );
+        assert_eq!(Format::parse("glb").unwrap(), Format::Gltf);
+        assert_eq!(
+            OutputFormat::parse("glb").unwrap(),
+            OutputFormat::Gltf(gltf::ContainerFormat::Glb)
+        );
+    }
+
+    #[test]
     fn input_angles_win_over_angles_for_undeclared_input() {
         let mut o = ReadOptions {
             angles: AngleUnit::Rad,
