@@ -96,8 +96,8 @@ pub struct InputArgs {
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
     pub quat_order: QuatOrder,
 
-    /// Input format (csv, json, bvh, gltf or glb); by default from the file extension, and
-    /// standard input is sniffed (`{` or `[` first means JSON, `glTF` a GLB).
+    /// Input format; by default from the file extension, and standard input is sniffed
+    /// (`{` or `[` first means JSON).
     #[arg(long, value_name = "F", value_parser = parse_format)]
     pub input_format: Option<Format>,
 
