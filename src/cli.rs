@@ -169,6 +169,11 @@ pub struct InputArgs {
     #[arg(long, value_name = "F", value_parser = parse_format)]
     pub input_format: Option<Format>,
 
+    /// glTF input: the animation to read, by name, else by index; default every animation
+    /// (tracks named animation/node).
+    #[arg(long, value_name = "NAME|INDEX")]
+    pub animation: Option<String>,
+
     /// Refuse an input larger than this many bytes (a file from its size, standard input once
     /// it passes the limit).
     #[arg(long, value_name = "N", default_value_t = inbetween::io::DEFAULT_MAX_INPUT_BYTES)]

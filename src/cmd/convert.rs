@@ -3,6 +3,7 @@
 use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use inbetween::io::document::{Document, KeyTime};
+use inbetween::io::gltf::document::Mode;
 use inbetween::io::output::Output;
 use inbetween::io::write::{Style, write_keys};
 use inbetween::io::{Format, OutputFormat};
@@ -42,7 +43,7 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    let (doc, in_format) = read_input(&args.input, stdin, warn)?;
+    let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
     let (frame_fps, _) = rates(&doc, args.fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
@@ -69,6 +70,12 @@ pub fn run(
         {
             OutputFormat::Bvh
         }
+        // A glTF input's keys default to JSON (tracks = rotation channels).
+        (OutputFormat::Gltf(_), Format::Gltf)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
         (f, _) => f,
     };
     if args.skeleton.is_some() && chosen != OutputFormat::Bvh {
@@ -80,6 +87,13 @@ pub fn run(
     let format = match chosen {
         OutputFormat::Doc(f) => f,
         OutputFormat::Bvh => return write_bvh(args, &doc, frame_fps),
+        OutputFormat::Gltf(_) => {
+            return Err(InputError::new(
+                "convert does not write glTF; resample a glTF asset's rotation channels into \
+                 glTF with interp",
+            )
+            .into());
+        }
         OutputFormat::Npy => {
             let what = match (&args.output.output_format, &args.output.output) {
                 (None, Some(path)) => format!("-o {}", path.display()),

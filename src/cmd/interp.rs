@@ -5,9 +5,14 @@ use crate::cli::{InterpArgs, SpanArg};
 use inbetween::error::num;
 use inbetween::io::OutputFormat;
 use inbetween::io::bvh::frames::BvhFrames;
+use inbetween::io::gltf::ContainerFormat;
+use inbetween::io::gltf::document::Mode;
+use inbetween::io::gltf::frames::{GltfFrames, check_grid};
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter, Style};
-use inbetween::{BakeOptions, Curve, Error, FrameSink, InputError, Track, bake_over};
+use inbetween::{
+    BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, Track, bake_over,
+};
 use std::io::Read;
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
@@ -29,9 +34,25 @@ pub fn run(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
             (lo.min(t.span().0), hi.max(t.span().1))
         });
-    let span = |t: &Track| match args.span {
-        SpanArg::Clip => clip,
-        SpanArg::Track => t.span(),
+    let format = output_format(&args.output, input.format);
+    // A glTF input: each track's animation, whose span (every sampler's keys) the clip covers;
+    // glTF output writes each animation over its own span.
+    let gltf = input.gltf.as_deref();
+    let animation_of = |t: &Track| {
+        let clip = gltf?;
+        clip.source_of(t.name()?, Mode::Frames).map(|s| s.animation)
+    };
+    let clip = match gltf {
+        Some(g) => (0..g.animations().len())
+            .map(|a| g.span(a, fps))
+            .fold(clip, |(lo, hi), (a, b)| (lo.min(a), hi.max(b))),
+        None => clip,
+    };
+    let to_gltf = matches!(format, OutputFormat::Gltf(_));
+    let span = |t: &Track| match (args.span, animation_of(t).filter(|_| to_gltf)) {
+        (_, Some(a)) => gltf.map_or(clip, |g| g.span(a, fps)),
+        (SpanArg::Clip, None) => clip,
+        (SpanArg::Track, None) => t.span(),
     };
     for t in tracks {
         let (t0, t1) = t.span();
@@ -67,11 +88,23 @@ pub fn run(
         .into());
     }
     // Input errors found while building a curve (minaccel's grid cap) name the file too.
+    // A glTF STEP or CUBICSPLINE channel is already its curve at every frame: slerp between
+    // those frames reproduces them.
+    let baked = CurveOptions {
+        scheme: Scheme::Slerp,
+        ..input.opts
+    };
     let curves = tracks
         .iter()
-        .map(|t| Curve::new(t, &input.opts).map_err(|e| e.at(&doc.source)))
+        .map(|t| {
+            let is_baked = gltf
+                .zip(t.name())
+                .and_then(|(g, n)| g.source_of(n, Mode::Frames))
+                .is_some_and(|s| s.baked);
+            let opts = if is_baked { &baked } else { &input.opts };
+            Curve::new(t, opts).map_err(|e| e.at(&doc.source))
+        })
         .collect::<Result<Vec<_>, _>>()?;
-    let format = output_format(&args.output, input.format);
     let bake_opts = BakeOptions {
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
@@ -127,9 +160,53 @@ pub fn run(
         }
         _ => None,
     };
+    let gltf_out = match format {
+        OutputFormat::Gltf(container) => {
+            let Some(clip) = input.gltf.clone() else {
+                return Err(InputError::new(format!(
+                    "{}: glTF output is written into a glTF input's asset; this input is not \
+                     glTF (write csv or json)",
+                    doc.source
+                ))
+                .into());
+            };
+            if args.span == SpanArg::Track {
+                return Err(InputError::new(
+                    "--span track: glTF output writes each animation over its own span; use \
+                     --span clip",
+                )
+                .into());
+            }
+            if args.velocity {
+                return Err(InputError::new(
+                    "--velocity: glTF has no place for angular velocities; write csv or json",
+                )
+                .into());
+            }
+            check_grid(&clip, fps)?;
+            // Without --output-format or a .gltf/.glb name, the input's container.
+            let named = args.output.output_format.is_some()
+                || args
+                    .output
+                    .output
+                    .as_deref()
+                    .is_some_and(|p| ContainerFormat::from_path(p).is_some());
+            let container = if named {
+                container
+            } else {
+                clip.asset().container()
+            };
+            Some((clip, container))
+        }
+        _ => None,
+    };
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
     let mut sink: Box<dyn Sink> = match format {
         OutputFormat::Bvh => Box::new(BvhFrames::new(out, skeleton.expect("checked above"), fps)),
+        OutputFormat::Gltf(_) => {
+            let (clip, container) = gltf_out.expect("checked above");
+            Box::new(GltfFrames::new(out, clip, fps, container))
+        }
         OutputFormat::Doc(format) => {
             let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);
             Box::new(if positions { w.with_positions() } else { w })
@@ -178,6 +255,12 @@ impl Sink for FrameWriter<WriteBehind> {
 }
 
 impl Sink for BvhFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
+    }
+}
+
+impl Sink for GltfFrames<WriteBehind> {
     fn into_output(self: Box<Self>) -> std::io::Result<Output> {
         self.into_inner()?.finish()
     }

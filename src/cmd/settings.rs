@@ -9,12 +9,15 @@ use glam::DVec3;
 use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
 use inbetween::io::document::{Document, KeyTime};
+use inbetween::io::gltf::document::{GltfClip, Mode};
+use inbetween::io::gltf::{Asset, ContainerFormat};
 use inbetween::io::{Format, OutputFormat, ReadOptions};
 use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
 };
 use std::io::Read;
+use std::sync::Arc;
 
 impl From<SchemeArg> for Scheme {
     fn from(s: SchemeArg) -> Scheme {
@@ -55,12 +58,16 @@ pub fn key_rate_warning(doc: &Document, frame_fps: Fps) -> Option<String> {
 }
 
 /// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
-/// Warnings found while reading go to `warn`.
+/// Warnings found while reading go to `warn`. A glTF input is read at `fps` (`--fps`, else 30:
+/// its keys snap to that rate's frames and, for [`Mode::Frames`], its `STEP` and `CUBICSPLINE`
+/// channels are baked at it), and its asset comes back for glTF output.
 pub fn read_input(
     args: &InputArgs,
+    fps: Option<Fps>,
+    mode: Mode,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> Result<(Document, Format), InputError> {
+) -> Result<(Document, Format, Option<Arc<GltfClip>>), InputError> {
     let opts = ReadOptions {
         from: args.from,
         angles: args.angles,
@@ -69,14 +76,32 @@ pub fn read_input(
         quat_order: args.quat_order,
         delimiter: args.delimiter,
     };
-    let (doc, format) = match args.input.as_deref() {
-        Some(p) if p.as_os_str() != "-" => {
-            inbetween::io::read_path_limited(p, args.input_format, &opts, args.max_input_bytes)?
+    let path = args.input.as_deref().filter(|p| p.as_os_str() != "-");
+    let (bytes, source) = match path {
+        Some(p) => (
+            inbetween::io::read_bytes_limited(p, args.max_input_bytes)?,
+            p.display().to_string(),
+        ),
+        None => (
+            inbetween::io::read_limited(stdin, args.max_input_bytes, "<stdin>")?,
+            "<stdin>".to_string(),
+        ),
+    };
+    let (doc, format, clip) = if inbetween::io::is_gltf(&bytes, path, args.input_format) {
+        let dir = path.map(inbetween::io::gltf_dir);
+        let asset = Asset::from_slice(&bytes, &source, dir.as_deref())?;
+        let clip = GltfClip::new(asset, args.animation.as_deref())?;
+        let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode);
+        (doc, Format::Gltf, Some(Arc::new(clip)))
+    } else {
+        if args.animation.is_some() {
+            return Err(InputError::new(format!(
+                "--animation: {source} is not glTF; only a glTF asset has animations to choose"
+            )));
         }
-        _ => {
-            let bytes = inbetween::io::read_limited(stdin, args.max_input_bytes, "<stdin>")?;
-            inbetween::io::parse_bytes(bytes, "<stdin>", None, args.input_format, &opts)?
-        }
+        let (doc, format) =
+            inbetween::io::parse_bytes(bytes, &source, path, args.input_format, &opts)?;
+        (doc, format, None)
     };
     for w in &doc.warnings {
         warn(w);
@@ -85,7 +110,7 @@ pub fn read_input(
         Some(patterns) => select_tracks(doc, patterns)?,
         None => doc,
     };
-    Ok((doc, format))
+    Ok((doc, format, clip))
 }
 
 /// `--tracks`: the document's tracks whose names match one of the comma-separated patterns, in
@@ -174,6 +199,8 @@ pub struct Curves {
     pub fps: Fps,
     /// The curve options of the command line (scheme: `scheme`).
     pub opts: CurveOptions,
+    /// A glTF input's asset and chosen animations.
+    pub gltf: Option<Arc<GltfClip>>,
 }
 
 /// Reads the input and validates it into tracks, with the output rate and the curve options.
@@ -184,7 +211,7 @@ pub fn read_curves(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<Curves, InputError> {
-    let (doc, format) = read_input(input, stdin, warn)?;
+    let (doc, format, gltf) = read_input(input, curve.fps, Mode::Frames, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
     if let Some(w) = key_rate_warning(&doc, frame_fps) {
         warn(&w);
@@ -251,6 +278,7 @@ pub fn read_curves(
         tracks,
         fps,
         opts,
+        gltf,
     })
 }
 
@@ -266,6 +294,8 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
         .or_else(by_extension)
         .unwrap_or(match input {
             Format::Bvh => OutputFormat::Bvh,
+            // interp writes the input's container (convert writes JSON keys).
+            Format::Gltf => OutputFormat::Gltf(ContainerFormat::Glb),
             f => OutputFormat::Doc(f),
         })
 }

@@ -30,28 +30,34 @@ pub enum Format {
     Json,
     /// A BVH motion-capture file (input; as output, [`OutputFormat::Bvh`]).
     Bvh,
+    /// A glTF 2.0 asset, `.gltf` JSON or `.glb` binary (input; as output,
+    /// [`OutputFormat::Gltf`]): its animations' rotation channels ([`gltf::document`]).
+    Gltf,
 }
 
 impl Format {
-    /// `csv` or `json`.
+    /// `csv`, `json`, `bvh`, or `gltf`/`glb` (either container: it is recognised by its
+    /// bytes).
     pub fn parse(s: &str) -> InputResult<Format> {
         match s {
             "csv" => Ok(Format::Csv),
             "json" => Ok(Format::Json),
             "bvh" => Ok(Format::Bvh),
+            "gltf" | "glb" => Ok(Format::Gltf),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\" or \"bvh\", found \"{s}\""
+                "expected \"csv\", \"json\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
             )),
         }
     }
 
-    /// From a file extension (`.csv`, `.json`, case-insensitive).
+    /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, case-insensitive).
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
             "csv" => Some(Format::Csv),
             "json" => Some(Format::Json),
             "bvh" => Some(Format::Bvh),
+            "gltf" | "glb" => Some(Format::Gltf),
             _ => None,
         }
     }
@@ -78,17 +84,23 @@ pub enum OutputFormat {
     Npy,
     /// A BVH file on the input's skeleton (BVH input only).
     Bvh,
+    /// The input glTF asset with resampled rotation channels (glTF input only), in this
+    /// container.
+    Gltf(gltf::ContainerFormat),
 }
 
 impl OutputFormat {
-    /// `csv`, `json` or `npy`.
+    /// `csv`, `json`, `npy`, `bvh`, `gltf` or `glb`.
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
             "bvh" => Ok(OutputFormat::Bvh),
-            _ => Format::parse(s).map(OutputFormat::Doc).map_err(|_| {
-                input_err!("expected \"csv\", \"json\", \"npy\" or \"bvh\", found \"{s}\"")
-            }),
+            "gltf" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Gltf)),
+            "glb" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Glb)),
+            "csv" | "json" => Format::parse(s).map(OutputFormat::Doc),
+            _ => Err(input_err!(
+                "expected \"csv\", \"json\", \"npy\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+            )),
         }
     }
 }
@@ -148,8 +160,19 @@ pub fn settle<T: PartialEq + std::fmt::Display>(
     }
 }
 
-/// Parses a document from raw bytes: UTF-8 checked, the format as given, else from `path`'s
-/// extension, else sniffed. `source` names the input in messages.
+/// Whether bytes are a glTF asset: the format as given, else `path`'s extension, else the
+/// bytes start with the GLB magic `glTF`.
+pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> bool {
+    format
+        .or_else(|| path.and_then(Format::from_path))
+        .map_or(bytes.starts_with(b"glTF"), |f| f == Format::Gltf)
+}
+
+/// Parses a document from raw bytes: the format as given, else from `path`'s extension, else
+/// sniffed. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
+/// snapped to and its `STEP`/`CUBICSPLINE` channels baked at `--key-fps`, else 30 fps
+/// ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
+/// UTF-8. `source` names the input in messages.
 pub fn parse_bytes(
     bytes: Vec<u8>,
     source: &str,
@@ -157,6 +180,16 @@ pub fn parse_bytes(
     format: Option<Format>,
     opts: &ReadOptions,
 ) -> InputResult<(Document, Format)> {
+    if is_gltf(&bytes, path, format) {
+        let dir = path.map(gltf_dir);
+        let asset = gltf::Asset::from_slice(&bytes, source, dir.as_deref())?;
+        let clip = gltf::document::GltfClip::new(asset, None)?;
+        let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
+        return Ok((
+            clip.document(fps, gltf::document::Mode::Frames),
+            Format::Gltf,
+        ));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         input_err!(
             "{source}: expected UTF-8 text, found an invalid byte at offset {}",
@@ -167,6 +200,14 @@ pub fn parse_bytes(
         .or_else(|| path.and_then(Format::from_path))
         .unwrap_or_else(|| Format::sniff(&text));
     Ok((read_document(&text, source, format, opts)?, format))
+}
+
+/// The folder where the external buffers of the glTF file at `path` are: its parent.
+pub fn gltf_dir(path: &Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    }
 }
 
 /// The default limit on the size of an input: 1 GiB. A keyframe document larger than this is an
@@ -223,6 +264,14 @@ pub fn read_path_limited(
     opts: &ReadOptions,
     limit: u64,
 ) -> InputResult<(Document, Format)> {
+    let bytes = read_bytes_limited(path, limit)?;
+    parse_bytes(bytes, &path.display().to_string(), Some(path), format, opts)
+}
+
+/// The bytes of a file of at most `limit` bytes, else the input error of [`read_limited`]. A
+/// regular file larger than `limit` is refused before it is read; anything else (a pipe, a
+/// device) is read up to `limit + 1` bytes.
+pub fn read_bytes_limited(path: &Path, limit: u64) -> InputResult<Vec<u8>> {
     let source = path.display().to_string();
     let cannot = |e: std::io::Error| input_err!("{source}: cannot read: {e}");
     let mut file = std::fs::File::open(path).map_err(cannot)?;
@@ -238,8 +287,7 @@ pub fn read_path_limited(
     // One byte more than the size, so that a file that grew while being read is still caught
     // without a second allocation.
     let capacity = size.map_or(0, |n| usize::try_from(n.saturating_add(1)).unwrap_or(0));
-    let bytes = read_limited_with_capacity(&mut file, limit, &source, capacity)?;
-    parse_bytes(bytes, &source, Some(path), format, opts)
+    read_limited_with_capacity(&mut file, limit, &source, capacity)
 }
 
 /// Parses a document in the given format.
@@ -255,6 +303,12 @@ pub fn read_document(
         Format::Bvh => {
             let (clip, warnings) = bvh::parse(text, source)?;
             Ok(bvh::document::document(clip, source, warnings))
+        }
+        Format::Gltf => {
+            let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
+            let clip = gltf::document::GltfClip::new(asset, None)?;
+            let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
+            Ok(clip.document(fps, gltf::document::Mode::Frames))
         }
     }
 }
@@ -296,6 +350,27 @@ mod tests {
         assert_eq!(
             fps.unwrap_err().message(),
             "k.json declares \"fps\": 24 but --key-fps says 30000/1001"
+        );
+    }
+
+    #[test]
+    fn gltf_is_read_from_bytes_before_the_utf8_check() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("fixtures/gltf/samplers.glb");
+        let opts = ReadOptions::default();
+        let (doc, format) = read_path(&path, None, &opts).unwrap();
+        assert_eq!(format, Format::Gltf);
+        assert_eq!(doc.tracks[0].name.as_deref(), Some("Mixed/step"));
+        // Sniffed from the GLB magic, without a name.
+        let bytes = std::fs::read(&path).unwrap();
+        let (sniffed, format) = parse_bytes(bytes, "<stdin>", None, None, &opts).unwrap();
+        assert_eq!(
+            (sniffed.tracks.len(), format),
+            (doc.tracks.len(), Format::Gltf)
+        );
+        assert_eq!(Format::parse("glb").unwrap(), Format::Gltf);
+        assert_eq!(
+            OutputFormat::parse("glb").unwrap(),
+            OutputFormat::Gltf(gltf::ContainerFormat::Glb)
         );
     }
 

@@ -8,6 +8,7 @@ mod animator;
 mod app_conventions;
 mod bvh;
 mod errors;
+mod gltf;
 mod hard_cases;
 mod numbers;
 mod output;

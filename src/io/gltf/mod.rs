@@ -14,6 +14,10 @@
 //! never a panic. Writing ([`Asset::write`]) works on the JSON as a `serde_json::Value`, so
 //! whatever the `gltf` crate does not model (unknown extensions, `extras`) survives untouched.
 //!
+//! - [`document`]: the chosen animations' rotation channels as a keyframe document (tracks),
+//!   keys snapped to a frame rate, `STEP`/`CUBICSPLINE` channels baked for interpolation.
+//! - [`frames`]: interp's frames written back into the asset ([`frames::GltfFrames`]).
+//!
 //! ```
 //! use inbetween::io::gltf::{Asset, Interpolation};
 //!
@@ -29,6 +33,8 @@
 
 mod accessor;
 mod channel;
+pub mod document;
+pub mod frames;
 mod write;
 
 pub use channel::{

@@ -1,0 +1,146 @@
+//! [`GltfFrames`]: baked frames written into the input asset as new `LINEAR` rotation samplers.
+//!
+//! Each track is a rotation channel of a [`GltfClip`] (by name). Every track of an animation is
+//! baked over the frames of that animation's span ([`GltfClip::frames`]); at
+//! [`FrameSink::finish`] each animation gets one time accessor and each channel a new sampler
+//! ([`Asset::write`](super::Asset::write) with [`Resampled`]). The asset is otherwise as read.
+
+use super::document::{GltfClip, Mode};
+use super::{ContainerFormat, Resampled};
+use crate::bake::FrameSink;
+use crate::clock::Fps;
+use crate::error::InputResult;
+use crate::error::input_err;
+use glam::{DQuat, DVec3};
+use std::io::{self, Write};
+use std::sync::Arc;
+
+/// Baked frames into a glTF asset (see the module documentation).
+pub struct GltfFrames<W: Write> {
+    out: Option<W>,
+    clip: Arc<GltfClip>,
+    fps: Fps,
+    format: ContainerFormat,
+    /// Per track: `(animation, channel, first frame, rotations)`.
+    tracks: Vec<(usize, usize, Option<i64>, Vec<DQuat>)>,
+}
+
+fn internal(msg: String) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!("internal error: {msg}"),
+    )
+}
+
+impl<W: Write> GltfFrames<W> {
+    /// Frames of `clip`'s tracks at `fps`, to be written as `format` to `out`.
+    pub fn new(out: W, clip: Arc<GltfClip>, fps: Fps, format: ContainerFormat) -> GltfFrames<W> {
+        GltfFrames {
+            out: Some(out),
+            clip,
+            fps,
+            format,
+            tracks: Vec::new(),
+        }
+    }
+
+    /// The destination, after [`FrameSink::finish`].
+    pub fn into_inner(mut self) -> io::Result<W> {
+        self.out
+            .take()
+            .ok_or_else(|| internal("glTF output taken twice".into()))
+    }
+}
+
+/// Checks, before anything is written, that every chosen animation has frames at `fps` and
+/// that their times stay distinct as float32.
+pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<()> {
+    let src = clip.asset().source();
+    for (a, anim) in clip.animations().iter().enumerate() {
+        let (first, last) = clip.frames(a, fps);
+        let (lo, hi) = clip.span(a, fps);
+        if first > last {
+            return Err(input_err!(
+                "{src}: animation {}: its span [{}, {}] s holds no frame at {fps} fps",
+                anim.label(),
+                crate::error::num(lo),
+                crate::error::num(hi)
+            ));
+        }
+        let mut prev: Option<f32> = None;
+        for k in first..=last {
+            let t = fps.time_of(k) as f32;
+            if prev.is_some_and(|p| t <= p) {
+                return Err(input_err!(
+                    "{src}: animation {}: frames {} and {k} at {fps} fps have the same float32 \
+                     time; glTF times are float32: use a lower --fps",
+                    anim.label(),
+                    k - 1
+                ));
+            }
+            prev = Some(t);
+        }
+    }
+    Ok(())
+}
+
+impl<W: Write> FrameSink for GltfFrames<W> {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
+        let s = name
+            .and_then(|n| self.clip.source_of(n, Mode::Frames))
+            .ok_or_else(|| internal(format!("no glTF channel for track {name:?}")))?;
+        self.tracks.push((s.animation, s.channel, None, Vec::new()));
+        Ok(())
+    }
+
+    fn frame(&mut self, k: i64, _time: f64, q: DQuat, _omega: Option<DVec3>) -> io::Result<()> {
+        let t = self
+            .tracks
+            .last_mut()
+            .ok_or_else(|| internal("a frame before a track".into()))?;
+        let first = *t.2.get_or_insert(k);
+        if k - first != t.3.len() as i64 {
+            return Err(internal(format!("frame {k} out of order")));
+        }
+        t.3.push(q);
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        let mut resampled: Vec<Resampled> = Vec::new();
+        for (a, anim) in self.clip.animations().iter().enumerate() {
+            let (first, last) = self.clip.frames(a, self.fps);
+            let mut r = Resampled {
+                animation: anim.index(),
+                times: (first..=last).map(|k| self.fps.time_of(k)).collect(),
+                channels: Vec::new(),
+            };
+            for (ta, c, f, qs) in &self.tracks {
+                if *ta != a {
+                    continue;
+                }
+                if *f != Some(first) || qs.len() != r.times.len() {
+                    return Err(internal(format!(
+                        "animation {a} channel {c}: frames {f:?}+{} for {first}..={last}",
+                        qs.len()
+                    )));
+                }
+                r.channels.push((*c, qs.clone()));
+            }
+            if !r.channels.is_empty() {
+                resampled.push(r);
+            }
+        }
+        let bytes = self
+            .clip
+            .asset()
+            .to_bytes(&resampled, self.format)
+            .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e.message().to_string()))?;
+        let out = self
+            .out
+            .as_mut()
+            .ok_or_else(|| internal("glTF output finished twice".into()))?;
+        out.write_all(&bytes)?;
+        out.flush()
+    }
+}
