@@ -5,7 +5,7 @@ use crate::cli::ConvertArgs;
 use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::gltf::document::Mode;
 use inbetween::io::output::Output;
-use inbetween::io::write::{Style, write_keys};
+use inbetween::io::write::write_keys;
 use inbetween::io::{Format, OutputFormat};
 use inbetween::{Error, InputError};
 use std::io::Read;
@@ -126,13 +126,7 @@ pub fn run(
              {frame_fps} fps; read them back with --key-fps {frame_fps}"
         ));
     }
-    let style = Style {
-        repr: args.output.to,
-        angles: args.input.angles,
-        quat_order: args.input.quat_order,
-        num: args.output.num_format(),
-        euler: args.output.euler_mode(),
-    };
+    let style = super::settings::style(&args.input, &args.output);
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &doc, format, style, frame_fps)?;
     out.commit()?;

@@ -9,7 +9,7 @@ use inbetween::io::gltf::ContainerFormat;
 use inbetween::io::gltf::document::Mode;
 use inbetween::io::gltf::frames::{GltfFrames, check_grid};
 use inbetween::io::output::{Output, WriteBehind};
-use inbetween::io::write::{FrameWriter, NpyWriter, Style};
+use inbetween::io::write::{FrameWriter, NpyWriter};
 use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, Track, bake_over,
 };
@@ -111,13 +111,7 @@ pub fn run(
         // formatting already uses the second core (measured: docs/performance.md).
         parallel: format == OutputFormat::Npy,
     };
-    let style = Style {
-        repr: args.output.to,
-        angles: args.input.angles,
-        quat_order: args.input.quat_order,
-        num: args.output.num_format(),
-        euler: args.output.euler_mode(),
-    };
+    let style = super::settings::style(&args.input, &args.output);
     let track_column = doc.named_tracks || tracks.len() > 1;
     let positions = tracks.iter().any(|t| t.translations().is_some());
     if positions && format == OutputFormat::Npy {

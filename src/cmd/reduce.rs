@@ -6,7 +6,7 @@ use crate::cli::{MethodArg, ReduceArgs};
 use inbetween::io::OutputFormat;
 use inbetween::io::document::{DocTrack, Document, KeyOrigin};
 use inbetween::io::output::Output;
-use inbetween::io::write::{Style, write_keys};
+use inbetween::io::write::write_keys;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce, reduce_shared};
 use inbetween::{Error, InputError};
 use std::io::Read;
@@ -129,13 +129,7 @@ pub fn run(
         skeleton: None,
     };
     let (frame_fps, _) = rates(doc, args.curve.fps);
-    let style = Style {
-        repr: args.output.to,
-        angles: args.input.angles,
-        quat_order: args.input.quat_order,
-        num: args.output.num_format(),
-        euler: args.output.euler_mode(),
-    };
+    let style = super::settings::style(&args.input, &args.output);
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &out_doc, format, style, frame_fps)?;
     out.commit()?;

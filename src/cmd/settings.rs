@@ -11,6 +11,7 @@ use inbetween::error::num;
 use inbetween::io::document::{Document, KeyTime};
 use inbetween::io::gltf::document::{GltfClip, Mode};
 use inbetween::io::gltf::{Asset, ContainerFormat};
+use inbetween::io::write::Style;
 use inbetween::io::{Format, OutputFormat, ReadOptions};
 use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
@@ -319,6 +320,18 @@ fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
         )));
     }
     t.retimed(times).map_err(InputError::from)
+}
+
+/// The output style of the command line: `--to`, `--angles`, `--quat-order`, `--precision`,
+/// `--euler`.
+pub fn style(input: &InputArgs, output: &OutputArgs) -> Style {
+    Style {
+        repr: output.to,
+        angles: input.angles,
+        quat_order: input.quat_order,
+        num: output.num_format(),
+        euler: output.euler_mode(),
+    }
 }
 
 /// `--tension`, `--continuity`, `--bias`.

@@ -224,38 +224,22 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
                 number(i).map(Some)
             }
         };
-        let key_velocity = match &vel_idx {
-            Some(idx) => {
-                let v = [optional(idx[0])?, optional(idx[1])?, optional(idx[2])?];
-                match v {
-                    [Some(x), Some(y), Some(z)] => {
-                        let unit = opts.undeclared_angles();
-                        Some(DVec3::new(unit.to_rad(x), unit.to_rad(y), unit.to_rad(z)))
-                    }
-                    [None, None, None] => None,
-                    _ => {
-                        return Err(input_err!(
-                            "{}: columns wx,wy,wz: expected three numbers or three empty cells",
-                            loc()
-                        ));
-                    }
-                }
+        // Three optional cells that are filled together or not at all.
+        let triple = |idx: &Option<Vec<usize>>, names: &str| -> InputResult<Option<DVec3>> {
+            let Some(idx) = idx else { return Ok(None) };
+            match [optional(idx[0])?, optional(idx[1])?, optional(idx[2])?] {
+                [Some(x), Some(y), Some(z)] => Ok(Some(DVec3::new(x, y, z))),
+                [None, None, None] => Ok(None),
+                _ => Err(input_err!(
+                    "{}: columns {names}: expected three numbers or three empty cells",
+                    loc()
+                )),
             }
-            None => None,
         };
-        let key_translation = match &pos_idx {
-            Some(idx) => match [optional(idx[0])?, optional(idx[1])?, optional(idx[2])?] {
-                [Some(x), Some(y), Some(z)] => Some(DVec3::new(x, y, z)),
-                [None, None, None] => None,
-                _ => {
-                    return Err(input_err!(
-                        "{}: columns tx,ty,tz: expected three numbers or three empty cells",
-                        loc()
-                    ));
-                }
-            },
-            None => None,
-        };
+        let unit = opts.undeclared_angles();
+        let key_velocity = triple(&vel_idx, "wx,wy,wz")?
+            .map(|v| DVec3::from_array(v.to_array().map(|x| unit.to_rad(x))));
+        let key_translation = triple(&pos_idx, "tx,ty,tz")?;
         let mut key_tcb = [None; 3];
         for (slot, i) in key_tcb.iter_mut().zip(tcb_idx) {
             if let Some(i) = i {
