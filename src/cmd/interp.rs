@@ -14,6 +14,7 @@ use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, Track, bake_over,
 };
 use std::io::Read;
+use std::path::Path;
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
 ///
@@ -199,7 +200,20 @@ pub fn run(
         OutputFormat::Bvh => Box::new(BvhFrames::new(out, skeleton.expect("checked above"), fps)),
         OutputFormat::Gltf(_) => {
             let (clip, container) = gltf_out.expect("checked above");
-            Box::new(GltfFrames::new(out, clip, fps, container))
+            let frames = GltfFrames::new(out, clip, fps, container);
+            // Written to a file: relative URIs are rewritten for its folder.
+            match args
+                .output
+                .output
+                .as_deref()
+                .filter(|p| p.as_os_str() != "-")
+            {
+                Some(path) => {
+                    let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
+                    Box::new(frames.in_folder(dir.unwrap_or(Path::new("."))))
+                }
+                None => Box::new(frames),
+            }
         }
         OutputFormat::Doc(format) => {
             let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);

@@ -225,3 +225,286 @@ fn keys_go_back_onto_the_skeleton() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+// ---- a real clip: CMU subject 1, trial 1 (fixtures/bvh/cmu_01_01.bvh, 61 frames at 120 fps) ----
+
+/// A BVH file as this test reads it, independently of `inbetween::io::bvh`: the text before
+/// `MOTION`, each joint's channel names, `Frame Time` as written, and the rows.
+struct Plain {
+    hierarchy: String,
+    joints: Vec<(String, Vec<String>)>,
+    frame_time: String,
+    rows: Vec<Vec<f64>>,
+}
+
+fn plain(text: &str) -> Plain {
+    let (hierarchy, motion) = text.split_at(text.find("MOTION").unwrap());
+    let mut joints = Vec::new();
+    let mut name = String::new();
+    for line in hierarchy.lines().map(str::trim) {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.first() {
+            Some(&"ROOT") | Some(&"JOINT") => name = words[1].to_string(),
+            Some(&"CHANNELS") => joints.push((
+                name.clone(),
+                words[2..].iter().map(|w| w.to_string()).collect(),
+            )),
+            _ => {}
+        }
+    }
+    let mut lines = motion.lines().skip(1);
+    let frames: usize = lines
+        .next()
+        .unwrap()
+        .split(':')
+        .nth(1)
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    let frame_time = lines
+        .next()
+        .unwrap()
+        .split(':')
+        .nth(1)
+        .unwrap()
+        .trim()
+        .to_string();
+    let rows: Vec<Vec<f64>> = lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), frames);
+    Plain {
+        hierarchy: hierarchy.to_string(),
+        joints,
+        frame_time,
+        rows,
+    }
+}
+
+impl Plain {
+    /// Per frame, per joint: the rotation (intrinsic, in the listed order, degrees) and the
+    /// position channels' values.
+    fn poses(&self) -> Vec<Vec<(DQuat, Vec<f64>)>> {
+        self.rows
+            .iter()
+            .map(|row| {
+                let mut at = 0;
+                self.joints
+                    .iter()
+                    .map(|(_, channels)| {
+                        let (mut order, mut angles, mut position) =
+                            (String::new(), Vec::new(), Vec::new());
+                        for c in channels {
+                            if c.ends_with("rotation") {
+                                order.push_str(&c[..1]);
+                                angles.push(row[at].to_radians());
+                            } else {
+                                position.push(row[at]);
+                            }
+                            at += 1;
+                        }
+                        let seq = match order.as_str() {
+                            "ZYX" => EulerRot::ZYX,
+                            "ZXY" => EulerRot::ZXY,
+                            "YXZ" => EulerRot::YXZ,
+                            "YZX" => EulerRot::YZX,
+                            "XYZ" => EulerRot::XYZ,
+                            "XZY" => EulerRot::XZY,
+                            o => panic!("order {o}"),
+                        };
+                        (
+                            DQuat::from_euler(seq, angles[0], angles[1], angles[2]),
+                            position,
+                        )
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+fn cmu() -> (std::path::PathBuf, String) {
+    let path = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let text = std::fs::read_to_string(&path).unwrap();
+    (path, text)
+}
+
+/// Frame `i` of `a` and frame `j` of `b` are the same pose: rotations to `tol` rad, positions
+/// to 1e-9.
+#[track_caller]
+fn same_pose(a: &[(DQuat, Vec<f64>)], b: &[(DQuat, Vec<f64>)], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len());
+    for (k, (x, y)) in a.iter().zip(b).enumerate() {
+        let d = rot_angle(x.0, y.0);
+        assert!(d < tol, "{what}: joint {k}: {d:e} rad");
+        for (p, q) in x.1.iter().zip(&y.1) {
+            assert!(
+                (p - q).abs() < 1e-9,
+                "{what}: joint {k}: position {p} vs {q}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_real_clip_at_its_own_rate_comes_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, text) = cmu();
+    let back = interp(&src, None, &dir.path().join("o.bvh"));
+    let (a, b) = (plain(&text), plain(&back));
+    assert_eq!(b.hierarchy, a.hierarchy, "hierarchy byte for byte");
+    assert_eq!(b.rows.len(), 61);
+    let (want, got) = (a.poses(), b.poses());
+    for (i, (w, g)) in want.iter().zip(&got).enumerate() {
+        same_pose(w, g, 1e-8, &format!("frame {i}"));
+    }
+}
+
+/// 120 → 100 fps, and the same motion at 30 fps (every fourth row) → 24 fps: ⌊duration·fps⌋ + 1
+/// frames, the exact Frame Time, and the frames both grids share are the input's own.
+#[test]
+fn a_real_clip_resampled_keeps_its_duration_and_shared_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let (_, text) = cmu();
+    let a = plain(&text);
+    let head = text.split("Frames:").next().unwrap();
+    let mut at30 = format!("{head}Frames: 16\nFrame Time: .0333333\n");
+    for line in text
+        .lines()
+        .skip_while(|l| !l.starts_with("Frame Time"))
+        .skip(1)
+        .step_by(4)
+    {
+        at30 += line;
+        at30.push('\n');
+    }
+    let src30 = dir.path().join("cmu30.bvh");
+    std::fs::write(&src30, &at30).unwrap();
+    for (src, input, fps, frames, time, (every_in, every_out)) in [
+        (cmu().0, a.poses(), "100", 51, "0.01", (6, 5)),
+        (
+            src30.clone(),
+            plain(&at30).poses(),
+            "24",
+            13,
+            "0.0416666667",
+            (5, 4),
+        ),
+    ] {
+        let back = plain(&interp(
+            &src,
+            Some(fps),
+            &dir.path().join(format!("o{fps}.bvh")),
+        ));
+        assert_eq!(back.hierarchy, a.hierarchy);
+        assert_eq!(back.rows.len(), frames, "{fps} fps");
+        assert_eq!(back.frame_time, time);
+        let got = back.poses();
+        for j in 0..(input.len() - 1) / every_in + 1 {
+            same_pose(
+                &input[j * every_in],
+                &got[j * every_out],
+                1e-8,
+                &format!("{fps} fps, shared frame {j}"),
+            );
+        }
+    }
+}
+
+/// bvhio reads our 100 fps resample of the real clip: frame count and time, every joint's
+/// channel order, and the rotations (float32 in bvhio).
+#[test]
+fn an_independent_reader_agrees_on_a_real_clip() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let python = root.join("target/ci-venv/bin/python");
+    if !python.exists() {
+        assert!(
+            std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
+            "target/ci-venv is missing"
+        );
+        eprintln!("note: bvhio check skipped (no target/ci-venv)");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("o.bvh");
+    let ours = plain(&interp(&cmu().0, Some("100"), &out));
+    let o = std::process::Command::new(&python)
+        .arg(root.join("fixtures/bvh/read_bvh.py"))
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(doc["frame_count"], 51);
+    assert!((doc["frame_time"].as_f64().unwrap() - 0.01).abs() < 1e-12);
+    let source = plain(&cmu().1);
+    let orders: Vec<String> = doc["joints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|j| j["rotation_order"].as_str().unwrap().to_string())
+        .collect();
+    let want: Vec<String> = source
+        .joints
+        .iter()
+        .map(|(_, c)| {
+            c.iter()
+                .filter(|c| c.ends_with("rotation"))
+                .map(|c| &c[..1])
+                .collect()
+        })
+        .collect();
+    assert_eq!(orders, want);
+    let poses = ours.poses();
+    let mut compared = 0;
+    for (i, frame) in doc["frames"].as_array().unwrap().iter().enumerate() {
+        for (j, pose) in poses[i].iter().enumerate() {
+            let r: Vec<f64> = frame[j]["rotation"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            let theirs = DQuat::from_xyzw(r[1], r[2], r[3], r[0]).normalize();
+            assert!(rot_angle(theirs, pose.0) < 1e-5, "frame {i} joint {j}");
+            compared += 1;
+        }
+    }
+    assert_eq!(compared, 51 * source.joints.len());
+}
+
+/// BVH → `convert` → JSON → `convert --skeleton` → BVH on the real clip: every rotation and
+/// position back, on the hierarchy byte for byte.
+#[test]
+fn a_real_clip_goes_through_keys_and_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, text) = cmu();
+    let (keys, out) = (dir.path().join("keys.json"), dir.path().join("back.bvh"));
+    let run = |args: &[&std::ffi::OsStr]| {
+        let o = crate::support::bin().args(args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    };
+    run(&[
+        "convert".as_ref(),
+        src.as_os_str(),
+        "-o".as_ref(),
+        keys.as_os_str(),
+    ]);
+    run(&[
+        "convert".as_ref(),
+        keys.as_os_str(),
+        "--skeleton".as_ref(),
+        src.as_os_str(),
+        "-o".as_ref(),
+        out.as_os_str(),
+    ]);
+    let (a, b) = (plain(&text), plain(&std::fs::read_to_string(&out).unwrap()));
+    assert_eq!(b.hierarchy, a.hierarchy);
+    let (want, got) = (a.poses(), b.poses());
+    assert_eq!(got.len(), 61);
+    for (i, (w, g)) in want.iter().zip(&got).enumerate() {
+        same_pose(w, g, 1e-8, &format!("frame {i}"));
+    }
+}

@@ -13,6 +13,7 @@ use crate::error::InputResult;
 use crate::error::input_err;
 use glam::{DQuat, DVec3};
 use std::io::{self, Write};
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Baked frames into a glTF asset (see the module documentation).
@@ -21,6 +22,8 @@ pub struct GltfFrames<W: Write> {
     clip: Arc<GltfClip>,
     fps: Fps,
     format: ContainerFormat,
+    /// The folder the output goes to (relative URIs are rewritten for it).
+    out_dir: Option<PathBuf>,
     /// Per track: `(animation, channel, first frame, rotations)`.
     tracks: Vec<(usize, usize, Option<i64>, Vec<DQuat>)>,
 }
@@ -40,8 +43,17 @@ impl<W: Write> GltfFrames<W> {
             clip,
             fps,
             format,
+            out_dir: None,
             tracks: Vec::new(),
         }
+    }
+
+    /// The output goes into the folder `dir`, not beside the input: relative URIs (images,
+    /// external buffers) are rewritten to name the input's files from there
+    /// ([`Asset::to_bytes_in`](super::Asset::to_bytes_in)).
+    pub fn in_folder(mut self, dir: &Path) -> GltfFrames<W> {
+        self.out_dir = Some(dir.to_path_buf());
+        self
     }
 
     /// The destination, after [`FrameSink::finish`].
@@ -134,7 +146,7 @@ impl<W: Write> FrameSink for GltfFrames<W> {
         let bytes = self
             .clip
             .asset()
-            .to_bytes(&resampled, self.format)
+            .to_bytes_in(&resampled, self.format, self.out_dir.as_deref())
             .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e.message().to_string()))?;
         let out = self
             .out

@@ -58,6 +58,8 @@ pub struct Asset {
     json: serde_json::Value,
     buffers: Vec<Vec<u8>>,
     container: ContainerFormat,
+    /// The folder relative URIs were resolved against (`None`: read from bytes alone).
+    base_dir: Option<PathBuf>,
 }
 
 /// One animation of an asset: its rotation and translation channels (scale and morph-weight
@@ -152,6 +154,7 @@ impl Asset {
             json,
             buffers,
             container,
+            base_dir: base_dir.map(Path::to_path_buf),
         })
     }
 

@@ -20,8 +20,10 @@
 //!
 //! The samplers and accessors the processed channels used before are left in place, unused
 //! (valid glTF; the Khronos validator reports unused objects as information only), so every
-//! index in the file keeps its meaning. Relative URIs (images, other buffers) are copied
-//! unchanged: write the output beside the input, or copy those files along.
+//! index in the file keeps its meaning. Relative URIs (images, buffers that stay external) still
+//! name the input's files: written into another folder ([`Asset::to_bytes_in`]), each is
+//! rewritten relative to that folder (`../assets/skin.png`); `data:` URIs and absolute URIs are
+//! kept as they are.
 
 use super::Asset;
 use crate::error::{Error, InputError, input_err};
@@ -96,6 +98,42 @@ fn pad4(v: &mut Vec<u8>, byte: u8) {
     }
 }
 
+/// Whether `uri` is a relative reference (RFC 3986 §4.2) naming a file: not a `data:` URI, no
+/// scheme, not an absolute path.
+fn is_relative_reference(uri: &str) -> bool {
+    let scheme = uri.split_once(':').is_some_and(|(s, _)| {
+        s.starts_with(|c: char| c.is_ascii_alphabetic())
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+    });
+    !scheme && !uri.starts_with('/') && !uri.starts_with('\\')
+}
+
+/// The percent-encoded path from `out_dir` to `base_dir`, ending in `/` (`"../in/"`), or `None`
+/// when they are the same folder or either cannot be resolved.
+fn uri_prefix(out_dir: &Path, base_dir: &Path) -> Option<String> {
+    let out = std::fs::canonicalize(out_dir).ok()?;
+    let base = std::fs::canonicalize(base_dir).ok()?;
+    if out == base {
+        return None;
+    }
+    let (o, b): (Vec<_>, Vec<_>) = (out.components().collect(), base.components().collect());
+    let common = o.iter().zip(&b).take_while(|(x, y)| x == y).count();
+    let mut prefix = "../".repeat(o.len() - common);
+    for part in &b[common..] {
+        let part = part.as_os_str().to_str()?;
+        for byte in part.bytes() {
+            if byte.is_ascii_alphanumeric() || b"-._~".contains(&byte) {
+                prefix.push(byte as char);
+            } else {
+                prefix += &format!("%{byte:02X}");
+            }
+        }
+        prefix.push('/');
+    }
+    Some(prefix)
+}
+
 fn array_mut<'v>(obj: &'v mut Value, key: &str) -> &'v mut Vec<Value> {
     let map = obj.as_object_mut().expect("a glTF object");
     let entry = map.entry(key).or_insert_with(|| Value::Array(Vec::new()));
@@ -123,14 +161,44 @@ impl Asset {
         Ok(())
     }
 
-    /// The bytes [`Asset::write`] writes.
+    /// The bytes [`Asset::write`] writes: relative URIs unchanged, for a file beside the input.
     pub fn to_bytes(
         &self,
         resampled: &[Resampled],
         format: ContainerFormat,
     ) -> Result<Vec<u8>, InputError> {
+        self.to_bytes_in(resampled, format, None)
+    }
+
+    /// The bytes of the asset written into the folder `out_dir`: as [`Asset::to_bytes`], with
+    /// every relative URI of `buffers` and `images` rewritten to name, from `out_dir`, the file
+    /// it named beside the input (unchanged when the folders are the same, when either cannot
+    /// be resolved, or when the asset was read from bytes alone).
+    pub fn to_bytes_in(
+        &self,
+        resampled: &[Resampled],
+        format: ContainerFormat,
+        out_dir: Option<&Path>,
+    ) -> Result<Vec<u8>, InputError> {
         let src = &self.source;
         let mut json = self.json.clone();
+        if let Some(prefix) =
+            out_dir.and_then(|o| self.base_dir.as_deref().and_then(|b| uri_prefix(o, b)))
+        {
+            for key in ["buffers", "images"] {
+                let Some(items) = json.get_mut(key).and_then(Value::as_array_mut) else {
+                    continue;
+                };
+                for item in items.iter_mut() {
+                    let Some(uri) = item.get("uri").and_then(Value::as_str) else {
+                        continue;
+                    };
+                    if is_relative_reference(uri) {
+                        item["uri"] = json!(format!("{prefix}{uri}"));
+                    }
+                }
+            }
+        }
         let mut new = Appended::default();
         // New accessors as (new view number, accessor JSON without bufferView).
         let mut accessors: Vec<(usize, Value)> = Vec::new();
@@ -357,4 +425,37 @@ fn continuous_unit(qs: &[DQuat]) -> Result<Vec<DVec4>, usize> {
         out.push(u);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod uri_tests {
+    use super::{is_relative_reference, uri_prefix};
+
+    #[test]
+    fn relative_references_are_files_without_a_scheme() {
+        for uri in ["a.bin", "tex/skin%20a.png", "../b.bin", "c:d.png"] {
+            assert_eq!(is_relative_reference(uri), uri != "c:d.png", "{uri}");
+        }
+        for uri in [
+            "data:application/octet-stream;base64,AA==",
+            "https://x/y.png",
+            "/abs/y.bin",
+        ] {
+            assert!(!is_relative_reference(uri), "{uri}");
+        }
+    }
+
+    #[test]
+    fn the_prefix_leads_from_the_output_folder_to_the_input_folder() {
+        let root = tempfile::tempdir().unwrap();
+        let (input, output) = (root.path().join("in put"), root.path().join("a/out"));
+        std::fs::create_dir_all(&input).unwrap();
+        std::fs::create_dir_all(&output).unwrap();
+        assert_eq!(
+            uri_prefix(&output, &input).as_deref(),
+            Some("../../in%20put/")
+        );
+        assert_eq!(uri_prefix(&input, &input), None);
+        assert_eq!(uri_prefix(&root.path().join("missing"), &input), None);
+    }
 }
