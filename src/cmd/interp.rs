@@ -178,7 +178,9 @@ pub fn run(
                 )
                 .into());
             }
-            check_grid(&clip, fps)?;
+            for w in check_grid(&clip, fps)? {
+                warn(&w);
+            }
             // Without --output-format or a .gltf/.glb name, the input's container.
             let named = args.output.output_format.is_some()
                 || args

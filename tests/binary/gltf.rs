@@ -768,3 +768,24 @@ fn real_assets_resample_validate_and_keep_their_keys() {
         }
     }
 }
+
+/// An animation whose span holds no frame at the output rate (oaktree's `idle`: one STEP key at
+/// 0.04 s, written at 30 fps) is written as it was, with a warning; the others are resampled.
+#[test]
+fn an_animation_without_frames_is_kept_as_it_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = fixtures().join("gltf/real/oaktree.gltf");
+    let out = dir.path().join("oak30.glb");
+    let stderr = ok(args!("interp", &src, "--fps", "30", "-o", &out));
+    assert!(
+        stderr.contains("animation idle: its span [0.03999999910593033, 0.03999999910593033] s holds no frame at 30 fps; it is written as it was"),
+        "{stderr}"
+    );
+    validate(&out);
+    let (before, after) = (asset_json(&src), asset_json(&out));
+    assert_eq!(after["animations"][0], before["animations"][0]);
+    assert_ne!(after["animations"][1], before["animations"][1]);
+    let spawn = channel(&Asset::read_path(&out).unwrap(), 1, 1);
+    assert_eq!(spawn.interpolation(), Interpolation::Linear);
+    assert_eq!(spawn.values().len(), 17); // 0.04 s .. 0.6 s: frames 2..=18 at 30 fps
+}

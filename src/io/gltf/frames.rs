@@ -64,20 +64,25 @@ impl<W: Write> GltfFrames<W> {
     }
 }
 
-/// Checks, before anything is written, that every chosen animation has frames at `fps` and
-/// that their times stay distinct as float32.
-pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<()> {
+/// Checks, before anything is written, that the frames of every chosen animation at `fps`
+/// have distinct float32 times. An animation whose span holds no frame (a pose: one key at
+/// 1/24 s, written at 30 fps) is written as it was, its samplers untouched; the warnings say
+/// which.
+pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
     let src = clip.asset().source();
+    let mut warnings = Vec::new();
     for (a, anim) in clip.animations().iter().enumerate() {
         let (first, last) = clip.frames(a, fps);
         let (lo, hi) = clip.span(a, fps);
         if first > last {
-            return Err(input_err!(
-                "{src}: animation {}: its span [{}, {}] s holds no frame at {fps} fps",
+            warnings.push(format!(
+                "{src}: animation {}: its span [{}, {}] s holds no frame at {fps} fps; it is \
+                 written as it was",
                 anim.label(),
                 crate::error::num(lo),
                 crate::error::num(hi)
             ));
+            continue;
         }
         let mut prev: Option<f32> = None;
         for k in first..=last {
@@ -93,7 +98,7 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<()> {
             prev = Some(t);
         }
     }
-    Ok(())
+    Ok(warnings)
 }
 
 impl<W: Write> FrameSink for GltfFrames<W> {
@@ -122,6 +127,9 @@ impl<W: Write> FrameSink for GltfFrames<W> {
         let mut resampled: Vec<Resampled> = Vec::new();
         for (a, anim) in self.clip.animations().iter().enumerate() {
             let (first, last) = self.clip.frames(a, self.fps);
+            if first > last {
+                continue; // no frame: the animation stays as it was (check_grid warned)
+            }
             let mut r = Resampled {
                 animation: anim.index(),
                 times: (first..=last).map(|k| self.fps.time_of(k)).collect(),
