@@ -121,28 +121,15 @@ fn resampling_keeps_the_duration_and_the_shared_frames() {
 /// instead of skipping).
 #[test]
 fn an_independent_reader_agrees() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/ci-venv/bin/python");
-    if !python.exists() {
-        assert!(
-            std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
-            "target/ci-venv is missing"
-        );
-        eprintln!("note: bvhio check skipped (no target/ci-venv)");
+    let Some(python) = crate::support::checker_python("bvhio check") else {
         return;
-    }
+    };
     let dir = tempfile::tempdir().unwrap();
     let (src, out) = (dir.path().join("c.bvh"), dir.path().join("o.bvh"));
     let text = clip(31, 30.0, "0.0333333");
     std::fs::write(&src, &text).unwrap();
     interp(&src, Some("24"), &out);
-    let o = std::process::Command::new(&python)
-        .arg(root.join("fixtures/bvh/read_bvh.py"))
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let doc = crate::support::python_json(&python, "fixtures/bvh/read_bvh.py", &[out.as_os_str()]);
     assert_eq!(doc["frame_count"], 25);
     assert!((doc["frame_time"].as_f64().unwrap() - 1.0 / 24.0).abs() < 1e-9);
     let orders: Vec<&str> = doc["joints"]
@@ -417,26 +404,13 @@ fn a_real_clip_resampled_keeps_its_duration_and_shared_frames() {
 /// channel order, and the rotations (float32 in bvhio).
 #[test]
 fn an_independent_reader_agrees_on_a_real_clip() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/ci-venv/bin/python");
-    if !python.exists() {
-        assert!(
-            std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
-            "target/ci-venv is missing"
-        );
-        eprintln!("note: bvhio check skipped (no target/ci-venv)");
+    let Some(python) = crate::support::checker_python("bvhio check") else {
         return;
-    }
+    };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("o.bvh");
     let ours = plain(&interp(&cmu().0, Some("100"), &out));
-    let o = std::process::Command::new(&python)
-        .arg(root.join("fixtures/bvh/read_bvh.py"))
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let doc: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let doc = crate::support::python_json(&python, "fixtures/bvh/read_bvh.py", &[out.as_os_str()]);
     assert_eq!(doc["frame_count"], 51);
     assert!((doc["frame_time"].as_f64().unwrap() - 0.01).abs() < 1e-12);
     let source = plain(&cmu().1);

@@ -588,26 +588,12 @@ fn python_cubicspline(
     channel: usize,
     times: &[f64],
 ) -> Option<Vec<DQuat>> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let python = root.join("target/ci-venv/bin/python");
-    if !python.exists() {
-        assert!(
-            std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
-            "target/ci-venv is missing"
-        );
-        eprintln!("note: CUBICSPLINE reference check skipped (no target/ci-venv)");
-        return None;
-    }
-    let o = std::process::Command::new(python)
-        .arg(root.join("fixtures/gltf/cubicspline_ref.py"))
-        .arg(asset)
-        .arg(animation.to_string())
-        .arg(channel.to_string())
-        .args(times.iter().map(|t| format!("{t:?}")))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let doc: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let python = crate::support::checker_python("CUBICSPLINE reference check")?;
+    let (a, c) = (animation.to_string(), channel.to_string());
+    let times: Vec<String> = times.iter().map(|t| format!("{t:?}")).collect();
+    let mut args: Vec<&std::ffi::OsStr> = vec![asset.as_os_str(), a.as_ref(), c.as_ref()];
+    args.extend(times.iter().map(|t| std::ffi::OsStr::new(t)));
+    let doc = crate::support::python_json(&python, "fixtures/gltf/cubicspline_ref.py", &args);
     let rotations = doc["rotations"].as_array().unwrap();
     assert_eq!(rotations.len(), times.len());
     Some(

@@ -22,6 +22,42 @@ pub fn bin() -> assert_cmd::Command {
     c
 }
 
+/// The Python of the reference checkers (`target/ci-venv`, which `.ci/run` builds from
+/// `fixtures/requirements.txt`), or `None` with a note that the check `what` is skipped. Where
+/// INBETWEEN_REQUIRE_PYTHON_CHECKS is set (CI) a missing venv is a failure instead.
+#[track_caller]
+pub fn checker_python(what: &str) -> Option<PathBuf> {
+    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/ci-venv/bin/python");
+    if python.exists() {
+        return Some(python);
+    }
+    assert!(
+        std::env::var_os("INBETWEEN_REQUIRE_PYTHON_CHECKS").is_none(),
+        "target/ci-venv is missing ({what})"
+    );
+    eprintln!("note: {what} skipped (no target/ci-venv)");
+    None
+}
+
+/// Runs `python script args…` from the repository root and parses its standard output as
+/// JSON, asserting it succeeded.
+#[track_caller]
+pub fn python_json(python: &Path, script: &str, args: &[&std::ffi::OsStr]) -> serde_json::Value {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let o = std::process::Command::new(python)
+        .arg(root.join(script))
+        .args(args)
+        .current_dir(root)
+        .output()
+        .expect("python runs");
+    assert!(
+        o.status.success(),
+        "{script}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).expect("JSON from the checker")
+}
+
 /// Runs `cmd`, asserts it succeeded (printing its stderr if not), and returns its stdout.
 #[track_caller]
 pub fn stdout_of(cmd: &mut assert_cmd::Command) -> String {
