@@ -592,7 +592,7 @@ fn python_cubicspline(
     let (a, c) = (animation.to_string(), channel.to_string());
     let times: Vec<String> = times.iter().map(|t| format!("{t:?}")).collect();
     let mut args: Vec<&std::ffi::OsStr> = vec![asset.as_os_str(), a.as_ref(), c.as_ref()];
-    args.extend(times.iter().map(|t| std::ffi::OsStr::new(t)));
+    args.extend(times.iter().map(std::ffi::OsStr::new));
     let doc = crate::support::python_json(&python, "fixtures/gltf/cubicspline_ref.py", &args);
     let rotations = doc["rotations"].as_array().unwrap();
     assert_eq!(rotations.len(), times.len());
