@@ -170,8 +170,10 @@ pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
 /// over `span` seconds, the chords composed as rotations (see [`Knots::shaped`]).
 fn kb_tangents(lm: DVec3, lp: DVec3, span: f64, tcb: Tcb) -> (DVec3, DVec3) {
     let ((ai, bi), (ao, bo)) = tcb.weights();
+    // The alias bound on the terms composed: for zero TCB (a = b = 1/2) it is the bound of the
+    // plain tangent, ‖L⁻‖ + ‖L⁺‖ > π.
     let one = |a: f64, b: f64| {
-        if lm.length() + lp.length() > std::f64::consts::PI {
+        if (lm * (2.0 * a)).length() + (lp * (2.0 * b)).length() > std::f64::consts::PI {
             (lm * (2.0 * a) + lp * (2.0 * b)) / span
         } else {
             crate::rotation::quat::log(
@@ -223,7 +225,8 @@ impl Knots {
     ///   `w_out = log(exp(2b_out·L⁺)·exp(2a_out·L⁻))/(t_{i+1} − t_{i−1})` and `w_in` likewise —
     ///   their tangent `a·L⁻ + b·L⁺` per unit spacing, adjusted for unequal spacing as in their
     ///   paper, with the sum of chords composed as rotations (for zero TCB it is the line above);
-    ///   past the alias bound `(2a·L⁻ + 2b·L⁺)/(t_{i+1} − t_{i−1})`.
+    ///   past the alias bound of the terms composed, `‖2a·L⁻‖ + ‖2b·L⁺‖ > π`,
+    ///   `(2a·L⁻ + 2b·L⁺)/(t_{i+1} − t_{i−1})`.
     /// - Ends: the rule of `ends` ([`Ends`]); `Cyclic` computes the first key as an interior key
     ///   whose previous key is the one before the last, and gives the last key the same tangents.
     pub fn shaped(track: &Track, path: PathMode, ends: EndConditions, tcb: Tcb) -> Knots {
@@ -402,6 +405,26 @@ impl Knots {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A steady spin about z in 100° steps with tension −1 (weights a = b = 1): the composed
+    /// terms exp(2L⁺)·exp(2L⁻) turn 400° in all, past the alias bound though ‖L⁻‖ + ‖L⁺‖ (100°
+    /// in half angles) is not. The tangent still points along the motion, twice the plain one.
+    #[test]
+    fn large_kb_weights_do_not_alias_the_tangent() {
+        let step = 100f64.to_radians();
+        let t = track(
+            &[0.0, 1.0, 2.0],
+            &[0.0, step, 2.0 * step].map(DQuat::from_rotation_z),
+        );
+        let tcb = Tcb {
+            tension: -1.0,
+            ..Tcb::ZERO
+        };
+        let k = Knots::shaped(&t, PathMode::Shortest, EndConditions::default(), tcb);
+        let want = DVec3::Z * (2.0 * step) / 2.0; // (2·L⁻ + 2·L⁺)/2 s, L = step/2
+        assert!((k.w[1] - want).length() < 1e-12, "{:?} vs {want:?}", k.w[1]);
+        assert!((k.w_in[1] - want).length() < 1e-12, "{:?} vs {want:?}", k.w_in[1]);
+    }
 
     fn track(times: &[f64], quats: &[DQuat]) -> Track {
         Track::new(times.to_vec(), quats.to_vec()).unwrap()
