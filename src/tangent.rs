@@ -423,7 +423,11 @@ mod tests {
         let k = Knots::shaped(&t, PathMode::Shortest, EndConditions::default(), tcb);
         let want = DVec3::Z * (2.0 * step) / 2.0; // (2·L⁻ + 2·L⁺)/2 s, L = step/2
         assert!((k.w[1] - want).length() < 1e-12, "{:?} vs {want:?}", k.w[1]);
-        assert!((k.w_in[1] - want).length() < 1e-12, "{:?} vs {want:?}", k.w_in[1]);
+        assert!(
+            (k.w_in[1] - want).length() < 1e-12,
+            "{:?} vs {want:?}",
+            k.w_in[1]
+        );
     }
 
     fn track(times: &[f64], quats: &[DQuat]) -> Track {

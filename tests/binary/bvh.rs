@@ -116,41 +116,74 @@ fn resampling_keeps_the_duration_and_the_shared_frames() {
     }
 }
 
-/// The output as bvhio reads it: channel orders, frame count and time, rotations. Runs where
-/// the checkers' venv exists (CI builds it; set INBETWEEN_REQUIRE_PYTHON_CHECKS to fail
-/// instead of skipping).
+/// A BVH file as bvhio (an independent library, `fixtures/bvh/read_bvh.py`) reads it.
+struct Bvhio {
+    frame_count: u64,
+    frame_time: f64,
+    /// Each joint's rotation order, e.g. `ZXY`.
+    orders: Vec<String>,
+    /// Per frame, per joint (float32 in bvhio).
+    rotations: Vec<Vec<DQuat>>,
+}
+
+/// `path` as bvhio reads it, where the checkers' venv exists (CI builds it; set
+/// INBETWEEN_REQUIRE_PYTHON_CHECKS to fail instead of skipping).
+fn bvhio(path: &std::path::Path) -> Option<Bvhio> {
+    let python = crate::support::checker_python("bvhio check")?;
+    let doc = crate::support::python_json(&python, "fixtures/bvh/read_bvh.py", &[path.as_os_str()]);
+    let quat = |r: &serde_json::Value| {
+        let r: Vec<f64> = r
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        DQuat::from_xyzw(r[1], r[2], r[3], r[0]).normalize()
+    };
+    Some(Bvhio {
+        frame_count: doc["frame_count"].as_u64().unwrap(),
+        frame_time: doc["frame_time"].as_f64().unwrap(),
+        orders: doc["joints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|j| j["rotation_order"].as_str().unwrap().to_string())
+            .collect(),
+        rotations: doc["frames"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| {
+                f.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|j| quat(&j["rotation"]))
+                    .collect()
+            })
+            .collect(),
+    })
+}
+
+/// The output as bvhio reads it: channel orders, frame count and time, rotations.
 #[test]
 fn an_independent_reader_agrees() {
-    let Some(python) = crate::support::checker_python("bvhio check") else {
-        return;
-    };
     let dir = tempfile::tempdir().unwrap();
     let (src, out) = (dir.path().join("c.bvh"), dir.path().join("o.bvh"));
     let text = clip(31, 30.0, "0.0333333");
     std::fs::write(&src, &text).unwrap();
     interp(&src, Some("24"), &out);
-    let doc = crate::support::python_json(&python, "fixtures/bvh/read_bvh.py", &[out.as_os_str()]);
-    assert_eq!(doc["frame_count"], 25);
-    assert!((doc["frame_time"].as_f64().unwrap() - 1.0 / 24.0).abs() < 1e-9);
-    let orders: Vec<&str> = doc["joints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|j| j["rotation_order"].as_str().unwrap())
-        .collect();
-    assert_eq!(orders, ["ZXY", "YXZ"]);
+    let Some(theirs) = bvhio(&out) else {
+        return;
+    };
+    assert_eq!(theirs.frame_count, 25);
+    assert!((theirs.frame_time - 1.0 / 24.0).abs() < 1e-9);
+    assert_eq!(theirs.orders, ["ZXY", "YXZ"]);
     let (_, ours) = poses(&std::fs::read_to_string(&out).unwrap());
-    for (i, frame) in doc["frames"].as_array().unwrap().iter().enumerate() {
+    assert_eq!(theirs.rotations.len(), ours.len());
+    for (i, frame) in theirs.rotations.iter().enumerate() {
         for (j, q) in [ours[i].0, ours[i].1].iter().enumerate() {
-            let r: Vec<f64> = frame[j]["rotation"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            let theirs = DQuat::from_xyzw(r[1], r[2], r[3], r[0]).normalize();
             // bvhio works in float32.
-            assert!(rot_angle(theirs, *q) < 1e-5, "frame {i} joint {j}");
+            assert!(rot_angle(frame[j], *q) < 1e-5, "frame {i} joint {j}");
         }
     }
 }
@@ -404,23 +437,15 @@ fn a_real_clip_resampled_keeps_its_duration_and_shared_frames() {
 /// channel order, and the rotations (float32 in bvhio).
 #[test]
 fn an_independent_reader_agrees_on_a_real_clip() {
-    let Some(python) = crate::support::checker_python("bvhio check") else {
-        return;
-    };
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("o.bvh");
-    let ours = plain(&interp(&cmu().0, Some("100"), &out));
-    let doc = crate::support::python_json(&python, "fixtures/bvh/read_bvh.py", &[out.as_os_str()]);
-    assert_eq!(doc["frame_count"], 51);
-    assert!((doc["frame_time"].as_f64().unwrap() - 0.01).abs() < 1e-12);
-    let source = plain(&cmu().1);
-    let orders: Vec<String> = doc["joints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|j| j["rotation_order"].as_str().unwrap().to_string())
-        .collect();
-    let want: Vec<String> = source
+    let ours = plain(&interp(&cmu().0, Some("100"), &out)).poses();
+    let Some(theirs) = bvhio(&out) else {
+        return;
+    };
+    assert_eq!(theirs.frame_count, 51);
+    assert!((theirs.frame_time - 0.01).abs() < 1e-12);
+    let want: Vec<String> = plain(&cmu().1)
         .joints
         .iter()
         .map(|(_, c)| {
@@ -430,23 +455,14 @@ fn an_independent_reader_agrees_on_a_real_clip() {
                 .collect()
         })
         .collect();
-    assert_eq!(orders, want);
-    let poses = ours.poses();
-    let mut compared = 0;
-    for (i, frame) in doc["frames"].as_array().unwrap().iter().enumerate() {
-        for (j, pose) in poses[i].iter().enumerate() {
-            let r: Vec<f64> = frame[j]["rotation"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|x| x.as_f64().unwrap())
-                .collect();
-            let theirs = DQuat::from_xyzw(r[1], r[2], r[3], r[0]).normalize();
-            assert!(rot_angle(theirs, pose.0) < 1e-5, "frame {i} joint {j}");
-            compared += 1;
+    assert_eq!(theirs.orders, want);
+    assert_eq!(theirs.rotations.len(), 51);
+    for (i, (frame, pose)) in theirs.rotations.iter().zip(&ours).enumerate() {
+        assert_eq!(frame.len(), want.len());
+        for (j, (q, p)) in frame.iter().zip(pose).enumerate() {
+            assert!(rot_angle(*q, p.0) < 1e-5, "frame {i} joint {j}");
         }
     }
-    assert_eq!(compared, 51 * source.joints.len());
 }
 
 /// BVH → `convert` → JSON → `convert --skeleton` → BVH on the real clip: every rotation and
