@@ -273,23 +273,18 @@ fn plain(text: &str) -> Plain {
         }
     }
     let mut lines = motion.lines().skip(1);
-    let frames: usize = lines
-        .next()
-        .unwrap()
-        .split(':')
-        .nth(1)
-        .unwrap()
-        .trim()
-        .parse()
-        .unwrap();
-    let frame_time = lines
-        .next()
-        .unwrap()
-        .split(':')
-        .nth(1)
-        .unwrap()
-        .trim()
-        .to_string();
+    let mut value = || {
+        lines
+            .next()
+            .unwrap()
+            .split_once(':')
+            .unwrap()
+            .1
+            .trim()
+            .to_string()
+    };
+    let frames: usize = value().parse().unwrap();
+    let frame_time = value();
     let rows: Vec<Vec<f64>> = lines
         .filter(|l| !l.trim().is_empty())
         .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
