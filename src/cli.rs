@@ -63,8 +63,9 @@ pub enum Command {
     ///
     /// Examples:
     ///   inbetween reduce clip.csv --tolerance 0.5 -o keys.json
-    ///   inbetween reduce clip.bvh --tolerance 1 --method optimal --shared-keys -o keys.json
+    ///   inbetween reduce clip.bvh --tolerance 1 --translation-tolerance 0.1 --shared-keys -o keys.json
     ///   inbetween reduce frames.csv --tolerance 0.2 --distance 50 --scheme slerp
+    ///   inbetween reduce anim.glb --tolerance 0.5 --scheme slerp -o small.glb
     #[command(verbatim_doc_comment)]
     Reduce(ReduceArgs),
 }

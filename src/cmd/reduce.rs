@@ -1,10 +1,12 @@
 //! `inbetween reduce`: dense frames in, the fewest keys out that `interp` turns back into them
 //! (the library's [`inbetween::reduce`]).
 
-use super::settings::{output_format, rates, read_curves};
-use crate::cli::{MethodArg, ReduceArgs};
+use super::settings::{Curves, output_format, rates, read_curves};
+use crate::cli::{MethodArg, ReduceArgs, SchemeArg};
 use inbetween::io::OutputFormat;
 use inbetween::io::document::{DocTrack, Document, KeyOrigin};
+use inbetween::io::gltf::ContainerFormat;
+use inbetween::io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween::io::output::Output;
 use inbetween::io::write::write_keys;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce, reduce_shared};
@@ -20,6 +22,7 @@ pub fn run(
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match output_format(&args.output, input.format) {
+        OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
         OutputFormat::Doc(f) => f,
         // A BVH input's keys default to JSON; npy and BVH are not keyframe documents.
         OutputFormat::Bvh
@@ -30,10 +33,10 @@ pub fn run(
         other => {
             let name = match other {
                 OutputFormat::Npy => "npy",
-                _ => "bvh",
+                _ => "bvh (it holds every frame)",
             };
             return Err(InputError::new(format!(
-                "reduce writes keyframe documents (csv or json), not {name}"
+                "reduce writes keys: csv, json, or glTF for a glTF input, not {name}"
             ))
             .into());
         }
@@ -46,52 +49,7 @@ pub fn run(
         ))
         .into());
     }
-    let tolerance = match args.distance {
-        Some(_) => args.tolerance,
-        None => args.input.angles.to_rad(args.tolerance),
-    };
-    let opts = ReduceOptions {
-        curve: input.opts,
-        tolerance,
-        distance: args.distance,
-        translation_tolerance: args.translation_tolerance,
-        velocities: !args.no_velocities,
-        method: match args.method {
-            MethodArg::Greedy => Method::Greedy,
-            MethodArg::Optimal => Method::Optimal,
-        },
-    };
-    let located = |e: InputError| e.at(&doc.source);
-    let reduced: Vec<Reduced> = if args.shared_keys {
-        let frames: Vec<_> = tracks
-            .iter()
-            .map(|t| (t.times(), t.rotations(), t.translations()))
-            .collect();
-        reduce_shared(&frames, &opts).map_err(located)?
-    } else {
-        tracks
-            .iter()
-            .map(|t| reduce(t.times(), t.rotations(), t.translations(), &opts).map_err(located))
-            .collect::<Result<_, _>>()?
-    };
-    if args.verbose {
-        for (t, r) in tracks.iter().zip(&reduced) {
-            let unit = |x: f64| match args.distance {
-                Some(_) => x,
-                None => args.input.angles.from_rad(x),
-            };
-            eprintln!(
-                "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
-                 {:.3e}",
-                inbetween::error::shorten(t.name().unwrap_or("-")),
-                t.len(),
-                r.keys.len(),
-                100.0 * r.keys.len() as f64 / t.len() as f64,
-                unit(r.max_error),
-                unit(r.mean_error)
-            );
-        }
-    }
+    let reduced = reduce_tracks(args, &input, 0.0, true)?;
     // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
     let out_doc = Document {
         source: doc.source.clone(),
@@ -132,6 +90,130 @@ pub fn run(
     let style = super::settings::style(&args.input, &args.output);
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &out_doc, format, style, frame_fps)?;
+    out.commit()?;
+    Ok(())
+}
+
+/// How much a glTF output's tolerance is tightened (radians, or D times this with
+/// `--distance D`): the keys are stored as float32 (about 2.4e-7 rad at most).
+const FLOAT32_MARGIN: f64 = 1e-6;
+
+/// Every track reduced with the tolerance tightened by `margin` (in the tolerance's own unit),
+/// translations reduced too when `translations`; `-v` reports each track.
+fn reduce_tracks(
+    args: &ReduceArgs,
+    input: &Curves,
+    margin: f64,
+    translations: bool,
+) -> Result<Vec<Reduced>, Error> {
+    let (doc, tracks) = (&input.doc, &input.tracks);
+    let tolerance = match args.distance {
+        Some(_) => args.tolerance,
+        None => args.input.angles.to_rad(args.tolerance),
+    } - margin;
+    if tolerance <= 0.0 {
+        return Err(InputError::new(format!(
+            "--tolerance {}: too small for keys stored as float32; give more than {}",
+            args.tolerance,
+            match args.distance {
+                Some(_) => margin,
+                None => args.input.angles.from_rad(margin),
+            }
+        ))
+        .into());
+    }
+    let opts = ReduceOptions {
+        curve: input.opts,
+        tolerance,
+        distance: args.distance,
+        translation_tolerance: args.translation_tolerance.filter(|_| translations),
+        velocities: !args.no_velocities,
+        method: match args.method {
+            MethodArg::Greedy => Method::Greedy,
+            MethodArg::Optimal => Method::Optimal,
+        },
+    };
+    fn positions(t: &inbetween::Track, keep: bool) -> Option<&[glam::DVec3]> {
+        t.translations().filter(|_| keep)
+    }
+    let located = |e: InputError| e.at(&doc.source);
+    let reduced: Vec<Reduced> = if args.shared_keys {
+        let frames: Vec<_> = tracks
+            .iter()
+            .map(|t| (t.times(), t.rotations(), positions(t, translations)))
+            .collect();
+        reduce_shared(&frames, &opts).map_err(located)?
+    } else {
+        tracks
+            .iter()
+            .map(|t| {
+                reduce(t.times(), t.rotations(), positions(t, translations), &opts).map_err(located)
+            })
+            .collect::<Result<_, _>>()?
+    };
+    if args.verbose {
+        for (t, r) in tracks.iter().zip(&reduced) {
+            let unit = |x: f64| match args.distance {
+                Some(_) => x,
+                None => args.input.angles.from_rad(x),
+            };
+            eprintln!(
+                "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
+                 {:.3e}",
+                inbetween::error::shorten(t.name().unwrap_or("-")),
+                t.len(),
+                r.keys.len(),
+                100.0 * r.keys.len() as f64 / t.len() as f64,
+                unit(r.max_error),
+                unit(r.mean_error)
+            );
+        }
+    }
+    Ok(reduced)
+}
+
+/// `reduce anim.glb --scheme slerp -o small.glb`: each rotation channel repointed to a `LINEAR`
+/// sampler with its kept keys, which a glTF player interpolates by slerp, as verified; the rest
+/// of the asset (translation channels included) as read.
+fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Result<(), Error> {
+    let Some(clip) = &input.gltf else {
+        return Err(InputError::new(
+            "glTF output writes keys into the input asset: the input must be glTF (.gltf or .glb)",
+        )
+        .into());
+    };
+    if args.scheme != SchemeArg::Slerp {
+        return Err(InputError::new(
+            "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
+             play as reduced; use --scheme slerp, or write csv or json",
+        )
+        .into());
+    }
+    let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
+    let reduced = reduce_tracks(args, input, margin, false)?;
+    let keys: Vec<ChannelKeys> = input
+        .tracks
+        .iter()
+        .zip(&reduced)
+        .map(|(t, r)| ChannelKeys {
+            name: t.name().unwrap_or_default(),
+            times: r.keys.iter().map(|&i| t.times()[i]).collect(),
+            rotations: r.keys.iter().map(|&i| t.rotations()[i]).collect(),
+        })
+        .collect();
+    let path = args
+        .output
+        .output
+        .as_deref()
+        .filter(|p| p.as_os_str() != "-");
+    let dir = path.map(|p| {
+        p.parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(".".as_ref())
+    });
+    let bytes = keys_asset(clip, &keys, container, dir)?;
+    let mut out = Output::open(args.output.output.as_deref())?;
+    std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
     Ok(())
 }

@@ -775,3 +775,83 @@ fn an_animation_without_frames_is_kept_as_it_was() {
     assert_eq!(spawn.interpolation(), Interpolation::Linear);
     assert_eq!(spawn.values().len(), 17); // 0.04 s .. 0.6 s: frames 2..=18 at 30 fps
 }
+
+/// `reduce anim.gltf --scheme slerp -o small.glb`: every rotation channel becomes a LINEAR
+/// sampler of its kept keys, which (sampled as glTF plays them) reproduces every frame within
+/// the tolerance; the asset stays valid and the translation channel as it was. Other schemes,
+/// and glTF output from a non-glTF input, are refused.
+#[test]
+fn reduce_writes_slerp_keys_into_the_asset() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = write_walk(dir.path(), &walk_json());
+    let input = Asset::read_path(&src).unwrap();
+    let out = dir.path().join("small.glb");
+    ok(args!(
+        "reduce",
+        &src,
+        "--animation",
+        "Walk",
+        "--scheme",
+        "slerp",
+        "--tolerance",
+        "0.5",
+        "--fps",
+        "30",
+        "-o",
+        &out
+    ));
+    validate(&out);
+    let back = Asset::read_path(&out).unwrap();
+    let (a, b) = (
+        &input.animations().unwrap()[0],
+        &back.animations().unwrap()[0],
+    );
+    assert_eq!(a.translations(), b.translations());
+    let tol = 0.5f64.to_radians();
+    for ch in a.rotations() {
+        let got = channel(&back, 0, ch.index());
+        assert_eq!(got.interpolation(), Interpolation::Linear);
+        assert!(got.values().len() >= 2);
+        for k in 0..=30 {
+            let t = f64::from((k as f64 / 30.0) as f32);
+            let d = rot_angle(got.sample(t), ch.sample(t));
+            assert!(
+                d <= tol,
+                "channel {}: frame {k}: {} deg",
+                ch.index(),
+                d.to_degrees()
+            );
+        }
+    }
+    // The 31 LINEAR keys of Hips' smooth spin need far fewer.
+    assert!(channel(&back, 0, 0).values().len() < 16);
+    let (b, c, cmu) = (
+        dir.path().join("b.glb"),
+        dir.path().join("c.glb"),
+        fixtures().join("bvh/cmu_01_01.bvh"),
+    );
+    let refused = |args: &[&std::ffi::OsStr], want: &str| {
+        let o = run(args);
+        assert_eq!(o.status.code(), Some(2));
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert!(e.contains(want), "{e}");
+        assert!(!b.exists() && !c.exists(), "nothing written");
+    };
+    refused(
+        args!("reduce", &src, "--tolerance", "0.5", "-o", &b),
+        "only --scheme slerp's keys play as reduced",
+    );
+    refused(
+        args!(
+            "reduce",
+            &cmu,
+            "--scheme",
+            "slerp",
+            "--tolerance",
+            "0.5",
+            "-o",
+            &c
+        ),
+        "the input must be glTF",
+    );
+}

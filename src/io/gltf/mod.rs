@@ -17,6 +17,7 @@
 //! - [`document`]: the chosen animations' rotation channels as a keyframe document (tracks),
 //!   keys snapped to a frame rate, `STEP`/`CUBICSPLINE` channels baked for interpolation.
 //! - [`frames`]: interp's frames written back into the asset ([`frames::GltfFrames`]).
+//! - [`keys`]: reduce's kept keys written back into the asset ([`keys::keys_asset`]).
 //!
 //! ```
 //! use inbetween::io::gltf::{Asset, Interpolation};
@@ -35,6 +36,7 @@ mod accessor;
 mod channel;
 pub mod document;
 pub mod frames;
+pub mod keys;
 mod write;
 
 pub use channel::{

@@ -3,7 +3,8 @@
 //! The JSON is edited as a `serde_json::Value` (so unknown extensions, `extras` and every
 //! object this module does not understand are copied as they were) and only ever appended to:
 //!
-//! - per processed animation, one float32 SCALAR time accessor with `min` and `max` (glTF 2.0
+//! - per [`Resampled`] (one per processed animation for `interp`, one per channel for
+//!   `reduce`), one float32 SCALAR time accessor with `min` and `max` (glTF 2.0
 //!   §3.11 requires them on a sampler input), shared by its channels;
 //! - per processed channel, one float32 VEC4 output accessor (unit quaternions, `x y z w`,
 //!   sign-continuous: a quaternion whose dot product with the previous one is negative is
@@ -55,7 +56,9 @@ impl ContainerFormat {
     }
 }
 
-/// New keys for the rotation channels of one animation, all on one time grid.
+/// New keys for rotation channels of one animation, all on one time grid. An animation may
+/// have several (each with its own grid: `reduce` keeps other keys on each channel); a channel
+/// is replaced once.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resampled {
     /// The animation's index in the asset.
@@ -147,7 +150,7 @@ impl Asset {
     /// Writes the asset with the rotation channels of `resampled` replaced, as `format`, to
     /// `out` (see the module documentation for what is appended and where). Errors: an input
     /// error for a bad request (an unknown animation or channel, a channel that is not a
-    /// rotation, a channel or animation named twice, counts that disagree, times not strictly
+    /// rotation, a channel named twice, counts that disagree, times not strictly
     /// increasing in float32, a rotation that is not finite and non-zero, a `.glb` over 4 GiB);
     /// an I/O error from `out`.
     pub fn write(
@@ -204,7 +207,9 @@ impl Asset {
         let mut accessors: Vec<(usize, Value)> = Vec::new();
         // (animation, channel, input, output): the new samplers, accessors numbered among the new.
         let mut samplers: Vec<(usize, usize, usize, usize)> = Vec::new();
-        let mut seen_animations = HashSet::new();
+        // A channel may be replaced once; an animation may have several time grids (one
+        // `Resampled` each: reduced keys differ from channel to channel).
+        let mut seen_channels = HashSet::new();
         let animations: Vec<_> = self.document.animations().collect();
         for r in resampled {
             let a = r.animation;
@@ -214,9 +219,6 @@ impl Asset {
                     animations.len()
                 ));
             };
-            if !seen_animations.insert(a) {
-                return Err(input_err!("{src}: animation {a} is resampled twice"));
-            }
             let times: Vec<f32> = r.times.iter().map(|&t| t as f32).collect();
             if times.is_empty() {
                 return Err(input_err!("{src}: animation {a}: no frame times to write"));
@@ -250,7 +252,6 @@ impl Asset {
                 }),
             ));
             let channels: Vec<_> = anim.channels().collect();
-            let mut seen_channels = HashSet::new();
             for (c, rotations) in &r.channels {
                 let c = *c;
                 let Some(ch) = channels.get(c) else {
@@ -265,7 +266,7 @@ impl Asset {
                         ch.target().property()
                     ));
                 }
-                if !seen_channels.insert(c) {
+                if !seen_channels.insert((a, c)) {
                     return Err(input_err!(
                         "{src}: animation {a}: channel {c} is resampled twice"
                     ));
