@@ -292,3 +292,95 @@ fn frame_rows_q(text: &[u8]) -> Vec<(f64, DQuat)> {
         })
         .collect()
 }
+
+/// The same on real motion capture (CMU 01_01, 31 joints, 61 frames at 120 fps, with root
+/// positions): `convert clip.bvh -o clip.csv`, `reduce clip.csv --tolerance 0.5
+/// --translation-tolerance 0.01 --key-fps 120 -o keys.json` (a CSV cannot declare its rate), `interp keys.json --fps 120 -o back.csv`: every
+/// frame of every joint within 0.5°, every position within 0.01.
+#[test]
+fn reduce_then_interp_on_real_motion_capture() {
+    use std::collections::HashMap;
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&std::ffi::OsStr]| {
+        let out = crate::support::bin().args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    let (clip, keys, back) = (
+        dir.path().join("clip.csv"),
+        dir.path().join("keys.json"),
+        dir.path().join("back.csv"),
+    );
+    let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let os = |s: &str| std::ffi::OsString::from(s);
+    run(&[os("convert"), bvh.into(), os("-o"), clip.clone().into()]
+        .iter()
+        .map(|s| s.as_os_str())
+        .collect::<Vec<_>>());
+    // (track, frame) → (rotation, position)
+    let table = |path: &Path| -> HashMap<(String, i64), (DQuat, [f64; 3])> {
+        crate::support::read_table(path)
+            .into_iter()
+            .map(|r| {
+                let f = |c: &str| r[c].parse::<f64>().unwrap();
+                let q = DQuat::from_xyzw(f("x"), f("y"), f("z"), f("w"));
+                let p = if r.get("tx").is_some_and(|s| !s.is_empty()) {
+                    [f("tx"), f("ty"), f("tz")]
+                } else {
+                    [0.0; 3]
+                };
+                ((r["track"].clone(), r["frame"].parse().unwrap()), (q, p))
+            })
+            .collect()
+    };
+    let want = table(&clip);
+    assert_eq!(want.len(), 31 * 61);
+    for scheme in ["bezier", "hermite", "slerp"] {
+        for method in ["greedy", "optimal"] {
+            let args = [
+                os("reduce"),
+                clip.clone().into(),
+                os("--tolerance"),
+                os("0.5"),
+                os("--translation-tolerance"),
+                os("0.01"),
+                os("--scheme"),
+                os(scheme),
+                os("--method"),
+                os(method),
+                os("--key-fps"),
+                os("120"),
+                os("-o"),
+                keys.clone().into(),
+            ];
+            run(&args.iter().map(|s| s.as_os_str()).collect::<Vec<_>>());
+            let args = [
+                os("interp"),
+                keys.clone().into(),
+                os("--fps"),
+                os("120"),
+                os("--scheme"),
+                os(scheme),
+                os("-o"),
+                back.clone().into(),
+            ];
+            run(&args.iter().map(|s| s.as_os_str()).collect::<Vec<_>>());
+            let got = table(&back);
+            assert_eq!(got.len(), want.len(), "{scheme} {method}");
+            for (k, (q, p)) in &want {
+                let (gq, gp) = got[k];
+                let d = rot_angle(gq, *q).to_degrees();
+                assert!(d <= 0.5, "{scheme} {method} {k:?}: {d}°");
+                for i in 0..3 {
+                    assert!(
+                        (gp[i] - p[i]).abs() <= 0.01 + 1e-9,
+                        "{scheme} {method} {k:?}: position"
+                    );
+                }
+            }
+        }
+    }
+}
