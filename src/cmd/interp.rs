@@ -1,10 +1,12 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
-use super::settings::{output_format, read_curves, track_label};
-use crate::cli::{InterpArgs, SpanArg};
+use super::settings::{curve_options, output_format, read_curves, tcb_flags};
+use crate::cli::{InterpArgs, PathArg, SpanArg};
 use inbetween::error::num;
+use inbetween::io::Format;
 use inbetween::io::OutputFormat;
 use inbetween::io::bvh::frames::BvhFrames;
+use inbetween::io::bvh::{self, resample};
 use inbetween::io::gltf::ContainerFormat;
 use inbetween::io::gltf::document::Mode;
 use inbetween::io::gltf::frames::{GltfFrames, check_grid};
@@ -26,6 +28,9 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
+    if let Some(done) = lean_bvh(args, warn) {
+        return done;
+    }
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
     // The span each track is written over: the clip (the union of the tracks' key ranges, ends
@@ -56,26 +61,7 @@ pub fn run(
         (SpanArg::Track, None) => t.span(),
     };
     for t in tracks {
-        let (t0, t1) = t.span();
-        let (lo, hi) = span(t);
-        let (before, after) = fps.near_misses(t0, t1);
-        let label = track_label(&doc.source, t);
-        // Only an end of the written span can miss a frame; inside the clip the key is held.
-        for (k, key, which, side) in [
-            (before.filter(|_| t0 == lo), t0, "first", "after"),
-            (after.filter(|_| t1 == hi), t1, "last", "before"),
-        ] {
-            if let Some(k) = k {
-                warn(&format!(
-                    "{label}: the {which} key, at {} s, is {:.1e} s {side} frame {k} ({} s), which \
-                     is therefore not written; --snap-keys 0.001 moves keys that close onto the \
-                     grid",
-                    num(key),
-                    (key - fps.time_of(k)).abs(),
-                    num(fps.time_of(k))
-                ));
-            }
-        }
+        near_misses(&doc.source, t.name(), t.span(), span(t), fps, warn);
     }
     let rows: u64 = tracks
         .iter()
@@ -251,6 +237,151 @@ pub fn run(
         }
     }
     Ok(())
+}
+
+/// Warns when an end of the written span `(lo, hi)` is a key (of the track `name` spanning
+/// `(t0, t1)`) that misses a frame: only there can a key miss one; inside the clip it is held.
+fn near_misses(
+    source: &str,
+    name: Option<&str>,
+    (t0, t1): (f64, f64),
+    (lo, hi): (f64, f64),
+    fps: inbetween::Fps,
+    warn: &mut dyn FnMut(&str),
+) {
+    let (before, after) = fps.near_misses(t0, t1);
+    let label = inbetween::io::document::track_label(source, name);
+    for (k, key, which, side) in [
+        (before.filter(|_| t0 == lo), t0, "first", "after"),
+        (after.filter(|_| t1 == hi), t1, "last", "before"),
+    ] {
+        if let Some(k) = k {
+            warn(&format!(
+                "{label}: the {which} key, at {} s, is {:.1e} s {side} frame {k} ({} s), which \
+                 is therefore not written; --snap-keys 0.001 moves keys that close onto the grid",
+                num(key),
+                (key - fps.time_of(k)).abs(),
+                num(fps.time_of(k))
+            ));
+        }
+    }
+}
+
+/// The lean path for a BVH file resampled as BVH (or CSV/JSON into a file): the file read in
+/// pieces into its motion values only ([`bvh::parse_reader`]), then one joint's track and curve
+/// at a time ([`bvh::resample`]); see docs/performance.md. `None` when it does not apply — an
+/// option it does not handle, or anything wrong with the input, which the general path then
+/// reads again and reports exactly as always (nothing has been written: BVH output is written
+/// after every joint is done, CSV/JSON only into a temporary `-o` file). Its warnings are held
+/// until it is done, so they are given once, in the general path's order.
+fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), Error>> {
+    let path = args
+        .input
+        .input
+        .as_deref()
+        .filter(|p| p.as_os_str() != "-")?;
+    let curve = &args.curve;
+    if args.input.input_format.or_else(|| Format::from_path(path)) != Some(Format::Bvh)
+        || args.input.animation.is_some()
+        || args.input.tracks.is_some()
+        || curve.snap_keys.is_some()
+        || curve.path == PathArg::Euler
+        || curve.start_velocity.is_some()
+        || curve.end_velocity.is_some()
+        || args.velocity
+        || args.verbose
+        || args.span != SpanArg::Clip
+    {
+        return None;
+    }
+    let format = output_format(&args.output, Format::Bvh);
+    let to_file =
+        args.output.output.as_deref().is_some_and(|p| {
+            p.as_os_str() != "-" && !p.starts_with("/dev") && !p.starts_with("/proc")
+        });
+    match format {
+        OutputFormat::Bvh => {}
+        OutputFormat::Doc(Format::Csv | Format::Json) if to_file => {}
+        _ => return None,
+    }
+    let file = std::fs::File::open(path).ok()?;
+    let size = file.metadata().ok().filter(|m| m.is_file())?.len();
+    if size > args.input.max_input_bytes {
+        return None;
+    }
+    let source = path.display().to_string();
+    let (clip, mut warnings) = bvh::parse_reader(file, &source, Some(size)).ok()?;
+    let joints = resample::track_joints(&clip);
+    let names: std::collections::HashSet<&str> =
+        joints.iter().map(|&j| clip.joints()[j].name()).collect();
+    if names.len() != joints.len() {
+        return None;
+    }
+    let fps = curve.fps.unwrap_or(clip.fps());
+    let span = resample::span(&clip).filter(|(a, b)| fps.in_range(*a) && fps.in_range(*b))?;
+    let rows = fps
+        .frame_count(span.0, span.1)
+        .saturating_mul(joints.len() as u64);
+    if joints.is_empty() || rows > args.max_frames {
+        return None;
+    }
+    for &j in &joints {
+        near_misses(
+            &source,
+            Some(clip.joints()[j].name()),
+            span,
+            span,
+            fps,
+            &mut |w: &str| warnings.push(w.to_string()),
+        );
+    }
+    let opts = resample::Options {
+        fps,
+        curve: curve_options(curve, args.scheme.into(), fps, args.input.angles),
+        tcb: tcb_flags(curve),
+        threads: 0,
+    };
+    let done = (|| -> Result<Option<()>, Error> {
+        match format {
+            OutputFormat::Bvh => {
+                let (frames, baked) = match resample::resample(&clip, &source, &opts) {
+                    Err(Error::Input(_)) => return Ok(None),
+                    r => r?,
+                };
+                warnings.extend(baked);
+                let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
+                frames.write(out, &clip)?.finish()?.commit()?;
+            }
+            OutputFormat::Doc(doc_format) => {
+                let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
+                let style = super::settings::style(&args.input, &args.output);
+                let w = FrameWriter::new(out, doc_format, style, fps, true, false);
+                let positions = joints
+                    .iter()
+                    .any(|&j| clip.joints()[j].position().is_some());
+                let mut w = if positions { w.with_positions() } else { w };
+                let mut add = |m: &str| warnings.push(m.to_string());
+                match resample::bake_tracks(&clip, &source, &opts, span, &mut w, &mut add) {
+                    Err(Error::Input(_)) => return Ok(None),
+                    r => r?,
+                }
+                w.finish()?;
+                w.into_inner().finish()?.commit()?;
+            }
+            _ => unreachable!("checked above"),
+        }
+        Ok(Some(()))
+    })();
+    match done {
+        Ok(None) => None,
+        Ok(Some(())) => {
+            for w in &warnings {
+                warn(w);
+            }
+            Some(Ok(()))
+        }
+        Err(e) => Some(Err(e)),
+    }
 }
 
 /// A frame writer that hands back its output when done.

@@ -335,7 +335,7 @@ pub fn style(input: &InputArgs, output: &OutputArgs) -> Style {
 }
 
 /// `--tension`, `--continuity`, `--bias`.
-fn tcb_flags(args: &CurveArgs) -> Tcb {
+pub fn tcb_flags(args: &CurveArgs) -> Tcb {
     Tcb {
         tension: args.tension,
         continuity: args.continuity,
@@ -344,7 +344,7 @@ fn tcb_flags(args: &CurveArgs) -> Tcb {
 }
 
 /// The curve options of the command line; given velocities are in `unit` per second.
-fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) -> CurveOptions {
+pub fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) -> CurveOptions {
     let omega = |v: Option<[f64; 3]>| v.map(|a| DVec3::from_array(a.map(|x| unit.to_rad(x))));
     CurveOptions {
         scheme,

@@ -7,6 +7,7 @@ mod analyze;
 mod animator;
 mod app_conventions;
 mod bvh;
+mod bvh_stream;
 mod errors;
 mod gltf;
 mod hard_cases;

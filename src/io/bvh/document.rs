@@ -7,7 +7,7 @@
 //! any, as the key's translation. A joint with position channels only is a track of identity
 //! rotations carrying those positions. Joints without channels have no track.
 
-use super::Clip;
+use super::{Clip, Joint};
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use glam::{DQuat, DVec3};
 use std::sync::Arc;
@@ -15,46 +15,11 @@ use std::sync::Arc;
 /// The clip's joints as tracks (see the module documentation); `source` names the file, and
 /// `warnings` are the parser's.
 pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
-    let mut tracks = Vec::new();
-    for joint in clip.joints() {
-        let rotation = joint.rotation();
-        let position = joint.position();
-        if rotation.is_none() && position.is_none() {
-            continue;
-        }
-        let n = clip.frame_count();
-        let mut keys = Vec::with_capacity(n);
-        let mut angles = Vec::with_capacity(if rotation.is_some() { n } else { 0 });
-        let mut translations = Vec::with_capacity(if position.is_some() { n } else { 0 });
-        for (i, row) in clip.rows().enumerate() {
-            let rot = match rotation {
-                Some((seq, cols)) => {
-                    let e = cols.map(|c| row[c].to_radians());
-                    angles.push(DVec3::from_array(e));
-                    crate::rotation::quat::canonical(seq.to_quat(e))
-                }
-                None => DQuat::IDENTITY,
-            };
-            if let Some(cols) = position {
-                translations.push(Some(DVec3::from_array(cols.map(|c| row[c]))));
-            }
-            keys.push(Key {
-                when: KeyTime::Frame(i as f64),
-                rot,
-            });
-        }
-        tracks.push(DocTrack {
-            name: Some(joint.name().to_string()),
-            keys,
-            start_velocity: None,
-            end_velocity: None,
-            origin: KeyOrigin::Frames,
-            euler: rotation.map(|(seq, _)| (seq, angles)),
-            velocities: Vec::new(),
-            tcb: Vec::new(),
-            translations,
-        });
-    }
+    let tracks = clip
+        .joints()
+        .iter()
+        .filter_map(|joint| joint_track(&clip, joint))
+        .collect();
     Document {
         source: source.to_string(),
         fps: Some(clip.fps()),
@@ -64,4 +29,46 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
         warnings,
         skeleton: Some(Arc::new(clip)),
     }
+}
+
+/// The track of one joint of `clip` (see the module documentation); `None` for a joint without
+/// rotation or position channels.
+pub fn joint_track(clip: &Clip, joint: &Joint) -> Option<DocTrack> {
+    let rotation = joint.rotation();
+    let position = joint.position();
+    if rotation.is_none() && position.is_none() {
+        return None;
+    }
+    let n = clip.frame_count();
+    let mut keys = Vec::with_capacity(n);
+    let mut angles = Vec::with_capacity(if rotation.is_some() { n } else { 0 });
+    let mut translations = Vec::with_capacity(if position.is_some() { n } else { 0 });
+    for (i, row) in clip.rows().enumerate() {
+        let rot = match rotation {
+            Some((seq, cols)) => {
+                let e = cols.map(|c| row[c].to_radians());
+                angles.push(DVec3::from_array(e));
+                crate::rotation::quat::canonical(seq.to_quat(e))
+            }
+            None => DQuat::IDENTITY,
+        };
+        if let Some(cols) = position {
+            translations.push(Some(DVec3::from_array(cols.map(|c| row[c]))));
+        }
+        keys.push(Key {
+            when: KeyTime::Frame(i as f64),
+            rot,
+        });
+    }
+    Some(DocTrack {
+        name: Some(joint.name().to_string()),
+        keys,
+        start_velocity: None,
+        end_velocity: None,
+        origin: KeyOrigin::Frames,
+        euler: rotation.map(|(seq, _)| (seq, angles)),
+        velocities: Vec::new(),
+        tcb: Vec::new(),
+        translations,
+    })
 }

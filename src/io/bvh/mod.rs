@@ -30,7 +30,9 @@
 //! `i / rate` seconds ([`Clip::time_of`]), the rate being recovered from the rounded
 //! `Frame Time` by [`rate::rate_from_frame_time`].
 //!
-//! - [`read`]: the parser, [`parse`]: text → [`Clip`] and located warnings.
+//! - [`read`]: the parser, [`parse`]: text → [`Clip`] and located warnings; [`parse_reader`]:
+//!   the same from a reader in pieces, never holding the text.
+//! - [`resample`]: a clip resampled one joint at a time (`interp`'s lean path).
 //! - [`rate`]: `Frame Time` ↔ an exact [`Fps`].
 //! - [`mod@write`]: [`write()`](write::write) and the streaming [`BvhWriter`].
 //!
@@ -60,9 +62,10 @@ pub mod frames;
 pub mod keys;
 pub mod rate;
 pub mod read;
+pub mod resample;
 pub mod write;
 
-pub use read::parse;
+pub use read::{parse, parse_reader};
 pub use write::{BvhWriter, write};
 
 use crate::clock::Fps;

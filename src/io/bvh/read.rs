@@ -13,7 +13,9 @@
 
 use super::rate::rate_from_frame_time;
 use super::{Channel, Clip, Joint};
+use crate::clock::Fps;
 use crate::error::{InputError, InputResult, input_err, shorten};
+use std::io::Read;
 
 /// A token: its text, line (1-based) and byte offset in the text.
 #[derive(Clone, Copy)]
@@ -280,34 +282,41 @@ impl<'a> Parser<'a> {
             }
         }
     }
-
-    /// Which joint and channel column `c` belongs to, for messages.
-    fn column_name(&self, c: usize) -> String {
-        self.joints
-            .iter()
-            .find(|j| j.columns().contains(&c))
-            .map_or_else(String::new, |j| {
-                format!(
-                    " (joint \"{}\", {})",
-                    shorten(&j.name),
-                    j.channels[c - j.first_column]
-                )
-            })
-    }
 }
 
-/// Parses a BVH file. `source` names it in messages (`clip.bvh`). Returns the clip and the
-/// warnings, each located (`clip.bvh:40: "Frames: 100" but the motion has 99 rows; …`).
-///
-/// Accepted as files are written: a byte-order mark, CRLF line ends, tabs or spaces, blank
-/// lines between rows and at the end, several `ROOT`s, joints without channels, 3- and
-/// 6-channel joints, each joint's own channel order, a `Frame Time` of `.0083333`. Errors: a
-/// missing or misplaced keyword, a number that is not one or not finite, a channel count
-/// outside 0–6 or a channel listed twice, a hierarchy without channels, a row with the wrong
-/// number of values, a frame time that is not a positive finite number. When `Frames:`
-/// disagrees with the number of rows, the rows win and a warning says so.
-pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+/// Which joint and channel column `c` belongs to, for messages.
+fn column_name(joints: &[Joint], c: usize) -> String {
+    joints
+        .iter()
+        .find(|j| j.columns().contains(&c))
+        .map_or_else(String::new, |j| {
+            format!(
+                " (joint \"{}\", {})",
+                shorten(&j.name),
+                j.channels[c - j.first_column]
+            )
+        })
+}
+
+/// Everything before the rows, parsed.
+struct Head {
+    joints: Vec<Joint>,
+    hierarchy: String,
+    declared: u64,
+    frames_line: usize,
+    frame_time_text: String,
+    frame_time: f64,
+    fps: Fps,
+    channels: usize,
+    /// Byte offset (in the text without its byte-order mark) of the line end of the `Frame
+    /// Time` line: the rows are the lines after it.
+    body_start: usize,
+    /// The line number of the `Frame Time` line.
+    time_line: usize,
+}
+
+/// Parses the hierarchy and the `MOTION` header of `text` (without a byte-order mark).
+fn parse_head(text: &str, source: &str) -> InputResult<Head> {
     let mut p = Parser {
         source,
         toks: Tokens {
@@ -393,30 +402,94 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
             ),
         ));
     }
+    Ok(Head {
+        channels: p.columns,
+        joints: p.joints,
+        hierarchy,
+        declared,
+        frames_line: frames_tok.line,
+        frame_time_text: value.s.to_string(),
+        frame_time,
+        fps,
+        body_start: p.toks.pos,
+        time_line: value.line,
+    })
+}
 
-    // The rows: one per non-blank line after the frame time.
-    let channels = p.columns;
-    let body = &text[p.toks.pos..];
-    let hint = usize::try_from(declared)
-        .unwrap_or(usize::MAX)
-        .min(body.len() / (2 * channels) + 1);
-    let mut values: Vec<f64> = Vec::with_capacity(hint.saturating_mul(channels));
-    // The line after the Frame Time line (`body` starts at its line end).
-    let mut line_no = value.line - 1;
-    for line in body.split('\n') {
-        line_no += 1;
+/// Powers of ten that are exact as `f64`.
+const POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// A motion value: `Ok` for a finite number, `Err(true)` for a number that is not finite,
+/// `Err(false)` for anything else. Exactly what `str::parse::<f64>` reads (the same grammar and
+/// the same correctly rounded value); the common `-12.345678` (at most 15 digits, no exponent)
+/// is read directly — its digits are an exact integer `m` and `m / 10^k` of two exact values is
+/// correctly rounded — and everything else by `str::parse`.
+#[inline]
+fn motion_value(cell: &str) -> Result<f64, bool> {
+    let b = cell.as_bytes();
+    let (neg, digits) = match b.first() {
+        Some(b'-') => (true, &b[1..]),
+        Some(b'+') => (false, &b[1..]),
+        _ => (false, b),
+    };
+    let (mut m, mut n, mut frac, mut dot, mut plain) = (0u64, 0usize, 0usize, false, true);
+    for &c in digits {
+        match c {
+            b'0'..=b'9' => {
+                m = m.wrapping_mul(10).wrapping_add(u64::from(c - b'0'));
+                n += 1;
+                frac += usize::from(dot);
+            }
+            b'.' if !dot => dot = true,
+            _ => {
+                plain = false;
+                break;
+            }
+        }
+    }
+    if plain && (1..=15).contains(&n) {
+        // m < 10^15 < 2^53 and frac ≤ 15: both exact.
+        let x = m as f64 / POW10[frac];
+        return Ok(if neg { -x } else { x });
+    }
+    match cell.parse::<f64>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(true),
+        Err(_) => Err(false),
+    }
+}
+
+/// The motion rows, one line at a time.
+struct Rows<'a> {
+    source: &'a str,
+    joints: &'a [Joint],
+    channels: usize,
+    /// The number of the last line read.
+    line_no: usize,
+    values: Vec<f64>,
+}
+
+impl Rows<'_> {
+    /// The next line (without its `\n`): a row of `channels` values, or blank.
+    fn line(&mut self, line: &str) -> InputResult<()> {
+        self.line_no += 1;
+        let (source, line_no, channels) = (self.source, self.line_no, self.channels);
         let mut n = 0;
         for cell in line.split_ascii_whitespace() {
             if n == channels {
                 let found = n + 1 + line.split_ascii_whitespace().skip(n + 1).count();
+                self.values.truncate(self.values.len() - n);
                 return Err(input_err!(
                     "{source}:{line_no}: expected {channels} values (one per channel), found {found}"
                 ));
             }
-            match cell.parse::<f64>() {
-                Ok(x) if x.is_finite() => values.push(x),
-                r => {
-                    let what = if r.is_ok() {
+            match motion_value(cell) {
+                Ok(x) => self.values.push(x),
+                Err(parsed) => {
+                    let what = if parsed {
                         "a finite number"
                     } else {
                         "a number"
@@ -424,7 +497,7 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
                     return Err(input_err!(
                         "{source}:{line_no}: value {}{}: expected {what}, found \"{}\"",
                         n + 1,
-                        p.column_name(n),
+                        column_name(self.joints, n),
                         shorten(cell)
                     ));
                 }
@@ -436,28 +509,172 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
                 "{source}:{line_no}: expected {channels} values (one per channel), found {n}"
             ));
         }
+        Ok(())
     }
-    let rows = values.len() / channels;
+}
+
+/// The clip of `head` and `values`, and the warning when `Frames:` disagrees with the rows.
+fn finish(head: Head, values: Vec<f64>, source: &str) -> (Clip, Vec<String>) {
+    let rows = values.len() / head.channels;
     let mut warnings = Vec::new();
-    if rows as u64 != declared {
+    if rows as u64 != head.declared {
         warnings.push(format!(
-            "{source}:{}: \"Frames: {declared}\" but the motion has {rows} rows; the {rows} rows are used",
-            frames_tok.line
+            "{source}:{}: \"Frames: {}\" but the motion has {rows} rows; the {rows} rows are used",
+            head.frames_line, head.declared
         ));
     }
-    Ok((
-        Clip {
-            joints: p.joints,
-            hierarchy,
-            declared_frames: declared,
-            frame_time_text: value.s.to_string(),
-            frame_time,
-            fps,
-            channels,
-            values,
-        },
-        warnings,
-    ))
+    let clip = Clip {
+        joints: head.joints,
+        hierarchy: head.hierarchy,
+        declared_frames: head.declared,
+        frame_time_text: head.frame_time_text,
+        frame_time: head.frame_time,
+        fps: head.fps,
+        channels: head.channels,
+        values,
+    };
+    (clip, warnings)
+}
+
+/// Room for the rows: `Frames:` as declared, but never more than `body_len` bytes can hold.
+fn values_for(head: &Head, body_len: u64) -> Vec<f64> {
+    let most = body_len / (2 * head.channels as u64) + 1;
+    let hint = usize::try_from(head.declared.min(most)).unwrap_or(usize::MAX);
+    Vec::with_capacity(hint.saturating_mul(head.channels))
+}
+
+/// Parses a BVH file. `source` names it in messages (`clip.bvh`). Returns the clip and the
+/// warnings, each located (`clip.bvh:40: "Frames: 100" but the motion has 99 rows; …`).
+///
+/// Accepted as files are written: a byte-order mark, CRLF line ends, tabs or spaces, blank
+/// lines between rows and at the end, several `ROOT`s, joints without channels, 3- and
+/// 6-channel joints, each joint's own channel order, a `Frame Time` of `.0083333`. Errors: a
+/// missing or misplaced keyword, a number that is not one or not finite, a channel count
+/// outside 0–6 or a channel listed twice, a hierarchy without channels, a row with the wrong
+/// number of values, a frame time that is not a positive finite number. When `Frames:`
+/// disagrees with the number of rows, the rows win and a warning says so.
+pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let head = parse_head(text, source)?;
+    // The line after the Frame Time line (`body` starts at its line end).
+    let body = &text[head.body_start..];
+    let mut rows = Rows {
+        source,
+        joints: &head.joints,
+        channels: head.channels,
+        line_no: head.time_line - 1,
+        values: values_for(&head, body.len() as u64),
+    };
+    for line in body.split('\n') {
+        rows.line(line)?;
+    }
+    let values = rows.values;
+    Ok(finish(head, values, source))
+}
+
+/// How much [`parse_reader`] reads at a time.
+const CHUNK: usize = 1 << 20;
+
+/// [`parse`] reading from `reader` in pieces of about 1 MiB, never holding the file's text:
+/// the rows go straight into the clip's values. `len`, when known (a file's size), bounds the
+/// room made for the rows as [`parse`] does; otherwise rows beyond 1 Mi values at a time are
+/// made room for as they come. The clip and warnings are [`parse`]'s for the same text; an
+/// invalid file is an input error (when a file has several faults, the first met reading
+/// forward, which is not always the one [`parse`] reports: [`parse`] needs the whole text as
+/// UTF-8 first, while this reads rows as they come).
+pub fn parse_reader<R: Read>(
+    mut reader: R,
+    source: &str,
+    len: Option<u64>,
+) -> InputResult<(Clip, Vec<String>)> {
+    let cannot = |e: std::io::Error| input_err!("{source}: cannot read: {e}");
+    let not_utf8 = |at: usize| {
+        input_err!("{source}: expected UTF-8 text, found an invalid byte at offset {at}")
+    };
+    let mut buf: Vec<u8> = Vec::with_capacity(CHUNK);
+    // Up to CHUNK more bytes at the end of `buf`; false at the end of the input.
+    let mut more = |buf: &mut Vec<u8>| -> InputResult<bool> {
+        let n = (&mut reader)
+            .take(CHUNK as u64)
+            .read_to_end(buf)
+            .map_err(cannot)?;
+        Ok(n > 0)
+    };
+    // The header: up to the line end after the first "Frame Time:".
+    const MARK: &[u8] = b"Frame Time:";
+    let (mut searched, mut mark) = (0usize, None);
+    let head_end = loop {
+        if mark.is_none() {
+            let from = searched.saturating_sub(MARK.len());
+            mark = buf[from..]
+                .windows(MARK.len())
+                .position(|w| w == MARK)
+                .map(|i| from + i);
+        }
+        if let Some(m) = mark
+            && let Some(j) = buf[m..].iter().position(|&b| b == b'\n')
+        {
+            break Some(m + j + 1);
+        }
+        searched = buf.len();
+        if !more(&mut buf)? {
+            break None;
+        }
+    };
+    let bom = if buf.starts_with("\u{feff}".as_bytes()) {
+        3
+    } else {
+        0
+    };
+    let whole = |mut buf: Vec<u8>, more: &mut dyn FnMut(&mut Vec<u8>) -> InputResult<bool>| {
+        while more(&mut buf)? {}
+        let text = String::from_utf8(buf).map_err(|e| not_utf8(e.utf8_error().valid_up_to()))?;
+        parse(&text, source)
+    };
+    let Some(head_end) = head_end else {
+        return whole(buf, &mut more);
+    };
+    let head = match std::str::from_utf8(&buf[bom..head_end]).map(|t| parse_head(t, source)) {
+        Ok(Ok(head)) => head,
+        // Whatever is wrong, it is reported as parse reports it.
+        _ => return whole(buf, &mut more),
+    };
+    let body_len = len.map_or(CHUNK as u64, |n| n.saturating_sub(head_end as u64));
+    let values = values_for(&head, body_len);
+    let mut rows = Rows {
+        source,
+        joints: &head.joints,
+        channels: head.channels,
+        line_no: head.time_line - 1,
+        values,
+    };
+    // The body starts at the line end of the Frame Time line, as in `parse`; every piece
+    // of it before a `\n` is a line, and so is the piece after the last one.
+    let mut start = bom + head.body_start;
+    // Bytes of the file before buf[0].
+    let mut offset = 0;
+    loop {
+        if let Some(i) = buf[start..].iter().rposition(|&b| b == b'\n') {
+            let end = start + i;
+            let text = std::str::from_utf8(&buf[start..end])
+                .map_err(|e| not_utf8(offset + start + e.valid_up_to()))?;
+            for line in text.split('\n') {
+                rows.line(line)?;
+            }
+            start = end + 1;
+        }
+        // Keep the unfinished line.
+        buf.drain(..start);
+        offset += start;
+        start = 0;
+        if !more(&mut buf)? {
+            let text = std::str::from_utf8(&buf).map_err(|e| not_utf8(offset + e.valid_up_to()))?;
+            rows.line(text)?;
+            break;
+        }
+    }
+    let values = rows.values;
+    Ok(finish(head, values, source))
 }
 
 #[cfg(test)]
@@ -871,6 +1088,102 @@ Frame Time: 0.0333333
         // Unclosed: an error, not a crash.
         let cut = text.find("}\n").unwrap();
         assert!(parse_err(&text[..cut]).ends_with("found the end of the file"));
+    }
+
+    /// A reader that hands out at most `n` bytes at a time.
+    struct Trickle<'a>(&'a [u8], usize);
+
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let n = self.1.min(buf.len()).min(self.0.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    #[test]
+    fn reading_in_pieces_is_parsing_the_text() {
+        let fixture = include_str!("../../../fixtures/bvh/mixed_orders.bvh");
+        let texts = [
+            SMALL.to_string(),
+            format!("\u{feff}{}", SMALL.replace('\n', "\r\n")),
+            SMALL.replace("Frames: 3", "Frames: 7") + "\n\n",
+            SMALL.trim_end().to_string(),
+            fixture.to_string(),
+            // "Frame Time:" in a joint's name, and spaced apart for the parser.
+            SMALL
+                .replace("JOINT Marker", "JOINT Frame Time: x")
+                .replace("Frame Time: 0.0333333", "Frame   Time: 0.0333333"),
+        ];
+        for text in &texts {
+            let want = parse(text, "clip.bvh").unwrap();
+            for n in [1, 2, 7, 64, 1 << 20] {
+                let got = parse_reader(Trickle(text.as_bytes(), n), "clip.bvh", None).unwrap();
+                assert_eq!(got, want, "pieces of {n}");
+                let len = Some(text.len() as u64);
+                let got = parse_reader(Trickle(text.as_bytes(), n), "clip.bvh", len).unwrap();
+                assert_eq!(got, want, "pieces of {n}");
+            }
+        }
+        // Errors name the same line.
+        for (from, to) in [
+            ("1.5 35.25 -2 10", "1.5 35.25 abc 10"),
+            (" 11 12\n-0.0000", " 11\n-0.0000"),
+            ("OFFSET 0.0 0.0 0.0", "OFFSET 0.0 abc 0.0"),
+            ("Frame Time: 0.0333333", "Frame Time: 0"),
+        ] {
+            let text = small_with(from, to);
+            let want = parse_err(&text);
+            for n in [1, 5, 1 << 20] {
+                let got = parse_reader(Trickle(text.as_bytes(), n), "clip.bvh", None)
+                    .unwrap_err()
+                    .to_string();
+                assert_eq!(got, want);
+            }
+        }
+        let mut bad = SMALL.as_bytes().to_vec();
+        let at = SMALL.find("-0.0000").unwrap();
+        bad[at] = 0xff;
+        let got = parse_reader(Trickle(&bad, 3), "clip.bvh", None).unwrap_err();
+        assert_eq!(
+            got.to_string(),
+            format!("clip.bvh: expected UTF-8 text, found an invalid byte at offset {at}")
+        );
+    }
+
+    #[test]
+    fn motion_values_are_read_as_str_parse_reads_them() {
+        for s in [
+            "0",
+            "-0",
+            "-0.000000",
+            "+5",
+            "5.",
+            ".5",
+            "-.5",
+            "12.345678",
+            "-179.999999",
+            "123456789012345",
+            "1234567890123456",
+            "0.1",
+            "0.3",
+            "1e5",
+            "-2.5E-3",
+            "007.5",
+            "99999999999999.9",
+            "0.000000000000001",
+        ] {
+            let want: f64 = s.parse().unwrap();
+            let got = motion_value(s).unwrap();
+            assert_eq!(got.to_bits(), want.to_bits(), "{s}");
+        }
+        for s in ["", "-", ".", "+", "1.2.3", "1e", "abc", "1,5", "--1"] {
+            assert_eq!(motion_value(s), Err(false), "{s}");
+        }
+        for s in ["inf", "-inf", "NaN", "1e999"] {
+            assert_eq!(motion_value(s), Err(true), "{s}");
+        }
     }
 
     #[test]

@@ -5,12 +5,16 @@
 //! MOTION
 //! Frames: <rows>
 //! Frame Time: <rate::frame_time_text(fps)>    0.01, 0.0125, 0.0333333333
-//! <values of row 0, one space apart>          shortest digits that read back to the same f64
+//! <values of row 0, one space apart>          rounded (see below), then shortest digits
 //! ...
 //! ```
 //!
-//! Numbers are the shortest decimal that reads back as the same f64 (integers without `.0`,
-//! −0 as `0`); lines end in `\n`. The writer streams: [`BvhWriter`] takes one row at a time
+//! Each number is first rounded to 12 significant digits and to at most 10 decimals
+//! ([`bvh_round`]), then written as the shortest decimal that reads back as that f64 (integers
+//! without `.0`, −0 as `0`); lines end in `\n`. The rounding is far above the noise of an angle
+//! that went through a quaternion (about 1e-13 degrees) and far below anything a skeleton can
+//! show (1e-10 degrees), so an angle the source wrote as `10` or `-11.725488` is written so again
+//! rather than `9.99999999999999` or `-11.725488000000004`. The writer streams: [`BvhWriter`] takes one row at a time
 //! and buffers at most about 64 KiB. Like the other writers, it never writes a non-finite
 //! value: it fails with an [`io::Error`] of kind `InvalidData` (`internal error: …`) instead.
 
@@ -20,6 +24,41 @@ use crate::io::write::num::NumWriter;
 use std::io::{self, Write};
 
 const FLUSH_AT: usize = 64 * 1024;
+
+/// Powers of ten that are exact as `f64`.
+const POW10: [f64; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10];
+
+/// `x` (finite) rounded to 12 significant digits and to at most 10 decimals: the f64 nearest to
+/// that decimal, so that the shortest round-trip digits of the result are that decimal's.
+/// Values of 10^12 and more are left as they are.
+///
+/// ```
+/// use inbetween::io::bvh::write::bvh_round;
+///
+/// assert_eq!(bvh_round(9.999999999999998), 10.0);
+/// assert_eq!(bvh_round(-11.725488000000004), -11.725488);
+/// assert_eq!(bvh_round(1.4e-15), 0.0);
+/// assert_eq!(bvh_round(123456.78901234567), 123456.789012);
+/// assert_eq!(bvh_round(1.0 / 3.0), 0.3333333333);
+/// ```
+pub fn bvh_round(x: f64) -> f64 {
+    let a = x.abs();
+    if a >= 1e12 {
+        // No decimals are left to round (and no such value is an angle or a skeleton's length).
+        return x;
+    }
+    // Decimals kept: 10 below 100, then one fewer per digit before the point (12 significant).
+    let mut d = 10;
+    let mut lim = 100.0;
+    while a >= lim {
+        d -= 1;
+        lim *= 10.0;
+    }
+    // |x|·10^d < 10^12: the product is within one rounding of the exact one, and dividing two
+    // exact values rounds once, to the f64 nearest the decimal.
+    let p = POW10[d];
+    (x * p).round() / p
+}
 
 /// Writes a BVH file row by row: the header when made, then [`BvhWriter::row`] for each of the
 /// `frames` rows announced in it, then [`BvhWriter::finish`] (which flushes; dropping the
@@ -128,7 +167,7 @@ impl<W: Write> BvhWriter<W> {
             if i > 0 {
                 self.buf.push(b' ');
             }
-            self.num.shortest(&mut self.buf, x);
+            self.num.shortest(&mut self.buf, bvh_round(x));
             // Integers as BVH files write them: `-21`, not `-21.0`.
             if self.buf.ends_with(b".0") {
                 self.buf.truncate(self.buf.len() - 2);
@@ -211,7 +250,7 @@ mod tests {
             written(H, fps(30, 1), 3, &values),
             format!(
                 "{H}MOTION\nFrames: 3\nFrame Time: 0.0333333333\n0 0 21\n0.1 -179.99 1e-7\n\
-                 0.3333333333333333 1e+21 -2.5\n"
+                 0.3333333333 1e+21 -2.5\n"
             )
         );
         assert_eq!(
@@ -221,7 +260,7 @@ mod tests {
     }
 
     #[test]
-    fn every_written_number_reads_back_exactly() {
+    fn every_written_number_reads_back_as_its_rounded_value() {
         let mut state = 0x9E3779B97F4A7C15u64;
         let mut values = Vec::new();
         for _ in 0..30_000 {
@@ -237,7 +276,42 @@ mod tests {
             .split_ascii_whitespace()
             .map(|s| s.parse().unwrap())
             .collect();
-        assert_eq!(back, values);
+        let rounded: Vec<f64> = values.iter().map(|&x| bvh_round(x)).collect();
+        assert_eq!(back, rounded);
+        // Within half a unit of the 12th significant digit or the 10th decimal.
+        for (x, r) in values.iter().zip(&rounded) {
+            assert!(
+                (x - r).abs() <= (x.abs() * 5e-12).max(5e-11) * (1.0 + 1e-9),
+                "{x} {r}"
+            );
+        }
+    }
+
+    #[test]
+    fn numbers_written_with_few_digits_come_back_through_noise() {
+        for s in [
+            "10",
+            "-11.725488",
+            "179.999999",
+            "0.000001",
+            "-0.5",
+            "123456.789012",
+            "0",
+        ] {
+            let x: f64 = s.parse().unwrap();
+            for noisy in [x, x + x.abs() * 3e-15 + 1e-14, x - x.abs() * 3e-15 - 1e-14] {
+                let mut out = Vec::new();
+                write(&mut out, H, fps(30, 1), 3, &[noisy, 0.0, 0.0]).unwrap();
+                let text = String::from_utf8(out).unwrap();
+                let row = text.lines().last().unwrap();
+                let first = row.split(' ').next().unwrap();
+                // The number as written (in its shortest form: `1e-6` for `0.000001`).
+                assert_eq!(first.parse::<f64>().unwrap(), x + 0.0, "{noisy}: {row}");
+                assert!(first.len() <= s.len(), "{noisy}: {row}");
+            }
+        }
+        assert_eq!(bvh_round(1e300), 1e300);
+        assert_eq!(bvh_round(-2.5e-17), 0.0);
     }
 
     #[test]

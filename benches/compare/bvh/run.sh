@@ -4,14 +4,14 @@
 # `inbetween interp clip.bvh --fps 60 -o out.bvh`, side by side with bvhio 1.5.4 reading the same
 # file, keeping every other frame (bvhio cannot resample by time; see bvhio_resample.py) and
 # writing a BVH. Alternating runs, medians, peak RSS (ru_maxrss), ratio measured in one run.
-# Run by hand, not in CI:   bash benches/bvh/run.sh [--repeat 5]
-# Where inbetween's time and memory go (stages cut short, no profiler):   bash benches/bvh/run.sh --stages
+# Run by hand, not in CI:   bash benches/compare/bvh/run.sh [--repeat 5]
+# Where inbetween's time and memory go (stages cut short, no profiler):   bash benches/compare/bvh/run.sh --stages
 # Python: $BVHIO_PYTHON if set, else $CARGO_TARGET_DIR/ci-venv (created from
 # fixtures/requirements.txt, wheels only, when missing). The clip and the outputs go to
 # $CARGO_TARGET_DIR/bench-bvh/ (default target/), never into the repository.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-root="$(cd "$here/../.." && pwd)"
+root="$(cd "$here/../../.." && pwd)"
 target="${CARGO_TARGET_DIR:-$root/target}"
 py="${BVHIO_PYTHON:-$target/ci-venv/bin/python}"
 if [ ! -x "$py" ]; then

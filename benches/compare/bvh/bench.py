@@ -104,6 +104,11 @@ def stages(a):
        curve;
     3. + curves: --fps 1, every curve built, 601 frames written;
     4. whole: --fps 60, 36 000 frames written.
+
+    Written for the document path. Since the lean BVH path (docs/performance.md), an input error
+    or --max-frames sends the run to the document path after the lean read, so stages 1 and 2
+    measure the lean read plus the document path up to that point; stages 3 and 4 are the lean
+    path. Kept to reproduce the "before" figures (git checkout the commit before the lean path).
     """
     bad = os.path.join(a.outdir, "bad_last_row.bvh")
     # Copied in pieces: a child's ru_maxrss can include this process's own peak (a vfork child
