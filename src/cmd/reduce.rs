@@ -7,7 +7,7 @@ use inbetween::io::OutputFormat;
 use inbetween::io::document::{DocTrack, Document, KeyOrigin};
 use inbetween::io::output::Output;
 use inbetween::io::write::write_keys;
-use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce, reduce_shared};
+use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce_each, reduce_shared};
 use inbetween::{Error, InputError};
 use std::io::Read;
 
@@ -69,10 +69,11 @@ pub fn run(
             .collect();
         reduce_shared(&frames, &opts).map_err(located)?
     } else {
-        tracks
+        let frames: Vec<_> = tracks
             .iter()
-            .map(|t| reduce(t.times(), t.rotations(), t.translations(), &opts).map_err(located))
-            .collect::<Result<_, _>>()?
+            .map(|t| (t.times(), t.rotations(), t.translations()))
+            .collect();
+        reduce_each(&frames, &opts).map_err(located)?
     };
     if args.verbose {
         for (t, r) in tracks.iter().zip(&reduced) {
