@@ -13,9 +13,10 @@
 //!   found by doubling then bisection (a segment with both end velocities given depends on its
 //!   two keys only, for hermite, bezier, squad and slerp).
 //! - **Optimal**: a shortest path over the frames, an edge `i → j` wherever the segment `i..j`
-//!   alone meets the tolerance (segments up to [`OPTIMAL_WINDOW`] frames): the fewest keys whose
-//!   segments each meet it. It is exactly minimal where segments are local — slerp, and hermite,
-//!   bezier and squad with velocities — among key sets with segments of at most the window;
+//!   alone meets the tolerance (segments up to [`optimal_window`] frames: twice greedy's longest
+//!   segment on the track, at most [`OPTIMAL_WINDOW`]): the fewest keys whose segments each meet
+//!   it. It is exactly minimal where segments are local — slerp, and hermite, bezier and squad
+//!   with velocities — among key sets with segments of at most the window;
 //!   elsewhere (minaccel, estimated tangents) its keys are then completed like greedy's, and
 //!   where it would keep more keys than greedy, greedy's are kept.
 //!
@@ -32,6 +33,10 @@ use glam::{DQuat, DVec3};
 
 /// Longest segment (frames) the optimal method considers.
 pub const OPTIMAL_WINDOW: usize = 600;
+
+/// The optimal method considers segments up to this many times the longest segment of the
+/// track's greedy keys ([`optimal_window`]).
+pub const OPTIMAL_GREEDY_FACTOR: usize = 2;
 
 /// How keys are chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -124,6 +129,9 @@ struct Frames<'a> {
     quats: &'a [DQuat],
     positions: Option<&'a [DVec3]>,
     omega: Option<Vec<DVec3>>,
+    threshold: Threshold,
+    /// The frame that last missed in [`Frames::feasible`].
+    hint: std::cell::Cell<usize>,
 }
 
 impl Frames<'_> {
@@ -167,13 +175,81 @@ impl Frames<'_> {
         (ok, worst.1)
     }
 
-    /// Whether the segment `a..b` alone meets the tolerances.
+    /// Whether the segment `a..b` alone meets the tolerances. Stops at the first frame that
+    /// misses, trying first the frame that missed last time (`hint`: neighbouring segments
+    /// usually miss at the same frame), and decides most frames from the cosine of the half
+    /// angle ([`Threshold`]); the answer is the same as [`Frames::check`]'s.
     fn feasible(&self, a: usize, b: usize, opts: &ReduceOptions) -> InputResult<bool> {
         if b == a + 1 {
             return Ok(true);
         }
         let curve = self.curve(&[a, b], opts)?;
-        Ok(self.check(&curve, a, b, opts).0)
+        let within = |k: usize| {
+            if !self
+                .threshold
+                .within(opts, curve.rotation(self.times[k]), self.quats[k])
+            {
+                return false;
+            }
+            match (self.positions, opts.translation_tolerance) {
+                (Some(p), Some(tol)) => {
+                    let d = (curve.position(self.times[k]).unwrap_or(DVec3::ZERO) - p[k]).length();
+                    d <= tol
+                }
+                _ => true,
+            }
+        };
+        let hint = self.hint.get();
+        if hint > a && hint < b && !within(hint) {
+            return Ok(false);
+        }
+        for k in a + 1..b {
+            if k != hint && !within(k) {
+                self.hint.set(k);
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+}
+
+/// The rotation test of [`Frames::check`] (`error > tolerance·(1 − 1e-9)` misses) decided from
+/// `|a·b|`, the cosine of half the angle between the rotations, which the error decreases with:
+/// clearly above the threshold's cosine a frame meets the tolerance, clearly below it misses,
+/// and within 1e-9 of it the error is computed as [`Frames::check`] computes it.
+#[derive(Debug, Clone, Copy)]
+struct Threshold {
+    cos_half: f64,
+}
+
+/// Half-width of the band around [`Threshold::cos_half`] where the exact error decides.
+const BAND: f64 = 1e-9;
+
+impl Threshold {
+    fn new(opts: &ReduceOptions) -> Threshold {
+        let tol = opts.tolerance * (1.0 - 1e-9);
+        // The half angle at which the error reaches `tol` (the error is `θ`, or `2D·sin(θ/2)`).
+        let half = match opts.distance {
+            Some(d) if tol >= 2.0 * d => std::f64::consts::FRAC_PI_2,
+            Some(d) => (tol / (2.0 * d)).asin(),
+            None => (0.5 * tol).min(std::f64::consts::FRAC_PI_2),
+        };
+        Threshold {
+            cos_half: half.cos(),
+        }
+    }
+
+    /// Whether `a` is within the tolerance of `b` (the same answer as `error(a, b) <= tol`).
+    #[inline]
+    fn within(&self, opts: &ReduceOptions, a: DQuat, b: DQuat) -> bool {
+        let c = a.dot(b).abs();
+        if c > self.cos_half + BAND {
+            true
+        } else if c < self.cos_half - BAND {
+            false
+        } else {
+            error(opts, a, b) <= opts.tolerance * (1.0 - 1e-9)
+        }
     }
 }
 
@@ -191,6 +267,8 @@ pub fn reduce(
         quats,
         positions,
         omega: opts.velocities.then(|| frame_velocities(times, quats)),
+        threshold: Threshold::new(opts),
+        hint: std::cell::Cell::new(0),
     };
     if n < 2 {
         return Ok(Reduced {
@@ -204,7 +282,8 @@ pub fn reduce(
     let keys = match opts.method {
         Method::Greedy => greedy,
         Method::Optimal => {
-            let best = verified(&frames, optimal_keys(&frames, opts)?, opts)?;
+            let window = optimal_window(&greedy);
+            let best = verified(&frames, optimal_keys(&frames, window, opts)?, opts)?;
             if best.len() <= greedy.len() {
                 best
             } else {
@@ -240,6 +319,59 @@ pub fn reduce(
 /// One track's frames for [`reduce_shared`]: times, rotations, optional positions.
 pub type TrackFrames<'a> = (&'a [f64], &'a [DQuat], Option<&'a [DVec3]>);
 
+/// Reduces each track on its own ([`reduce`]), the tracks shared out among the machine's cores
+/// (at most [`MAX_THREADS`] threads, tracks taken in order as threads come free). The result is
+/// in the tracks' order and the same whatever the number of threads; on errors, the first
+/// track's error.
+pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputResult<Vec<Reduced>> {
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(MAX_THREADS)
+        .min(tracks.len());
+    if threads <= 1 {
+        return tracks
+            .iter()
+            .map(|&(t, q, p)| reduce(t, q, p, opts))
+            .collect();
+    }
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<InputResult<Reduced>>>> =
+        Mutex::new((0..tracks.len()).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..threads {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    let Some(&(t, q, p)) = tracks.get(i) else {
+                        break;
+                    };
+                    let r = reduce(t, q, p, opts);
+                    if let Ok(mut v) = results.lock() {
+                        v[i] = Some(r);
+                    }
+                }
+            });
+        }
+    });
+    results
+        .into_inner()
+        .unwrap_or_default()
+        .into_iter()
+        .map(|r| {
+            r.unwrap_or_else(|| {
+                Err(crate::error::input_err!(
+                    "internal error: a reduce thread did not finish"
+                ))
+            })
+        })
+        .collect()
+}
+
+/// Most threads [`reduce_each`] uses.
+pub const MAX_THREADS: usize = 8;
+
 /// Reduces several tracks to one set of key times (`--shared-keys`): each track's own keys, their
 /// union, then verification of every track on the union until all meet the tolerances. The
 /// tracks must have the same frame times.
@@ -269,6 +401,8 @@ pub fn reduce_shared(
                 quats: q,
                 positions: p,
                 omega: opts.velocities.then(|| frame_velocities(t, q)),
+                threshold: Threshold::new(opts),
+                hint: std::cell::Cell::new(0),
             };
             keys = verified(&frames, keys, opts)?;
         }
@@ -284,6 +418,8 @@ pub fn reduce_shared(
                 quats: q,
                 positions: p,
                 omega: opts.velocities.then(|| frame_velocities(t, q)),
+                threshold: Threshold::new(opts),
+                hint: std::cell::Cell::new(0),
             };
             let curve = frames.curve(&keys, opts)?;
             let (mut max, mut sum) = (0.0f64, 0.0);
@@ -342,8 +478,16 @@ fn greedy_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>>
     Ok(keys)
 }
 
-/// Optimal keys: the shortest path over feasible segments of at most [`OPTIMAL_WINDOW`] frames.
-fn optimal_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
+/// The longest segment (frames) the optimal method considers on a track whose greedy keys are
+/// `greedy`: [`OPTIMAL_GREEDY_FACTOR`] times greedy's longest segment, at most
+/// [`OPTIMAL_WINDOW`].
+pub fn optimal_window(greedy: &[usize]) -> usize {
+    let longest = greedy.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(1);
+    (OPTIMAL_GREEDY_FACTOR * longest).min(OPTIMAL_WINDOW)
+}
+
+/// Optimal keys: the shortest path over feasible segments of at most `window` frames.
+fn optimal_keys(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
     let n = frames.quats.len();
     let mut cost = vec![usize::MAX; n];
     let mut prev = vec![0usize; n];
@@ -352,7 +496,7 @@ fn optimal_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>
         if cost[a] == usize::MAX {
             continue;
         }
-        for b in a + 1..(a + OPTIMAL_WINDOW).min(n - 1) + 1 {
+        for b in a + 1..(a + window).min(n - 1) + 1 {
             if cost[a] + 1 < cost[b] && frames.feasible(a, b, opts)? {
                 cost[b] = cost[a] + 1;
                 prev[b] = a;

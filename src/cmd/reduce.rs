@@ -9,7 +9,7 @@ use inbetween::io::gltf::ContainerFormat;
 use inbetween::io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween::io::output::Output;
 use inbetween::io::write::write_keys;
-use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce, reduce_shared};
+use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce_each, reduce_shared};
 use inbetween::{Error, InputError};
 use std::io::Read;
 
@@ -137,20 +137,16 @@ fn reduce_tracks(
         t.translations().filter(|_| keep)
     }
     let located = |e: InputError| e.at(&doc.source);
+    let frames: Vec<_> = tracks
+        .iter()
+        .map(|t| (t.times(), t.rotations(), positions(t, translations)))
+        .collect();
     let reduced: Vec<Reduced> = if args.shared_keys {
-        let frames: Vec<_> = tracks
-            .iter()
-            .map(|t| (t.times(), t.rotations(), positions(t, translations)))
-            .collect();
-        reduce_shared(&frames, &opts).map_err(located)?
+        reduce_shared(&frames, &opts)
     } else {
-        tracks
-            .iter()
-            .map(|t| {
-                reduce(t.times(), t.rotations(), positions(t, translations), &opts).map_err(located)
-            })
-            .collect::<Result<_, _>>()?
-    };
+        reduce_each(&frames, &opts)
+    }
+    .map_err(located)?;
     if args.verbose {
         for (t, r) in tracks.iter().zip(&reduced) {
             let unit = |x: f64| match args.distance {
