@@ -426,3 +426,26 @@ mod fixtures {
         assert_eq!((clip.frame_count(), clip.channel_count()), (4, 18));
     }
 }
+
+/// Writes one frame of a joint into its row of channel values: the rotation as the next
+/// continuous Euler triple of `unwrap` in degrees at the rotation columns, the position at the
+/// position columns (each only where the joint has those channels).
+pub(crate) fn fill_joint_row(
+    row: &mut [f64],
+    rotation: Option<(crate::rotation::EulerSeq, [usize; 3])>,
+    unwrap: Option<&mut crate::rotation::unwrap::EulerUnwrap>,
+    position_cols: Option<[usize; 3]>,
+    q: glam::DQuat,
+    position: Option<glam::DVec3>,
+) {
+    if let (Some((_, cols)), Some(u)) = (rotation, unwrap) {
+        for (c, a) in cols.iter().zip(u.next(q)) {
+            row[*c] = a.to_degrees();
+        }
+    }
+    if let (Some(cols), Some(p)) = (position_cols, position) {
+        for (c, x) in cols.iter().zip(p.to_array()) {
+            row[*c] = x;
+        }
+    }
+}

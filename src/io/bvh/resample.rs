@@ -177,17 +177,14 @@ impl JointFrames {
         let at = self.values.len();
         self.values.resize(at + self.width, 0.0);
         let row = &mut self.values[at..];
-        if let (Some((_, cols)), Some(u)) = (self.rotation, self.unwrap.as_mut()) {
-            let e = u.next(q);
-            for (c, a) in cols.iter().zip(e) {
-                row[*c] = a.to_degrees();
-            }
-        }
-        if let (Some(cols), Some(p)) = (self.position, position) {
-            for (c, x) in cols.iter().zip(p.to_array()) {
-                row[*c] = x;
-            }
-        }
+        super::fill_joint_row(
+            row,
+            self.rotation,
+            self.unwrap.as_mut(),
+            self.position,
+            q,
+            position,
+        );
     }
 }
 
