@@ -134,7 +134,24 @@ struct Frames<'a> {
     hint: std::cell::Cell<usize>,
 }
 
-impl Frames<'_> {
+impl<'a> Frames<'a> {
+    /// One track's frames for `opts`: its velocities estimated when keys carry them.
+    fn new(
+        times: &'a [f64],
+        quats: &'a [DQuat],
+        positions: Option<&'a [DVec3]>,
+        opts: &ReduceOptions,
+    ) -> Frames<'a> {
+        Frames {
+            times,
+            quats,
+            positions,
+            omega: opts.velocities.then(|| frame_velocities(times, quats)),
+            threshold: Threshold::new(opts),
+            hint: std::cell::Cell::new(0),
+        }
+    }
+
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
     /// builds it.
     fn curve(&self, keys: &[usize], opts: &ReduceOptions) -> InputResult<Curve> {
@@ -262,14 +279,7 @@ pub fn reduce(
     opts: &ReduceOptions,
 ) -> InputResult<Reduced> {
     let n = quats.len();
-    let frames = Frames {
-        times,
-        quats,
-        positions,
-        omega: opts.velocities.then(|| frame_velocities(times, quats)),
-        threshold: Threshold::new(opts),
-        hint: std::cell::Cell::new(0),
-    };
+    let frames = Frames::new(times, quats, positions, opts);
     if n < 2 {
         return Ok(Reduced {
             keys: (0..n).collect(),
@@ -388,39 +398,28 @@ pub fn reduce_shared(
         ));
     }
     let mut keys: Vec<usize> = Vec::new();
-    for &(t, q, p) in tracks {
-        keys.extend(reduce(t, q, p, opts)?.keys);
+    for r in reduce_each(tracks, opts)? {
+        keys.extend(r.keys);
     }
     keys.sort_unstable();
     keys.dedup();
+    let frames: Vec<Frames> = tracks
+        .iter()
+        .map(|&(t, q, p)| Frames::new(t, q, p, opts))
+        .collect();
     loop {
         let before = keys.len();
-        for &(t, q, p) in tracks {
-            let frames = Frames {
-                times: t,
-                quats: q,
-                positions: p,
-                omega: opts.velocities.then(|| frame_velocities(t, q)),
-                threshold: Threshold::new(opts),
-                hint: std::cell::Cell::new(0),
-            };
-            keys = verified(&frames, keys, opts)?;
+        for f in &frames {
+            keys = verified(f, keys, opts)?;
         }
         if keys.len() == before {
             break;
         }
     }
-    tracks
+    frames
         .iter()
-        .map(|&(t, q, p)| {
-            let frames = Frames {
-                times: t,
-                quats: q,
-                positions: p,
-                omega: opts.velocities.then(|| frame_velocities(t, q)),
-                threshold: Threshold::new(opts),
-                hint: std::cell::Cell::new(0),
-            };
+        .map(|frames| {
+            let (t, q) = (frames.times, frames.quats);
             let curve = frames.curve(&keys, opts)?;
             let (mut max, mut sum) = (0.0f64, 0.0);
             for k in 0..q.len() {
