@@ -188,27 +188,20 @@ fn an_independent_reader_agrees() {
     }
 }
 
-/// BVH → `convert` → JSON keys → `convert --skeleton` → BVH gives back every rotation and
-/// position of the file, on its hierarchy byte for byte; keys that are not one grid are refused.
-#[test]
-fn keys_go_back_onto_the_skeleton() {
-    let dir = tempfile::tempdir().unwrap();
-    let (src, keys, out) = (
-        dir.path().join("clip.bvh"),
-        dir.path().join("keys.json"),
-        dir.path().join("back.bvh"),
-    );
-    let text = clip(31, 30.0, "0.0333333");
-    std::fs::write(&src, &text).unwrap();
-    let run = |args: &[&std::ffi::OsStr]| crate::support::bin().args(args).output().unwrap();
-    let o = run(&[
+/// `src` → `convert` → JSON keys → `convert keys.json --skeleton src` → BVH, in `dir`: the BVH
+/// text that comes back.
+fn through_keys(src: &std::path::Path, dir: &std::path::Path) -> String {
+    let (keys, out) = (dir.join("keys.json"), dir.join("back.bvh"));
+    let run = |args: &[&std::ffi::OsStr]| {
+        crate::support::stdout_of(crate::support::bin().args(args));
+    };
+    run(&[
         "convert".as_ref(),
         src.as_os_str(),
         "-o".as_ref(),
         keys.as_os_str(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let o = run(&[
+    run(&[
         "convert".as_ref(),
         keys.as_os_str(),
         "--skeleton".as_ref(),
@@ -216,8 +209,18 @@ fn keys_go_back_onto_the_skeleton() {
         "-o".as_ref(),
         out.as_os_str(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let back = std::fs::read_to_string(&out).unwrap();
+    std::fs::read_to_string(&out).unwrap()
+}
+
+/// BVH → `convert` → JSON keys → `convert --skeleton` → BVH gives back every rotation and
+/// position of the file, on its hierarchy byte for byte; keys that are not one grid are refused.
+#[test]
+fn keys_go_back_onto_the_skeleton() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("clip.bvh");
+    let text = clip(31, 30.0, "0.0333333");
+    std::fs::write(&src, &text).unwrap();
+    let back = through_keys(&src, dir.path());
     assert!(back.starts_with(HIERARCHY));
     let ((_, want), (_, got)) = (poses(&text), poses(&back));
     assert_eq!(got.len(), want.len());
@@ -466,26 +469,7 @@ fn an_independent_reader_agrees_on_a_real_clip() {
 fn a_real_clip_goes_through_keys_and_back() {
     let dir = tempfile::tempdir().unwrap();
     let (src, text) = cmu();
-    let (keys, out) = (dir.path().join("keys.json"), dir.path().join("back.bvh"));
-    let run = |args: &[&std::ffi::OsStr]| {
-        let o = crate::support::bin().args(args).output().unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    };
-    run(&[
-        "convert".as_ref(),
-        src.as_os_str(),
-        "-o".as_ref(),
-        keys.as_os_str(),
-    ]);
-    run(&[
-        "convert".as_ref(),
-        keys.as_os_str(),
-        "--skeleton".as_ref(),
-        src.as_os_str(),
-        "-o".as_ref(),
-        out.as_os_str(),
-    ]);
-    let (a, b) = (plain(&text), plain(&std::fs::read_to_string(&out).unwrap()));
+    let (a, b) = (plain(&text), plain(&through_keys(&src, dir.path())));
     assert_eq!(b.hierarchy, a.hierarchy);
     let (want, got) = (a.poses(), b.poses());
     assert_eq!(got.len(), 61);

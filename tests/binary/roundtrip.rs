@@ -126,19 +126,7 @@ fn frame_rows(text: &[u8]) -> Vec<[f64; 8]> {
 fn dense_output_with_velocities_reads_back_as_itself() {
     let dir = tempfile::tempdir().unwrap();
     let interp = |args: &[&str]| {
-        let mut cmd = Command::cargo_bin("inbetween").unwrap();
-        let out = cmd
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .arg("interp")
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        out.stdout
+        crate::support::stdout_of(crate::support::bin().arg("interp").args(args)).into_bytes()
     };
     for scheme in ["hermite", "bezier", "squad"] {
         for ext in ["csv", "json"] {
@@ -212,20 +200,8 @@ fn dense_output_with_velocities_reads_back_as_itself() {
 #[test]
 fn reduce_then_interp_gives_every_frame_back() {
     let dir = tempfile::tempdir().unwrap();
-    let run = |args: &[&str]| {
-        let mut cmd = Command::cargo_bin("inbetween").unwrap();
-        let out = cmd
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
-            .args(args)
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        out.stdout
-    };
+    let run =
+        |args: &[&str]| crate::support::stdout_of(crate::support::bin().args(args)).into_bytes();
     let clip = dir.path().join("clip.csv");
     let clip = clip.to_str().unwrap();
     run(&[
@@ -302,12 +278,7 @@ fn reduce_then_interp_on_real_motion_capture() {
     use std::collections::HashMap;
     let dir = tempfile::tempdir().unwrap();
     let run = |args: &[&std::ffi::OsStr]| {
-        let out = crate::support::bin().args(args).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{args:?}: {}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        crate::support::stdout_of(crate::support::bin().args(args));
     };
     let (clip, keys, back) = (
         dir.path().join("clip.csv"),
