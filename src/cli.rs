@@ -216,6 +216,16 @@ pub struct OutputArgs {
 }
 
 impl OutputArgs {
+    /// The folder of the `-o` file (`.` for a bare name); `None` for standard output.
+    pub fn folder(&self) -> Option<&std::path::Path> {
+        let path = self.output.as_deref().filter(|p| p.as_os_str() != "-")?;
+        Some(
+            path.parent()
+                .filter(|d| !d.as_os_str().is_empty())
+                .unwrap_or(".".as_ref()),
+        )
+    }
+
     pub fn num_format(&self) -> NumFormat {
         self.precision.map_or(NumFormat::Shortest, NumFormat::Fixed)
     }

@@ -16,7 +16,6 @@ use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, Track, bake_over,
 };
 use std::io::Read;
-use std::path::Path;
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
 ///
@@ -190,16 +189,8 @@ pub fn run(
             let (clip, container) = gltf_out.expect("checked above");
             let frames = GltfFrames::new(out, clip, fps, container);
             // Written to a file: relative URIs are rewritten for its folder.
-            match args
-                .output
-                .output
-                .as_deref()
-                .filter(|p| p.as_os_str() != "-")
-            {
-                Some(path) => {
-                    let dir = path.parent().filter(|d| !d.as_os_str().is_empty());
-                    Box::new(frames.in_folder(dir.unwrap_or(Path::new("."))))
-                }
+            match args.output.folder() {
+                Some(dir) => Box::new(frames.in_folder(dir)),
                 None => Box::new(frames),
             }
         }

@@ -197,17 +197,7 @@ fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Res
             rotations: r.keys.iter().map(|&i| t.rotations()[i]).collect(),
         })
         .collect();
-    let path = args
-        .output
-        .output
-        .as_deref()
-        .filter(|p| p.as_os_str() != "-");
-    let dir = path.map(|p| {
-        p.parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(".".as_ref())
-    });
-    let bytes = keys_asset(clip, &keys, container, dir)?;
+    let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     let mut out = Output::open(args.output.output.as_deref())?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
