@@ -8,22 +8,34 @@
 //! or with a distance `D` the displacement `2·D·sin(θ/2)` of a point `D` from the joint;
 //! positions within their own tolerance.
 //!
+//! ## Velocities
+//! A key carries one of its frame's [`velocity_estimates`] (finite differences of the frames:
+//! centred, one-sided of first and second order, wide centred). Which one is chosen so that fewer
+//! keys meet the tolerance: on captured motion the one-sided estimates at a frame where the motion
+//! turns let a key there start or end a long segment. With slerp (no tangents) or without
+//! velocities there is nothing to choose.
+//!
 //! ## Methods
 //! - **Greedy**: from each key, the farthest next key whose segment alone meets the tolerance,
-//!   found by doubling then bisection (a segment with both end velocities given depends on its
-//!   two keys only, for hermite, bezier, squad and slerp).
-//! - **Optimal**: a shortest path over the frames, an edge `i → j` wherever the segment `i..j`
-//!   alone meets the tolerance (segments up to [`optimal_window`] frames: twice greedy's longest
-//!   segment on the track, at most [`OPTIMAL_WINDOW`]): the fewest keys whose segments each meet
-//!   it. It is exactly minimal where segments are local — slerp, and hermite, bezier and squad
-//!   with velocities — among key sets with segments of at most the window;
-//!   elsewhere (minaccel, estimated tangents) its keys are then completed like greedy's, and
-//!   where it would keep more keys than greedy, greedy's are kept.
+//!   over the estimates the next key may carry (`greedy_step`: doubling then bisection); where
+//!   several estimates reach it, the one from which the following step goes farthest (one step
+//!   of look-ahead). A segment with both end velocities given depends on its two keys only, for
+//!   hermite, bezier, squad and slerp.
+//! - **Optimal**: each frame first takes its *preferred* estimate, the one from which a segment
+//!   starting there reaches farthest (`preferred_estimates`); then a shortest path over the
+//!   frames, an edge `i → j` wherever the segment `i..j` alone meets the tolerance (segments up
+//!   to [`optimal_window`] frames: twice greedy's longest segment on the track, at most
+//!   [`OPTIMAL_WINDOW`]): the fewest keys, among key sets whose keys carry their preferred
+//!   estimates and whose segments fit the window, whose segments each meet it. For slerp (one
+//!   estimate, or none) that is exactly minimal within the window. Elsewhere (minaccel,
+//!   estimated tangents) its keys are then completed like greedy's, and where it would keep
+//!   more keys than greedy, greedy's are kept (with greedy's estimates).
 //!
 //! Both end with **verification**: the curve through the chosen keys is built exactly as
 //! `interp` builds it ([`Curve`]), evaluated at every frame, and wherever a frame misses the
-//! tolerance the worst frame of that segment becomes a key, until none misses. The result is
-//! therefore guaranteed, whatever the scheme, and checked before it is returned.
+//! tolerance the worst frame of that segment becomes a key (carrying its centred estimate),
+//! until none misses. The result is therefore guaranteed, whatever the scheme, and checked
+//! before it is returned.
 
 use crate::curve::{Curve, CurveOptions, Scheme};
 use crate::error::InputResult;
@@ -59,7 +71,7 @@ pub struct ReduceOptions {
     pub distance: Option<f64>,
     /// Largest position error (length units), for tracks with translations.
     pub translation_tolerance: Option<f64>,
-    /// Give each key the frames' angular velocity at it.
+    /// Give each key an estimate of the frames' angular velocity at it ([`velocity_estimates`]).
     pub velocities: bool,
     /// Greedy or optimal.
     pub method: Method,
@@ -114,6 +126,55 @@ pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
     out
 }
 
+/// How many velocity estimates a key may choose from ([`velocity_estimates`]).
+pub const ESTIMATES: usize = 6;
+
+/// Each frame's angular velocity estimates (rad/s, world frame), the derivative at the frame of
+/// the polynomial through the frame and neighbours in the log map, for five stencils, in order:
+/// centred (the previous and next frame: [`frame_velocities`], one-sided at the ends), backward
+/// and forward first order (the previous, the next frame), backward and forward second order
+/// (the two previous, the two next frames). Where a stencil runs off the track, the centred
+/// estimate stands in. On smooth motion they agree to first or second order; where the motion
+/// turns sharply (a foot strike, a hit) the one-sided ones are the velocities arriving and
+/// leaving, which let a key there start or end a long segment.
+pub fn velocity_estimates(times: &[f64], quats: &[DQuat]) -> Vec<[DVec3; ESTIMATES]> {
+    let centred = frame_velocities(times, quats);
+    let n = quats.len();
+    // The derivative at t_i of f(t) = αt + βt² through f(0) = 0, f(t1) = L1, f(t2) = L2 (t1, t2
+    // signed), doubled: the log map holds half angles.
+    let second = |i: usize, j: usize, k: usize| {
+        let (t1, t2) = (times[j] - times[i], times[k] - times[i]);
+        let (l1, l2) = (
+            log(quats[j] * quats[i].conjugate()),
+            log(quats[k] * quats[i].conjugate()),
+        );
+        (l1 * (t2 * t2) - l2 * (t1 * t1)) * (2.0 / (t1 * t2 * (t2 - t1)))
+    };
+    let first =
+        |i: usize, j: usize| log(quats[j] * quats[i].conjugate()) * (2.0 / (times[j] - times[i]));
+    (0..n)
+        .map(|i| {
+            let c = centred[i];
+            [
+                c,
+                if i >= 1 { first(i, i - 1) } else { c },
+                if i + 1 < n { first(i, i + 1) } else { c },
+                if i >= 2 { second(i, i - 1, i - 2) } else { c },
+                if i + 2 < n {
+                    second(i, i + 1, i + 2)
+                } else {
+                    c
+                },
+                if i >= 2 && i + 2 < n {
+                    second(i, i - 2, i + 2)
+                } else {
+                    c
+                },
+            ]
+        })
+        .collect()
+}
+
 /// The error measure: the angle, or the displacement at `distance`.
 fn error(opts: &ReduceOptions, a: DQuat, b: DQuat) -> f64 {
     let theta = rotation_angle_between(a, b);
@@ -128,7 +189,14 @@ struct Frames<'a> {
     times: &'a [f64],
     quats: &'a [DQuat],
     positions: Option<&'a [DVec3]>,
-    omega: Option<Vec<DVec3>>,
+    /// Each frame's velocity estimates, when keys carry velocities.
+    estimates: Option<Vec<[DVec3; ESTIMATES]>>,
+    /// The estimate each frame carries when it is a key (an index into its estimates; the
+    /// centred one until a method chooses another).
+    choice: Vec<std::cell::Cell<u8>>,
+    /// How many estimates the methods choose from: [`ESTIMATES`] where keys carry velocities
+    /// and the scheme uses them, else 1.
+    choices: usize,
     threshold: Threshold,
     /// The frame that last missed in [`Frames::feasible`].
     hint: std::cell::Cell<usize>,
@@ -146,10 +214,35 @@ impl<'a> Frames<'a> {
             times,
             quats,
             positions,
-            omega: opts.velocities.then(|| frame_velocities(times, quats)),
+            estimates: opts.velocities.then(|| velocity_estimates(times, quats)),
+            choice: vec![std::cell::Cell::new(0); quats.len()],
+            choices: if opts.velocities && opts.curve.scheme != Scheme::Slerp {
+                ESTIMATES
+            } else {
+                1
+            },
             threshold: Threshold::new(opts),
             hint: std::cell::Cell::new(0),
         }
+    }
+
+    /// The velocity frame `i` carries as a key (its chosen estimate), when keys carry them.
+    fn velocity(&self, i: usize) -> Option<DVec3> {
+        self.estimates
+            .as_ref()
+            .map(|e| e[i][usize::from(self.choice[i].get())])
+    }
+
+    /// Frame `i` carries estimate `c` when it is a key.
+    fn choose(&self, i: usize, c: usize) {
+        self.choice[i].set(c as u8);
+    }
+
+    /// The velocities the frames `keys` carry, when keys carry them.
+    fn key_velocities(&self, keys: &[usize]) -> Option<Vec<DVec3>> {
+        self.estimates
+            .as_ref()
+            .map(|_| keys.iter().filter_map(|&i| self.velocity(i)).collect())
     }
 
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
@@ -158,8 +251,8 @@ impl<'a> Frames<'a> {
         let t: Vec<f64> = keys.iter().map(|&i| self.times[i]).collect();
         let q: Vec<DQuat> = keys.iter().map(|&i| self.quats[i]).collect();
         let mut track = Track::new(t, q)?;
-        if let Some(w) = &self.omega {
-            track = track.with_key_velocities(keys.iter().map(|&i| Some(w[i])).collect())?;
+        if self.estimates.is_some() {
+            track = track.with_key_velocities(keys.iter().map(|&i| self.velocity(i)).collect())?;
         }
         if let Some(p) = self.positions {
             track = track.with_translations(keys.iter().map(|&i| p[i]).collect())?;
@@ -230,6 +323,41 @@ impl<'a> Frames<'a> {
     }
 }
 
+impl Frames<'_> {
+    /// [`Frames::feasible`] with frame `b` carrying estimate `c`.
+    fn feasible_with(
+        &self,
+        a: usize,
+        b: usize,
+        c: usize,
+        opts: &ReduceOptions,
+    ) -> InputResult<bool> {
+        self.choose(b, c);
+        self.feasible(a, b, opts)
+    }
+
+    /// Every frame that is not one of `keys` back to the centred estimate, so that keys added by
+    /// verification carry it.
+    fn keep_choices(&self, keys: &[usize]) {
+        let mut k = keys.iter().peekable();
+        for (i, c) in self.choice.iter().enumerate() {
+            if k.peek() == Some(&&i) {
+                k.next();
+            } else {
+                c.set(0);
+            }
+        }
+    }
+
+    /// The estimate frame `i` carries as a key: the first equal to `w` (a velocity this track's
+    /// own reduction gave it), else the centred one.
+    fn choose_velocity(&self, i: usize, w: DVec3) {
+        if let Some(e) = &self.estimates {
+            self.choose(i, e[i].iter().position(|&x| x == w).unwrap_or(0));
+        }
+    }
+}
+
 /// The rotation test of [`Frames::check`] (`error > tolerance·(1 − 1e-9)` misses) decided from
 /// `|a·b|`, the cosine of half the angle between the rotations, which the error decreases with:
 /// clearly above the threshold's cosine a frame meets the tolerance, clearly below it misses,
@@ -281,22 +409,31 @@ pub fn reduce(
     let n = quats.len();
     let frames = Frames::new(times, quats, positions, opts);
     if n < 2 {
+        let keys: Vec<usize> = (0..n).collect();
         return Ok(Reduced {
-            keys: (0..n).collect(),
-            velocities: frames.omega.clone(),
+            velocities: frames.key_velocities(&keys),
+            keys,
             max_error: 0.0,
             mean_error: 0.0,
         });
     }
-    let greedy = verified(&frames, greedy_keys(&frames, opts)?, opts)?;
+    let greedy = greedy_keys(&frames, opts)?;
+    frames.keep_choices(&greedy);
+    let greedy = verified(&frames, greedy, opts)?;
     let keys = match opts.method {
         Method::Greedy => greedy,
         Method::Optimal => {
+            let greedy_choice: Vec<u8> = frames.choice.iter().map(std::cell::Cell::get).collect();
             let window = optimal_window(&greedy);
-            let best = verified(&frames, optimal_keys(&frames, window, opts)?, opts)?;
+            let best = optimal_keys(&frames, window, opts)?;
+            frames.keep_choices(&best);
+            let best = verified(&frames, best, opts)?;
             if best.len() <= greedy.len() {
                 best
             } else {
+                for (c, &g) in frames.choice.iter().zip(&greedy_choice) {
+                    c.set(g);
+                }
                 greedy
             }
         }
@@ -316,10 +453,7 @@ pub fn reduce(
         ));
     }
     Ok(Reduced {
-        velocities: frames
-            .omega
-            .as_ref()
-            .map(|w| keys.iter().map(|&i| w[i]).collect()),
+        velocities: frames.key_velocities(&keys),
         keys,
         max_error: max,
         mean_error: sum / n as f64,
@@ -397,16 +531,22 @@ pub fn reduce_shared(
             "--shared-keys: the tracks have different frame times; shared keys need one grid"
         ));
     }
-    let mut keys: Vec<usize> = Vec::new();
-    for r in reduce_each(tracks, opts)? {
-        keys.extend(r.keys);
-    }
-    keys.sort_unstable();
-    keys.dedup();
     let frames: Vec<Frames> = tracks
         .iter()
         .map(|&(t, q, p)| Frames::new(t, q, p, opts))
         .collect();
+    let mut keys: Vec<usize> = Vec::new();
+    for (r, f) in reduce_each(tracks, opts)?.into_iter().zip(&frames) {
+        // Each track's own keys keep the velocities its own reduction chose.
+        for (j, &k) in r.keys.iter().enumerate() {
+            if let Some(w) = &r.velocities {
+                f.choose_velocity(k, w[j]);
+            }
+        }
+        keys.extend(r.keys);
+    }
+    keys.sort_unstable();
+    keys.dedup();
     loop {
         let before = keys.len();
         for f in &frames {
@@ -428,10 +568,7 @@ pub fn reduce_shared(
                 sum += e;
             }
             Ok(Reduced {
-                velocities: frames
-                    .omega
-                    .as_ref()
-                    .map(|w| keys.iter().map(|&i| w[i]).collect()),
+                velocities: frames.key_velocities(&keys),
                 keys: keys.clone(),
                 max_error: max,
                 mean_error: sum / q.len() as f64,
@@ -440,41 +577,110 @@ pub fn reduce_shared(
         .collect()
 }
 
-/// Greedy keys: from each key the farthest next key whose segment alone is feasible (doubling,
-/// then bisection between the last feasible and the first infeasible length).
+/// From key `a` (its velocity chosen), the farthest next key `b ≥ from` whose segment alone meets
+/// the tolerances with `b` carrying estimate `c`, given that `from` does: doubling past `from`,
+/// then bisection between the last length that meets them and the first that does not.
+fn farthest(
+    frames: &Frames,
+    a: usize,
+    from: usize,
+    c: usize,
+    opts: &ReduceOptions,
+) -> InputResult<usize> {
+    let n = frames.quats.len();
+    let (mut good, mut step) = (from, 1);
+    let mut bad = None;
+    while good < n - 1 {
+        let b = (good + step).min(n - 1);
+        if frames.feasible_with(a, b, c, opts)? {
+            good = b;
+            step *= 2;
+        } else {
+            bad = Some(b);
+            break;
+        }
+    }
+    if let Some(mut hi) = bad {
+        let mut lo = good;
+        while hi - lo > 1 {
+            let mid = (lo + hi) / 2;
+            if frames.feasible_with(a, mid, c, opts)? {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        good = lo;
+    }
+    Ok(good)
+}
+
+/// One greedy step from key `a` (its velocity chosen): the farthest next key over the estimates
+/// it may carry ([`farthest`]; an estimate other than the first is searched only when it meets
+/// the tolerances one frame past the best so far), and the estimates that reach that key.
+fn greedy_step(
+    frames: &Frames,
+    a: usize,
+    opts: &ReduceOptions,
+) -> InputResult<(usize, Vec<usize>)> {
+    let n = frames.quats.len();
+    let mut best = farthest(frames, a, a + 1, 0, opts)?;
+    let mut reach = vec![0];
+    for c in 1..frames.choices {
+        if best < n - 1 && frames.feasible_with(a, best + 1, c, opts)? {
+            best = farthest(frames, a, best + 1, c, opts)?;
+            reach = vec![c];
+        } else if frames.feasible_with(a, best, c, opts)? {
+            reach.push(c);
+        }
+    }
+    Ok((best, reach))
+}
+
+/// Of the estimates `reach` key `b` may carry, the one from which the next step goes farthest
+/// (the first on a tie), with that step.
+fn look_ahead(
+    frames: &Frames,
+    b: usize,
+    reach: &[usize],
+    opts: &ReduceOptions,
+) -> InputResult<(usize, (usize, Vec<usize>))> {
+    let mut best: Option<(usize, (usize, Vec<usize>))> = None;
+    for &c in reach {
+        frames.choose(b, c);
+        let next = greedy_step(frames, b, opts)?;
+        if best.as_ref().is_none_or(|(_, (far, _))| next.0 > *far) {
+            best = Some((c, next));
+        }
+    }
+    let (c, next) = best.unwrap_or((0, (b, Vec::new())));
+    frames.choose(b, c);
+    Ok((c, next))
+}
+
+/// Greedy keys: from each key the farthest next key whose segment alone meets the tolerances
+/// ([`greedy_step`]). Where keys carry velocities and the scheme uses them, a key may carry any
+/// of its frame's [`velocity_estimates`]: the farthest next key over them, and where several
+/// estimates reach it, the one from which the step after goes farthest (one step of look-ahead;
+/// the first frame likewise).
 fn greedy_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
     let n = frames.quats.len();
     let mut keys = vec![0];
-    let mut a = 0;
-    while a < n - 1 {
-        let (mut good, mut step) = (a + 1, 1);
-        let mut bad = None;
-        while good < n - 1 {
-            let b = (a + 2 * step).min(n - 1);
-            if frames.feasible(a, b, opts)? {
-                good = b;
-                step *= 2;
-            } else {
-                bad = Some(b);
-                break;
-            }
+    let all: Vec<usize> = (0..frames.choices).collect();
+    let (_, mut step) = look_ahead(frames, 0, &all, opts)?;
+    loop {
+        let (b, reach) = step;
+        keys.push(b);
+        if b >= n - 1 {
+            return Ok(keys);
         }
-        if let Some(mut hi) = bad {
-            let mut lo = good;
-            while hi - lo > 1 {
-                let mid = (lo + hi) / 2;
-                if frames.feasible(a, mid, opts)? {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            good = lo;
-        }
-        keys.push(good);
-        a = good;
+        step = if reach.len() > 1 {
+            look_ahead(frames, b, &reach, opts)?.1
+        } else {
+            frames.choose(b, reach[0]);
+            greedy_step(frames, b, opts)?
+        };
     }
-    Ok(keys)
 }
 
 /// The longest segment (frames) the optimal method considers on a track whose greedy keys are
@@ -485,9 +691,34 @@ pub fn optimal_window(greedy: &[usize]) -> usize {
     (OPTIMAL_GREEDY_FACTOR * longest).min(OPTIMAL_WINDOW)
 }
 
-/// Optimal keys: the shortest path over feasible segments of at most `window` frames.
+/// Each frame's preferred estimate for the optimal method: the one from which a segment starting
+/// at the frame reaches farthest ([`farthest`], the next key carrying its centred estimate; the
+/// first on a tie). The last frame keeps its centred estimate.
+fn preferred_estimates(frames: &Frames, opts: &ReduceOptions) -> InputResult<()> {
+    let n = frames.quats.len();
+    for b in 0..n - 1 {
+        let mut best = (0, 0);
+        for c in 0..frames.choices {
+            frames.choose(b, c);
+            let far = farthest(frames, b, b + 1, 0, opts)?;
+            if far > best.0 {
+                best = (far, c);
+            }
+        }
+        frames.choose(b, best.1);
+    }
+    frames.choose(n - 1, 0);
+    Ok(())
+}
+
+/// Optimal keys: the shortest path over the frames, an edge wherever the segment between two
+/// frames (each carrying its preferred estimate, [`preferred_estimates`]) alone meets the
+/// tolerances, for segments of at most `window` frames.
 fn optimal_keys(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
     let n = frames.quats.len();
+    if frames.choices > 1 {
+        preferred_estimates(frames, opts)?;
+    }
     let mut cost = vec![usize::MAX; n];
     let mut prev = vec![0usize; n];
     cost[0] = 0;
@@ -588,6 +819,42 @@ mod tests {
                 exact(t[i])
             );
         }
+    }
+
+    #[test]
+    fn velocity_estimates_are_exact_where_their_order_says() {
+        // About a fixed axis the log map is linear in the angle: θ(t) = ω0·t + α·t²/2, uneven
+        // spacing. Second-order stencils give θ'(t) exactly; first-order ones miss it by
+        // α·(t_j − t_i)/2.
+        let axis = DVec3::new(1.0, -2.0, 0.5).normalize();
+        let (w0, alpha) = (1.3, 0.8);
+        let t: Vec<f64> = (0..9)
+            .map(|i| 0.1 * i as f64 + 0.01 * (i * i) as f64)
+            .collect();
+        let q: Vec<DQuat> = t
+            .iter()
+            .map(|&t| DQuat::from_axis_angle(axis, w0 * t + 0.5 * alpha * t * t))
+            .collect();
+        let e = velocity_estimates(&t, &q);
+        for i in 0..t.len() {
+            let exact = axis * (w0 + alpha * t[i]);
+            for c in [0, 3, 4, 5] {
+                assert!((e[i][c] - exact).length() < 1e-12, "{i} {c}: {}", e[i][c]);
+            }
+            if i >= 1 {
+                let first = axis * (w0 + alpha * 0.5 * (t[i] + t[i - 1]));
+                assert!((e[i][1] - first).length() < 1e-12, "{i} backward");
+            }
+            if i + 1 < t.len() {
+                let first = axis * (w0 + alpha * 0.5 * (t[i] + t[i + 1]));
+                assert!((e[i][2] - first).length() < 1e-12, "{i} forward");
+            }
+        }
+        // Where a stencil runs off the track, the centred estimate stands in.
+        assert_eq!(e[0][1], e[0][0]);
+        assert_eq!(e[1][3], e[1][0]);
+        assert_eq!(e[8][4], e[8][0]);
+        assert_eq!(e[7][5], e[7][0]);
     }
 
     #[test]
