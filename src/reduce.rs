@@ -692,17 +692,18 @@ pub fn optimal_window(greedy: &[usize]) -> usize {
 }
 
 /// Each frame's preferred estimate for the optimal method: the one from which a segment starting
-/// at the frame reaches farthest ([`farthest`], the next key carrying its centred estimate; the
-/// first on a tie). The last frame keeps its centred estimate.
+/// at the frame reaches farthest, the next key carrying its centred estimate, searched as
+/// [`greedy_step`] searches (the centred estimate first; another only when it meets the
+/// tolerances one frame past the farthest so far). The last frame keeps its centred estimate.
 fn preferred_estimates(frames: &Frames, opts: &ReduceOptions) -> InputResult<()> {
     let n = frames.quats.len();
     for b in 0..n - 1 {
-        let mut best = (0, 0);
-        for c in 0..frames.choices {
+        frames.choose(b, 0);
+        let mut best = (farthest(frames, b, b + 1, 0, opts)?, 0);
+        for c in 1..frames.choices {
             frames.choose(b, c);
-            let far = farthest(frames, b, b + 1, 0, opts)?;
-            if far > best.0 {
-                best = (far, c);
+            if best.0 < n - 1 && frames.feasible_with(b, best.0 + 1, 0, opts)? {
+                best = (farthest(frames, b, best.0 + 1, 0, opts)?, c);
             }
         }
         frames.choose(b, best.1);
