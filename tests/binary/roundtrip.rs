@@ -355,3 +355,92 @@ fn reduce_then_interp_on_real_motion_capture() {
         }
     }
 }
+
+/// A random motion of `n` frames at 30 fps as a quaternion CSV: smooth angular velocity with
+/// random coefficients, plus per-frame jitter of up to `noise` rad.
+fn random_motion_csv(n: usize, c: [f64; 6], noise: f64, seed: u64) -> (String, Vec<DQuat>) {
+    let mut s = seed;
+    let mut rnd = move || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((s >> 11) as f64 / (1u64 << 53) as f64) - 0.5
+    };
+    let mut text = String::from("time,w,x,y,z\n");
+    let mut quats = Vec::new();
+    for i in 0..n {
+        let t = i as f64 / 30.0;
+        let smooth = DQuat::from_euler(
+            glam::EulerRot::ZYX,
+            c[0] * t + c[1] * (2.0 * t).sin(),
+            c[2] * (1.3 * t).cos(),
+            c[3] * t * t + c[4] * t,
+        );
+        let jitter = DQuat::from_scaled_axis(glam::DVec3::new(rnd(), rnd(), rnd()) * (2.0 * noise));
+        let q = jitter * smooth * DQuat::from_rotation_x(c[5]);
+        text.push_str(&format!("{t:?},{:?},{:?},{:?},{:?}\n", q.w, q.x, q.y, q.z));
+        quats.push(q);
+    }
+    (text, quats)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 6, ..Default::default() })]
+
+    /// The guarantee as the released binary gives it, over random smooth and noisy motions: for
+    /// every scheme, method and with or without velocities, `reduce` keeps the first and last
+    /// frame, `interp` of its keys at the clip's rate gives every frame back within the tolerance,
+    /// and `optimal` keeps no more keys than `greedy`.
+    #[test]
+    fn reduce_then_interp_over_random_motions(
+        c in proptest::array::uniform6(-1.5f64..1.5),
+        noisy in proptest::prelude::any::<bool>(),
+        seed in proptest::prelude::any::<u64>(),
+        tol in 0.2f64..2.0,
+    ) {
+        let dir = tempfile::tempdir().unwrap();
+        let noise = if noisy { 0.3f64.to_radians() } else { 0.0 };
+        let (text, want) = random_motion_csv(46, c, noise, seed);
+        let clip = dir.path().join("clip.csv");
+        std::fs::write(&clip, text).unwrap();
+        let clip = clip.to_str().unwrap();
+        let tol_s = format!("{tol}");
+        for scheme in ["bezier", "hermite", "squad", "slerp", "minaccel"] {
+            for vel in [true, false] {
+                let mut counts = Vec::new();
+                for method in ["greedy", "optimal"] {
+                    let keys = dir.path().join(format!("{scheme}-{vel}-{method}.json"));
+                    let keys = keys.to_str().unwrap();
+                    let mut args = vec![
+                        "reduce", clip, "--tolerance", &tol_s, "--scheme", scheme, "--method",
+                        method, "-o", keys,
+                    ];
+                    if !vel {
+                        args.push("--no-velocities");
+                    }
+                    crate::support::stdout_of(crate::support::bin().args(&args));
+                    let doc: serde_json::Value =
+                        serde_json::from_slice(&std::fs::read(keys).unwrap()).unwrap();
+                    // One track: the keys are at the top of the document.
+                    let ks = doc["keys"].as_array().unwrap();
+                    let n = ks.len();
+                    proptest::prop_assert_eq!(ks[0]["time"].as_f64(), Some(0.0));
+                    proptest::prop_assert_eq!(ks[n - 1]["time"].as_f64(), Some(45.0 / 30.0));
+                    counts.push(n);
+                    let back = crate::support::stdout_of(crate::support::bin().args([
+                        "interp", keys, "--fps", "30", "--scheme", scheme, "--output-format", "csv",
+                    ]));
+                    let got = frame_rows_q(back.as_bytes());
+                    proptest::prop_assert_eq!(got.len(), want.len());
+                    for (i, (g, w)) in got.iter().zip(&want).enumerate() {
+                        let e = rot_angle(g.1, *w).to_degrees();
+                        proptest::prop_assert!(
+                            e <= tol, "{} {} vel {}: frame {}: {}° > {}°", scheme, method, vel, i, e, tol
+                        );
+                    }
+                }
+                proptest::prop_assert!(counts[1] <= counts[0], "{} vel {}: {:?}", scheme, vel, counts);
+            }
+        }
+    }
+}
