@@ -132,13 +132,14 @@ pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
 pub const ESTIMATES: usize = 6;
 
 /// Each frame's angular velocity estimates (rad/s, world frame), the derivative at the frame of
-/// the polynomial through the frame and neighbours in the log map, for five stencils, in order:
+/// the polynomial through the frame and neighbours in the log map, for six stencils, in order:
 /// centred (the previous and next frame: [`frame_velocities`], one-sided at the ends), backward
 /// and forward first order (the previous, the next frame), backward and forward second order
-/// (the two previous, the two next frames). Where a stencil runs off the track, the centred
-/// estimate stands in. On smooth motion they agree to first or second order; where the motion
-/// turns sharply (a foot strike, a hit) the one-sided ones are the velocities arriving and
-/// leaving, which let a key there start or end a long segment.
+/// (the two previous, the two next frames), wide centred (the frames two before and two after,
+/// which passes over the quantisation of a file's numbers). Where a stencil runs off the track,
+/// the centred estimate stands in. On smooth motion they agree to first or second order; where
+/// the motion turns sharply (a foot strike, a hit) the one-sided ones are the velocities arriving
+/// and leaving, which let a key there start or end a long segment.
 pub fn velocity_estimates(times: &[f64], quats: &[DQuat]) -> Vec<[DVec3; ESTIMATES]> {
     let centred = frame_velocities(times, quats);
     let n = quats.len();
@@ -323,9 +324,7 @@ impl<'a> Frames<'a> {
         }
         Ok(true)
     }
-}
 
-impl Frames<'_> {
     /// [`Frames::feasible`] with frame `b` carrying estimate `c`.
     fn feasible_with(
         &self,
@@ -543,9 +542,9 @@ pub fn reduce_shared(
     let mut keys: Vec<usize> = Vec::new();
     for (r, f) in reduce_each(tracks, opts)?.into_iter().zip(&frames) {
         // Each track's own keys keep the velocities its own reduction chose.
-        for (j, &k) in r.keys.iter().enumerate() {
-            if let Some(w) = &r.velocities {
-                f.choose_velocity(k, w[j]);
+        if let Some(w) = &r.velocities {
+            for (&k, &w) in r.keys.iter().zip(w) {
+                f.choose_velocity(k, w);
             }
         }
         keys.extend(r.keys);
