@@ -19,7 +19,7 @@
 //! - **Greedy**: from each key, the farthest next key whose segment alone meets the tolerance,
 //!   over the estimates the next key may carry (`greedy_step`: doubling then bisection); where
 //!   several estimates reach it, the one from which the following step goes farthest (one step
-//!   of look-ahead). A segment with both end velocities given depends on its two keys only, for
+//!   of look-ahead, each estimate after the first searched only past the farthest so far). A segment with both end velocities given depends on its two keys only, for
 //!   hermite, bezier, squad and slerp.
 //! - **Optimal**: each frame first takes its *preferred* estimate, the one from which a segment
 //!   starting there reaches farthest (`preferred_estimates`); then a shortest path over the
@@ -203,6 +203,24 @@ struct Frames<'a> {
     threshold: Threshold,
     /// The frame that last missed in [`Frames::feasible`].
     hint: std::cell::Cell<usize>,
+    /// The frames' spacing (s) when they are evenly spaced ([`even_spacing`]): then segments
+    /// are evaluated at the frames as `interp` generates in-betweens.
+    spacing: Option<f64>,
+}
+
+/// The spacing of evenly spaced frame times: every time within 1e-9 of a frame of the spacing
+/// from the first (a rate's frame clock, a file's fixed frame time), else `None`.
+fn even_spacing(times: &[f64]) -> Option<f64> {
+    let n = times.len();
+    if n < 3 {
+        return None;
+    }
+    let dt = (times[n - 1] - times[0]) / (n - 1) as f64;
+    let even = times
+        .iter()
+        .enumerate()
+        .all(|(k, &t)| (t - (times[0] + k as f64 * dt)).abs() <= 1e-9 * dt);
+    (dt > 0.0 && even).then_some(dt)
 }
 
 impl<'a> Frames<'a> {
@@ -226,6 +244,7 @@ impl<'a> Frames<'a> {
             },
             threshold: Threshold::new(opts),
             hint: std::cell::Cell::new(0),
+            spacing: even_spacing(times),
         }
     }
 
@@ -264,8 +283,14 @@ impl<'a> Frames<'a> {
     }
 
     /// The worst frame strictly between keys `a` and `b` of `curve` and whether every frame
-    /// there meets the tolerances.
-    fn check(&self, curve: &Curve, a: usize, b: usize, opts: &ReduceOptions) -> (bool, usize) {
+    /// there meets the tolerances; their rotation errors are added to `errors`.
+    fn check(
+        &self,
+        curve: &Curve,
+        (a, b): (usize, usize),
+        opts: &ReduceOptions,
+        errors: &mut Errors,
+    ) -> (bool, usize) {
         let mut worst = (0.0f64, a);
         let mut ok = true;
         // A hair inside the tolerance, so that keys written and read back (velocities in
@@ -273,6 +298,7 @@ impl<'a> Frames<'a> {
         let tol = opts.tolerance * (1.0 - 1e-9);
         for k in a + 1..b {
             let e = error(opts, curve.rotation(self.times[k]), self.quats[k]);
+            errors.add(e);
             let mut bad = e > tol;
             let mut score = e / opts.tolerance;
             if let (Some(p), Some(tol)) = (self.positions, opts.translation_tolerance) {
@@ -291,17 +317,17 @@ impl<'a> Frames<'a> {
     /// Whether the segment `a..b` alone meets the tolerances. Stops at the first frame that
     /// misses, trying first the frame that missed last time (`hint`: neighbouring segments
     /// usually miss at the same frame), and decides most frames from the cosine of the half
-    /// angle ([`Threshold`]); the answer is the same as [`Frames::check`]'s.
+    /// angle ([`Threshold`]). Evenly spaced frames are generated as `interp` generates
+    /// in-betweens ([`Curve::segment_points`]), which agrees with [`Curve::rotation`], and so
+    /// with [`Frames::check`], to round-off: a frame within round-off of the tolerance may be
+    /// judged differently, which verification settles.
     fn feasible(&self, a: usize, b: usize, opts: &ReduceOptions) -> InputResult<bool> {
         if b == a + 1 {
             return Ok(true);
         }
         let curve = self.curve(&[a, b], opts)?;
-        let within = |k: usize| {
-            if !self
-                .threshold
-                .within(opts, curve.rotation(self.times[k]), self.quats[k])
-            {
+        let within = |k: usize, q: DQuat| {
+            if !self.threshold.within(opts, q, self.quats[k]) {
                 return false;
             }
             match (self.positions, opts.translation_tolerance) {
@@ -313,11 +339,26 @@ impl<'a> Frames<'a> {
             }
         };
         let hint = self.hint.get();
-        if hint > a && hint < b && !within(hint) {
+        if hint > a && hint < b && !within(hint, curve.rotation(self.times[hint])) {
             return Ok(false);
         }
+        if let Some(dt) = self.spacing {
+            let delta = self.times[b] - self.times[a];
+            let mut k = a + 1;
+            let all = curve.segment_points(0, (dt / delta, dt / delta), b - a - 1, |q| {
+                let ok = k == hint || within(k, q);
+                k += 1;
+                ok
+            });
+            if let Some(all) = all {
+                if !all {
+                    self.hint.set(k - 1);
+                }
+                return Ok(all);
+            }
+        }
         for k in a + 1..b {
-            if k != hint && !within(k) {
+            if k != hint && !within(k, curve.rotation(self.times[k])) {
                 self.hint.set(k);
                 return Ok(false);
             }
@@ -424,15 +465,15 @@ pub fn reduce(
     let greedy = greedy_keys(&frames, opts)?;
     frames.keep_choices(&greedy);
     let greedy = verified(&frames, greedy, opts)?;
-    let keys = match opts.method {
+    let (keys, errors) = match opts.method {
         Method::Greedy => greedy,
         Method::Optimal => {
             let greedy_choice: Vec<u8> = frames.choice.iter().map(std::cell::Cell::get).collect();
-            let window = optimal_window(&greedy);
+            let window = optimal_window(&greedy.0);
             let best = optimal_keys(&frames, window, opts)?;
             frames.keep_choices(&best);
             let best = verified(&frames, best, opts)?;
-            if best.len() <= greedy.len() {
+            if best.0.len() <= greedy.0.len() {
                 best
             } else {
                 for (c, &g) in frames.choice.iter().zip(&greedy_choice) {
@@ -442,25 +483,19 @@ pub fn reduce(
             }
         }
     };
-    // The guarantee, measured once more on the final keys.
-    let curve = frames.curve(&keys, opts)?;
-    let (mut max, mut sum) = (0.0f64, 0.0);
-    for k in 0..n {
-        let e = error(opts, curve.rotation(times[k]), quats[k]);
-        max = max.max(e);
-        sum += e;
-    }
-    if max > opts.tolerance * (1.0 + 1e-12) {
+    // The guarantee, as verification measured it on the final keys (every frame, keys too).
+    if errors.max > opts.tolerance * (1.0 + 1e-12) {
         return Err(crate::error::input_err!(
-            "internal error: reduce's keys miss a frame by {max:e} (tolerance {:e})",
+            "internal error: reduce's keys miss a frame by {:e} (tolerance {:e})",
+            errors.max,
             opts.tolerance
         ));
     }
     Ok(Reduced {
         velocities: frames.key_velocities(&keys),
         keys,
-        max_error: max,
-        mean_error: sum / n as f64,
+        max_error: errors.max,
+        mean_error: errors.sum / n as f64,
     })
 }
 
@@ -551,34 +586,29 @@ pub fn reduce_shared(
     }
     keys.sort_unstable();
     keys.dedup();
-    loop {
+    // Keys only grow, so in the pass that adds none every track was measured on the final keys.
+    let errors = loop {
         let before = keys.len();
+        let mut errors = Vec::with_capacity(frames.len());
         for f in &frames {
-            keys = verified(f, keys, opts)?;
+            let (k, e) = verified(f, keys, opts)?;
+            keys = k;
+            errors.push(e);
         }
         if keys.len() == before {
-            break;
+            break errors;
         }
-    }
-    frames
+    };
+    Ok(frames
         .iter()
-        .map(|frames| {
-            let (t, q) = (frames.times, frames.quats);
-            let curve = frames.curve(&keys, opts)?;
-            let (mut max, mut sum) = (0.0f64, 0.0);
-            for k in 0..q.len() {
-                let e = error(opts, curve.rotation(t[k]), q[k]);
-                max = max.max(e);
-                sum += e;
-            }
-            Ok(Reduced {
-                velocities: frames.key_velocities(&keys),
-                keys: keys.clone(),
-                max_error: max,
-                mean_error: sum / q.len() as f64,
-            })
+        .zip(errors)
+        .map(|(frames, e)| Reduced {
+            velocities: frames.key_velocities(&keys),
+            keys: keys.clone(),
+            max_error: e.max,
+            mean_error: e.sum / frames.quats.len() as f64,
         })
-        .collect()
+        .collect())
 }
 
 /// From key `a` (its velocity chosen), the farthest next key `b ≥ from` whose segment alone meets
@@ -619,30 +649,35 @@ fn farthest(
     Ok(good)
 }
 
-/// One greedy step from key `a` (its velocity chosen): the farthest next key over the estimates
-/// it may carry ([`farthest`]; an estimate other than the first is searched only when it meets
-/// the tolerances one frame past the best so far), and the estimates that reach that key.
+/// One greedy step from key `a` (its velocity chosen) that goes past frame `floor`: the farthest
+/// next key over the estimates it may carry ([`farthest`]; each estimate is searched only when it
+/// meets the tolerances one frame past the farthest so far, or past `floor`), and the estimates
+/// that reach that key; `None` when no estimate goes past `floor`. With `floor = a` there is
+/// always a step (the next frame).
 fn greedy_step(
     frames: &Frames,
     a: usize,
+    floor: usize,
     opts: &ReduceOptions,
-) -> InputResult<(usize, Vec<usize>)> {
+) -> InputResult<Option<(usize, Vec<usize>)>> {
     let n = frames.quats.len();
-    let mut best = farthest(frames, a, a + 1, 0, opts)?;
-    let mut reach = vec![0];
-    for c in 1..frames.choices {
-        if best < n - 1 && frames.feasible_with(a, best + 1, c, opts)? {
-            best = farthest(frames, a, best + 1, c, opts)?;
-            reach = vec![c];
-        } else if frames.feasible_with(a, best, c, opts)? {
+    let mut best: Option<(usize, Vec<usize>)> = None;
+    for c in 0..frames.choices {
+        let far = best.as_ref().map_or(floor, |b| b.0);
+        if far < n - 1 && frames.feasible_with(a, far + 1, c, opts)? {
+            best = Some((farthest(frames, a, far + 1, c, opts)?, vec![c]));
+        } else if let Some((far, reach)) = &mut best
+            && frames.feasible_with(a, *far, c, opts)?
+        {
             reach.push(c);
         }
     }
-    Ok((best, reach))
+    Ok(best)
 }
 
 /// Of the estimates `reach` key `b` may carry, the one from which the next step goes farthest
-/// (the first on a tie), with that step.
+/// (the first on a tie), with that step. Each estimate after the first is searched only past
+/// the farthest step so far ([`greedy_step`]'s `floor`).
 fn look_ahead(
     frames: &Frames,
     b: usize,
@@ -652,8 +687,8 @@ fn look_ahead(
     let mut best: Option<(usize, (usize, Vec<usize>))> = None;
     for &c in reach {
         frames.choose(b, c);
-        let next = greedy_step(frames, b, opts)?;
-        if best.as_ref().is_none_or(|(_, (far, _))| next.0 > *far) {
+        let floor = best.as_ref().map_or(b, |(_, (far, _))| *far);
+        if let Some(next) = greedy_step(frames, b, floor, opts)? {
             best = Some((c, next));
         }
     }
@@ -682,7 +717,7 @@ fn greedy_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>>
             look_ahead(frames, b, &reach, opts)?.1
         } else {
             frames.choose(b, reach[0]);
-            greedy_step(frames, b, opts)?
+            greedy_step(frames, b, b, opts)?.unwrap_or((b + 1, vec![0]))
         };
     }
 }
@@ -816,24 +851,45 @@ impl SlerpSpeeds {
     }
 }
 
+/// The rotation error over a track's frames: largest, and sum in frame order.
+#[derive(Debug, Clone, Copy, Default)]
+struct Errors {
+    max: f64,
+    sum: f64,
+}
+
+impl Errors {
+    fn add(&mut self, e: f64) {
+        self.max = self.max.max(e);
+        self.sum += e;
+    }
+}
+
 /// Completes `keys` until the whole curve meets the tolerances at every frame: the worst frame
-/// of each segment that misses becomes a key.
+/// of each segment that misses becomes a key. Returns the keys and the rotation error of their
+/// curve over every frame.
 fn verified(
     frames: &Frames,
     mut keys: Vec<usize>,
     opts: &ReduceOptions,
-) -> InputResult<Vec<usize>> {
+) -> InputResult<(Vec<usize>, Errors)> {
     loop {
         let curve = frames.curve(&keys, opts)?;
+        let at_key = |k: usize| error(opts, curve.rotation(frames.times[k]), frames.quats[k]);
+        let mut errors = Errors::default();
         let mut added = Vec::new();
         for w in keys.windows(2) {
-            let (ok, worst) = frames.check(&curve, w[0], w[1], opts);
+            errors.add(at_key(w[0]));
+            let (ok, worst) = frames.check(&curve, (w[0], w[1]), opts, &mut errors);
             if !ok {
                 added.push(worst);
             }
         }
+        if let Some(&last) = keys.last() {
+            errors.add(at_key(last));
+        }
         if added.is_empty() {
-            return Ok(keys);
+            return Ok((keys, errors));
         }
         keys.extend(added);
         keys.sort_unstable();
@@ -892,6 +948,57 @@ mod tests {
                 w[i],
                 exact(t[i])
             );
+        }
+    }
+
+    #[test]
+    fn even_spacing_is_a_frame_clock() {
+        let clock: Vec<f64> = (0..1000).map(|k| k as f64 / 29.97).collect();
+        let dt = even_spacing(&clock).unwrap();
+        assert!((dt - 1.0 / 29.97).abs() < 1e-15);
+        // Off by 1e-6 of a frame at one frame: not evenly spaced.
+        let mut off = clock.clone();
+        off[500] += 1e-6 * dt;
+        assert_eq!(even_spacing(&off), None);
+        assert_eq!(even_spacing(&[0.0, 0.5]), None);
+        assert_eq!(even_spacing(&[0.0, 0.1, 0.3]), None);
+    }
+
+    #[test]
+    fn evenly_spaced_frames_decide_as_the_direct_evaluation() {
+        let (t, q) = smooth(241, 120.0);
+        for scheme in [
+            Scheme::Slerp,
+            Scheme::Hermite,
+            Scheme::Squad,
+            Scheme::Bezier,
+        ] {
+            for tolerance in [0.1f64, 0.5, 2.0] {
+                let opts = ReduceOptions {
+                    curve: CurveOptions {
+                        scheme,
+                        ..CurveOptions::default()
+                    },
+                    tolerance: tolerance.to_radians(),
+                    distance: None,
+                    translation_tolerance: None,
+                    velocities: true,
+                    method: Method::Greedy,
+                };
+                let even = Frames::new(&t, &q, None, &opts);
+                assert!(even.spacing.is_some());
+                let direct = Frames {
+                    spacing: None,
+                    ..Frames::new(&t, &q, None, &opts)
+                };
+                let keys = greedy_keys(&even, &opts).unwrap();
+                assert!(keys.len() > 2, "{scheme} {tolerance}");
+                assert_eq!(
+                    keys,
+                    greedy_keys(&direct, &opts).unwrap(),
+                    "{scheme} {tolerance}"
+                );
+            }
         }
     }
 

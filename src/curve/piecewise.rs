@@ -464,6 +464,40 @@ impl Curve {
         }
     }
 
+    /// The points of segment `i` at `u₀, u₀ + δ, …` (`count` of them), generated as `interp`
+    /// generates in-betweens ([`Segment::frames`]: forward differences, blends four at a time),
+    /// each handed to `visit` until it returns false. `Some(true)` when every point was
+    /// accepted, `Some(false)` at the first refused, `None` for minaccel's grid curve, whose
+    /// pieces are not the keys' segments. The points agree with [`Curve::rotation`] at the
+    /// same times to the forward differences' round-off (`docs/schemes.md`).
+    pub(crate) fn segment_points(
+        &self,
+        i: usize,
+        (u0, du): (f64, f64),
+        count: usize,
+        visit: impl FnMut(DQuat) -> bool,
+    ) -> Option<bool> {
+        fn all<S: Segment>(
+            seg: &S,
+            (u0, du): (f64, f64),
+            count: usize,
+            visit: impl FnMut(DQuat) -> bool,
+        ) -> bool {
+            seg.frames(u0, du).take(count).all(visit)
+        }
+        let Pieces::Segments { segs, keys, blend } = &self.pieces else {
+            return None;
+        };
+        let segs = segs.get_or_init(|| Segs::new(keys, self.scheme, *blend));
+        let u = (u0, du);
+        Some(match segs {
+            Segs::Slerp(v) => all(&v[i], u, count, visit),
+            Segs::Hermite(v) => all(&v[i], u, count, visit),
+            Segs::Squad(v) => all(&v[i], u, count, visit),
+            Segs::Bezier(v) => all(&v[i], u, count, visit),
+        })
+    }
+
     /// A one-key track: the key's rotation at every time, at rest.
     pub fn is_constant(&self) -> bool {
         self.breaks().len() == 1
@@ -597,6 +631,44 @@ mod tests {
             ..CurveOptions::default()
         };
         Curve::new(&sample_track(), &opts).unwrap()
+    }
+
+    #[test]
+    fn segment_points_are_the_rotations_at_their_times() {
+        let k = sample_keys();
+        for scheme in [
+            Scheme::Slerp,
+            Scheme::Hermite,
+            Scheme::Squad,
+            Scheme::Bezier,
+        ] {
+            let c = curve(scheme);
+            for s in 0..k.segments() {
+                let (u0, du) = (0.03, 0.0937);
+                let mut got = Vec::new();
+                let all = c.segment_points(s, (u0, du), 10, |q| {
+                    got.push(q);
+                    true
+                });
+                assert_eq!((all, got.len()), (Some(true), 10), "{scheme}");
+                for (j, q) in got.iter().enumerate() {
+                    let t = k.times[s] + (u0 + j as f64 * du) * k.delta(s);
+                    let d = (*q - c.rotation(t)).length();
+                    assert!(d < 1e-13, "{scheme} segment {s} point {j}: {d:e}");
+                }
+                // A refusal stops the points there.
+                let mut seen = 0;
+                let all = c.segment_points(s, (u0, du), 10, |_| {
+                    seen += 1;
+                    seen < 6
+                });
+                assert_eq!((all, seen), (Some(false), 6), "{scheme}");
+            }
+        }
+        assert_eq!(
+            curve(Scheme::MinAccel).segment_points(0, (0.1, 0.1), 3, |_| true),
+            None
+        );
     }
 
     #[test]
