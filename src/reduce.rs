@@ -41,7 +41,7 @@
 use crate::curve::{Curve, CurveOptions, Scheme};
 use crate::error::InputResult;
 use crate::rotation::quat::{log, rotation_angle_between};
-use crate::tangent::PathMode;
+use crate::tangent::{PathMode, apply_path};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
 
@@ -95,13 +95,17 @@ pub struct Reduced {
 /// Each frame's angular velocity (rad/s, world frame): the derivative of the quadratic through
 /// the frame and its two neighbours in the log map (second order, uneven spacing allowed), one-
 /// sided at the first and last frame.
+///
+/// The quaternions are taken as the curve connects them: the motion from frame `i` to frame `j`
+/// is `log(q_j q_i⁻¹)`, so a frame whose sign is flipped against its neighbour is reached the
+/// long way round. For the shortest path, pass them each in the hemisphere of the one before
+/// ([`crate::tangent::apply_path`]), as [`reduce`] does.
 pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
     let n = quats.len();
     if n < 2 {
         return vec![DVec3::ZERO; n];
     }
     let step = |a: usize, b: usize| log(quats[b] * quats[a].conjugate());
-    let flip = |q: DQuat, near: DQuat| if q.dot(near) < 0.0 { -q } else { q };
     if n == 2 {
         let w = step(0, 1) * (2.0 / (times[1] - times[0]));
         return vec![w, w];
@@ -110,12 +114,7 @@ pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
     // One-sided: f(0) = 0, f(t1) = L01, f(t2) = L02 ⇒ f'(0) = (L01·t2² − L02·t1²)/(t1 t2 (t2 − t1)).
     let one_sided = |i: usize, j: usize, k: usize| {
         let (t1, t2) = (times[j] - times[i], times[k] - times[i]);
-        let qj = flip(quats[j], quats[i]);
-        let qk = flip(quats[k], qj);
-        let (l1, l2) = (
-            log(qj * quats[i].conjugate()),
-            log(qk * quats[i].conjugate()),
-        );
+        let (l1, l2) = (step(i, j), step(i, k));
         (l1 * (t2 * t2) - l2 * (t1 * t1)) * (2.0 / (t1 * t2 * (t2 - t1)))
     };
     out.push(one_sided(0, 1, 2));
@@ -139,7 +138,8 @@ pub const ESTIMATES: usize = 6;
 /// which passes over the quantisation of a file's numbers). Where a stencil runs off the track,
 /// the centred estimate stands in. On smooth motion they agree to first or second order; where
 /// the motion turns sharply (a foot strike, a hit) the one-sided ones are the velocities arriving
-/// and leaving, which let a key there start or end a long segment.
+/// and leaving, which let a key there start or end a long segment. The quaternions are taken as
+/// the curve connects them, as in [`frame_velocities`].
 pub fn velocity_estimates(times: &[f64], quats: &[DQuat]) -> Vec<[DVec3; ESTIMATES]> {
     let centred = frame_velocities(times, quats);
     let n = quats.len();
@@ -192,6 +192,8 @@ struct Frames<'a> {
     times: &'a [f64],
     quats: &'a [DQuat],
     positions: Option<&'a [DVec3]>,
+    /// The frames' Euler angles, for `--path euler`.
+    euler: Option<(crate::EulerSeq, &'a [DVec3])>,
     /// Each frame's velocity estimates, when keys carry velocities.
     estimates: Option<Vec<[DVec3; ESTIMATES]>>,
     /// The estimate each frame carries when it is a key (an index into its estimates; the
@@ -225,17 +227,23 @@ fn even_spacing(times: &[f64]) -> Option<f64> {
 
 impl<'a> Frames<'a> {
     /// One track's frames for `opts`: its velocities estimated when keys carry them.
-    fn new(
-        times: &'a [f64],
-        quats: &'a [DQuat],
-        positions: Option<&'a [DVec3]>,
-        opts: &ReduceOptions,
-    ) -> Frames<'a> {
+    fn new(track: &TrackFrames<'a>, opts: &ReduceOptions) -> Frames<'a> {
+        let (times, quats) = (track.times, track.rotations);
         Frames {
             times,
             quats,
-            positions,
-            estimates: opts.velocities.then(|| velocity_estimates(times, quats)),
+            positions: track.positions,
+            euler: track.euler,
+            estimates: opts.velocities.then(|| {
+                // The frames as the curve connects them: `--path as-given` as given, else each
+                // in the hemisphere of the one before (`--path euler`'s chords between
+                // neighbouring frames are those steps, unless the angles jump by half a turn).
+                let mut q = quats.to_vec();
+                if opts.curve.path != PathMode::AsGiven {
+                    apply_path(&mut q, PathMode::Shortest);
+                }
+                velocity_estimates(times, &q)
+            }),
             choice: vec![std::cell::Cell::new(0); quats.len()],
             choices: if opts.velocities && opts.curve.scheme != Scheme::Slerp {
                 ESTIMATES
@@ -278,6 +286,9 @@ impl<'a> Frames<'a> {
         }
         if let Some(p) = self.positions {
             track = track.with_translations(keys.iter().map(|&i| p[i]).collect())?;
+        }
+        if let Some((seq, e)) = self.euler.filter(|_| opts.curve.path == PathMode::Euler) {
+            track = track.with_euler_angles(seq, keys.iter().map(|&i| e[i]).collect())?;
         }
         Curve::new(&track, &opts.curve)
     }
@@ -444,15 +455,27 @@ impl Threshold {
 }
 
 /// Reduces one track (see the module documentation). `positions`, when given, are the frames'
-/// translations, and need `translation_tolerance`.
+/// translations, and need `translation_tolerance`. Frames given as Euler angles, for
+/// `--path euler`: [`reduce_frames`].
 pub fn reduce(
     times: &[f64],
     quats: &[DQuat],
     positions: Option<&[DVec3]>,
     opts: &ReduceOptions,
 ) -> InputResult<Reduced> {
-    let n = quats.len();
-    let frames = Frames::new(times, quats, positions, opts);
+    let frames = TrackFrames {
+        times,
+        rotations: quats,
+        positions,
+        euler: None,
+    };
+    reduce_frames(&frames, opts)
+}
+
+/// Reduces one track's frames (see the module documentation).
+pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResult<Reduced> {
+    let n = track.rotations.len();
+    let frames = Frames::new(track, opts);
     if n < 2 {
         let keys: Vec<usize> = (0..n).collect();
         return Ok(Reduced {
@@ -499,8 +522,32 @@ pub fn reduce(
     })
 }
 
-/// One track's frames for [`reduce_shared`]: times, rotations, optional positions.
-pub type TrackFrames<'a> = (&'a [f64], &'a [DQuat], Option<&'a [DVec3]>);
+/// One track's dense frames, for [`reduce_frames`], [`reduce_each`] and [`reduce_shared`].
+#[derive(Debug, Clone, Copy)]
+pub struct TrackFrames<'a> {
+    /// The frame times (s), increasing.
+    pub times: &'a [f64],
+    /// The frames' rotations.
+    pub rotations: &'a [DQuat],
+    /// The frames' translations, reduced under `translation_tolerance`.
+    pub positions: Option<&'a [DVec3]>,
+    /// The Euler angles (radians) the frames were given as: with `--path euler`
+    /// ([`PathMode::Euler`]) the keys' curve keeps the turns their angles make.
+    pub euler: Option<(crate::EulerSeq, &'a [DVec3])>,
+}
+
+impl<'a> TrackFrames<'a> {
+    /// The frames of a track whose keys are the dense frames: times, rotations, translations
+    /// and Euler angles as the track has them.
+    pub fn of(track: &'a Track) -> TrackFrames<'a> {
+        TrackFrames {
+            times: track.times(),
+            rotations: track.rotations(),
+            positions: track.translations(),
+            euler: track.euler_angles(),
+        }
+    }
+}
 
 /// Reduces each track on its own ([`reduce`]), the tracks shared out among the machine's cores
 /// (at most [`MAX_THREADS`] threads, tracks taken in order as threads come free). The result is
@@ -514,10 +561,7 @@ pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputRes
         .min(MAX_THREADS)
         .min(tracks.len());
     if threads <= 1 {
-        return tracks
-            .iter()
-            .map(|&(t, q, p)| reduce(t, q, p, opts))
-            .collect();
+        return tracks.iter().map(|t| reduce_frames(t, opts)).collect();
     }
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<InputResult<Reduced>>>> =
@@ -527,10 +571,10 @@ pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputRes
             s.spawn(|| {
                 loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(&(t, q, p)) = tracks.get(i) else {
+                    let Some(t) = tracks.get(i) else {
                         break;
                     };
-                    let r = reduce(t, q, p, opts);
+                    let r = reduce_frames(t, opts);
                     if let Ok(mut v) = results.lock() {
                         v[i] = Some(r);
                     }
@@ -562,18 +606,15 @@ pub fn reduce_shared(
     tracks: &[TrackFrames<'_>],
     opts: &ReduceOptions,
 ) -> InputResult<Vec<Reduced>> {
-    let Some(&(times, _, _)) = tracks.first() else {
+    let Some(times) = tracks.first().map(|t| t.times) else {
         return Ok(Vec::new());
     };
-    if tracks.iter().any(|(t, _, _)| *t != times) {
+    if tracks.iter().any(|t| t.times != times) {
         return Err(crate::error::input_err!(
             "--shared-keys: the tracks have different frame times; shared keys need one grid"
         ));
     }
-    let frames: Vec<Frames> = tracks
-        .iter()
-        .map(|&(t, q, p)| Frames::new(t, q, p, opts))
-        .collect();
+    let frames: Vec<Frames> = tracks.iter().map(|t| Frames::new(t, opts)).collect();
     let mut keys: Vec<usize> = Vec::new();
     for (r, f) in reduce_each(tracks, opts)?.into_iter().zip(&frames) {
         // Each track's own keys keep the velocities its own reduction chose.
@@ -985,11 +1026,17 @@ mod tests {
                     velocities: true,
                     method: Method::Greedy,
                 };
-                let even = Frames::new(&t, &q, None, &opts);
+                let frames = TrackFrames {
+                    times: &t,
+                    rotations: &q,
+                    positions: None,
+                    euler: None,
+                };
+                let even = Frames::new(&frames, &opts);
                 assert!(even.spacing.is_some());
                 let direct = Frames {
                     spacing: None,
-                    ..Frames::new(&t, &q, None, &opts)
+                    ..Frames::new(&frames, &opts)
                 };
                 let keys = greedy_keys(&even, &opts).unwrap();
                 assert!(keys.len() > 2, "{scheme} {tolerance}");

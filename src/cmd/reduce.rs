@@ -9,8 +9,9 @@ use inbetween::io::gltf::ContainerFormat;
 use inbetween::io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween::io::output::Output;
 use inbetween::io::write::write_keys;
-use inbetween::reduce::{Method, ReduceOptions, Reduced, reduce_each, reduce_shared};
-use inbetween::{Error, InputError};
+use inbetween::io::write::{EulerMode, Style};
+use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
+use inbetween::{Error, EulerSeq, InputError, PathMode, Repr};
 use std::io::Read;
 
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
@@ -87,11 +88,59 @@ pub fn run(
         skeleton: None,
     };
     let (frame_fps, _) = rates(doc, args.curve.fps);
-    let style = super::settings::style(&args.input, &args.output);
+    let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &out_doc, format, style, frame_fps)?;
     out.commit()?;
     Ok(())
+}
+
+/// The written keys' style. With `--path euler` a key's turns are in its Euler angles, so the
+/// keys are written as the input gave them: its sequence (`--to` may only name it), each key's
+/// own triple ([`EulerMode::AsGiven`]).
+fn keys_style(
+    args: &ReduceArgs,
+    path: PathMode,
+    tracks: &[inbetween::Track],
+    source: &str,
+) -> Result<Style, Error> {
+    let mut style = super::settings::style(&args.input, &args.output);
+    if path != PathMode::Euler {
+        return Ok(style);
+    }
+    let mut seqs: Vec<EulerSeq> = Vec::new();
+    for seq in tracks
+        .iter()
+        .filter_map(|t| t.euler_angles().map(|(seq, _)| seq))
+    {
+        if !seqs.contains(&seq) {
+            seqs.push(seq);
+        }
+    }
+    let [seq] = seqs[..] else {
+        let names: Vec<String> = seqs.iter().map(|&s| Repr::Euler(s).to_string()).collect();
+        return Err(InputError::new(format!(
+            "{source}: --path euler writes the keys as the input's Euler angles, in one \
+             sequence, but the tracks have {}; reduce them apart or use --path shortest",
+            names.join(", ")
+        ))
+        .into());
+    };
+    match style.repr {
+        Repr::Quat => {}
+        Repr::Euler(s) if s == seq => {}
+        other => {
+            return Err(InputError::new(format!(
+                "--to {other}: with --path euler the keys keep their turns in their Euler angles, \
+                 so they are written as the input gave them ({})",
+                Repr::Euler(seq)
+            ))
+            .into());
+        }
+    }
+    style.repr = Repr::Euler(seq);
+    style.euler = EulerMode::AsGiven;
+    Ok(style)
 }
 
 /// How much a glTF output's tolerance is tightened (radians, or D times this with
@@ -133,13 +182,13 @@ fn reduce_tracks(
             MethodArg::Optimal => Method::Optimal,
         },
     };
-    fn positions(t: &inbetween::Track, keep: bool) -> Option<&[glam::DVec3]> {
-        t.translations().filter(|_| keep)
-    }
     let located = |e: InputError| e.at(&doc.source);
-    let frames: Vec<_> = tracks
+    let frames: Vec<TrackFrames> = tracks
         .iter()
-        .map(|t| (t.times(), t.rotations(), positions(t, translations)))
+        .map(|t| TrackFrames {
+            positions: t.translations().filter(|_| translations),
+            ..TrackFrames::of(t)
+        })
         .collect();
     let reduced: Vec<Reduced> = if args.shared_keys {
         reduce_shared(&frames, &opts)

@@ -254,6 +254,139 @@ fn reduce_then_interp_gives_every_frame_back() {
     }
 }
 
+/// `reduce --path euler` keeps a spin's turns in its keys' Euler angles: two turns about z in 2 s
+/// at constant speed (plus a wobble) are written as the input's own `euler:ZYX` triples, and
+/// `interp --path euler` of them gives every frame back within the tolerance; slerp needs only
+/// the two end keys where the shortest path needs one at least every half turn. Mixed
+/// sequences and another `--to` are refused.
+#[test]
+fn reduce_with_path_euler_keeps_the_turns() {
+    let dir = tempfile::tempdir().unwrap();
+    let run =
+        |args: &[&str]| crate::support::stdout_of(crate::support::bin().args(args)).into_bytes();
+    let clip = dir.path().join("spin.json");
+    let clip = clip.to_str().unwrap();
+    for (wobble, scheme) in [(0.0, "slerp"), (8.0, "bezier"), (8.0, "hermite")] {
+        let angles: Vec<[f64; 3]> = (0..121)
+            .map(|i| {
+                let t = i as f64 / 60.0;
+                [360.0 * t, wobble * (2.0 * t).sin(), 0.5 * wobble * t.cos()]
+            })
+            .collect();
+        let keys: Vec<String> = angles
+            .iter()
+            .enumerate()
+            .map(|(i, a)| {
+                format!(
+                    "{{\"frame\": {i}, \"euler\": [{}, {}, {}]}}",
+                    a[0], a[1], a[2]
+                )
+            })
+            .collect();
+        let doc = format!(
+            "{{\"fps\": 60, \"rotation\": \"euler:ZYX\", \"angles\": \"deg\", \"keys\": [{}]}}",
+            keys.join(",")
+        );
+        std::fs::write(clip, doc).unwrap();
+        let reduce = |path: &str| {
+            let out = run(&[
+                "reduce",
+                clip,
+                "--tolerance",
+                "0.5",
+                "--scheme",
+                scheme,
+                "--path",
+                path,
+            ]);
+            serde_json::from_slice::<serde_json::Value>(&out).unwrap()
+        };
+        let (euler, shortest) = (reduce("euler"), reduce("shortest"));
+        assert_eq!(euler["rotation"], "euler:ZYX");
+        let written = euler["keys"].as_array().unwrap();
+        for k in written {
+            let i = k["frame"].as_u64().unwrap() as usize;
+            let e: Vec<f64> = k["euler"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect();
+            // As given, to the round-off of degrees to radians and back.
+            for (e, a) in e.iter().zip(angles[i]) {
+                assert!(
+                    (e - a).abs() <= 1e-12 * a.abs().max(1.0),
+                    "{scheme}: key {i}: {e} vs {a}"
+                );
+            }
+        }
+        let n_short = shortest["keys"].as_array().unwrap().len();
+        assert!(
+            n_short >= 5,
+            "{scheme}: {n_short} keys on the shortest path"
+        );
+        if scheme == "slerp" {
+            assert_eq!(written.len(), 2, "{scheme}: two turns at constant speed");
+        }
+        let keys = dir.path().join("keys.json");
+        std::fs::write(&keys, serde_json::to_vec(&euler).unwrap()).unwrap();
+        let back = run(&[
+            "interp",
+            keys.to_str().unwrap(),
+            "--fps",
+            "60",
+            "--scheme",
+            scheme,
+            "--path",
+            "euler",
+            "--output-format",
+            "csv",
+        ]);
+        let got = frame_rows_q(&back);
+        assert_eq!(got.len(), angles.len());
+        for ((t, q), a) in got.iter().zip(&angles) {
+            // glam's ZYX is intrinsic z, then y, then x (scipy's "ZYX").
+            let [z, y, x] = a.map(f64::to_radians);
+            let want = DQuat::from_euler(glam::EulerRot::ZYX, z, y, x);
+            let e = rot_angle(*q, want).to_degrees();
+            assert!(e <= 0.5, "{scheme} at {t}: {e}°");
+        }
+    }
+    let refused = |args: &[&str], says: &str| {
+        let out = crate::support::bin().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{err}");
+    };
+    refused(
+        &[
+            "reduce",
+            clip,
+            "--tolerance",
+            "0.5",
+            "--path",
+            "euler",
+            "--to",
+            "euler:XYZ",
+        ],
+        "--to euler:XYZ: with --path euler",
+    );
+    refused(
+        &[
+            "reduce",
+            "fixtures/bvh/mixed_orders.bvh",
+            "--tolerance",
+            "0.5",
+            "--translation-tolerance",
+            "0.1",
+            "--path",
+            "euler",
+        ],
+        "the tracks have euler:ZXY, euler:ZYX, euler:YXZ",
+    );
+}
+
 /// (time, rotation) rows of interp's CSV output.
 fn frame_rows_q(text: &[u8]) -> Vec<(f64, DQuat)> {
     let mut rdr = csv::Reader::from_reader(text);

@@ -164,3 +164,41 @@ fn optimal_slerp_is_the_true_minimum_on_longer_tracks() {
         assert_eq!(r.keys.len(), cost[n - 1], "seed {seed}: {:?}", r.keys);
     }
 }
+
+/// A quaternion and its negation are the same rotation: under the default shortest path, the
+/// frames' signs (alternating, random, all flipped) change neither the keys nor their
+/// velocities.
+#[test]
+fn quaternion_signs_do_not_change_the_keys() {
+    for (i, noise) in [0.0, 0.2f64.to_radians()].into_iter().enumerate() {
+        let (t, mut q) = motion(61, [1.2, -0.7, 0.9, 0.3, -1.1, 0.4], noise, 7 + i as u64);
+        inbetween::tangent::apply_path(&mut q, inbetween::PathMode::Shortest);
+        let signs: [fn(usize) -> bool; 3] = [
+            |k| k % 2 == 1,
+            |k| (k.wrapping_mul(2654435761) >> 7) & 1 == 1,
+            |_| true,
+        ];
+        for flip in &signs {
+            let flipped: Vec<DQuat> = q
+                .iter()
+                .enumerate()
+                .map(|(k, &x)| if flip(k) { -x } else { x })
+                .collect();
+            for scheme in Scheme::ALL {
+                for method in [Method::Greedy, Method::Optimal] {
+                    let o = opts(scheme, method, true, 0.5);
+                    let want = reduce(&t, &q, None, &o).unwrap();
+                    let got = reduce(&t, &flipped, None, &o).unwrap();
+                    assert_eq!(got.keys, want.keys, "{scheme} {method:?} noise {noise}");
+                    let (w, g) = (want.velocities.unwrap(), got.velocities.unwrap());
+                    for (a, b) in w.iter().zip(&g) {
+                        assert!(
+                            (*a - *b).length() < 1e-12,
+                            "{scheme} {method:?}: {a} vs {b}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

@@ -2,18 +2,44 @@
 
 use super::columns::RotationFormatter;
 use super::num::NumWriter;
-use super::{Bad, Style, csv_field, internal_error, is_rotation, json_head, json_string};
+use super::{
+    Bad, EulerMode, Style, csv_field, internal_error, is_rotation, json_head, json_string,
+};
 use crate::clock::Fps;
 use crate::io::Format;
 use crate::io::document::{DocTrack, Document, KeyTime};
+use crate::rotation::Repr;
 use std::io::{self, Write};
 
-/// The continuous-Euler state of a track: from its first key's own triple when its keys were
-/// given as Euler angles ([`Style::unwrapper_from`]).
-fn track_unwrap(style: &Style, track: &DocTrack) -> Option<crate::rotation::unwrap::EulerUnwrap> {
-    match &track.euler {
-        Some((seq, angles)) => style.unwrapper_from(*seq, angles[0].to_array()),
-        None => style.unwrapper(),
+/// The Euler triples of a track's keys: their own, as given ([`EulerMode::AsGiven`] with keys
+/// given in the output's sequence), or continuous along the track from the first key's own
+/// triple when the keys were given as Euler angles ([`Style::unwrapper_from`]).
+enum KeyEuler<'a> {
+    Given(&'a [glam::DVec3]),
+    Continuous(Option<crate::rotation::unwrap::EulerUnwrap>),
+}
+
+impl<'a> KeyEuler<'a> {
+    fn of(style: &Style, track: &'a DocTrack) -> KeyEuler<'a> {
+        match &track.euler {
+            Some((seq, angles))
+                if style.euler == EulerMode::AsGiven && style.repr == Repr::Euler(*seq) =>
+            {
+                KeyEuler::Given(angles)
+            }
+            Some((seq, angles)) => {
+                KeyEuler::Continuous(style.unwrapper_from(*seq, angles[0].to_array()))
+            }
+            None => KeyEuler::Continuous(style.unwrapper()),
+        }
+    }
+
+    /// Key `i`'s triple (radians), rotation `q`, when Euler angles are written.
+    fn next(&mut self, i: usize, q: glam::DQuat) -> Option<[f64; 3]> {
+        match self {
+            KeyEuler::Given(a) => Some(a[i].to_array()),
+            KeyEuler::Continuous(u) => u.as_mut().map(|u| u.next(q)),
+        }
     }
 }
 
@@ -107,7 +133,7 @@ pub fn write_keys<W: Write>(
             }
             buf.push(b'\n');
             for (ti, track) in doc.tracks.iter().enumerate() {
-                let mut unwrap = track_unwrap(&style, track);
+                let mut key_euler = KeyEuler::of(&style, track);
                 for (i, key) in track.keys.iter().enumerate() {
                     if named {
                         buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
@@ -115,7 +141,7 @@ pub fn write_keys<W: Write>(
                     }
                     let t = when(key.when);
                     when_value(&mut nums, &mut buf, t, all_frames);
-                    let euler = unwrap.as_mut().map(|u| u.next(key.rot));
+                    let euler = key_euler.next(i, key.rot);
                     let ok = rot.csv(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
                     if key_velocities {
@@ -197,7 +223,7 @@ pub fn write_keys<W: Write>(
                     vel(&mut buf, &mut nums, ti, "end_velocity", v)?;
                 }
                 buf.extend_from_slice(b", \"keys\": [");
-                let mut unwrap = track_unwrap(&style, track);
+                let mut key_euler = KeyEuler::of(&style, track);
                 for (i, key) in track.keys.iter().enumerate() {
                     buf.extend_from_slice(if i == 0 { b"\n{\"" } else { b",\n{\"" });
                     buf.extend_from_slice(when_name.as_bytes());
@@ -205,7 +231,7 @@ pub fn write_keys<W: Write>(
                     let t = when(key.when);
                     when_value(&mut nums, &mut buf, t, all_frames);
                     buf.extend_from_slice(b", ");
-                    let euler = unwrap.as_mut().map(|u| u.next(key.rot));
+                    let euler = key_euler.next(i, key.rot);
                     let ok = rot.json(&mut buf, key.rot, euler);
                     check_key(&mut rot, ti, i, t, ok)?;
                     if let Some(w) = key_velocity(track, i) {

@@ -70,6 +70,10 @@ pub enum EulerMode {
     Continuous,
     /// Each triple in scipy's ranges, independently.
     Wrapped,
+    /// Keys given as Euler angles in the output's sequence are written with their own triples,
+    /// exactly as given ([`crate::io::write::write_keys`]; `reduce --path euler`, whose keys'
+    /// turns are in their angles). Anything else (frames, other keys) as `Continuous`.
+    AsGiven,
 }
 
 impl Style {
@@ -86,7 +90,7 @@ impl Style {
     /// A new per-track state for continuous Euler angles, when this style writes them.
     pub(crate) fn unwrapper(&self) -> Option<crate::rotation::unwrap::EulerUnwrap> {
         match (self.repr, self.euler) {
-            (Repr::Euler(seq), EulerMode::Continuous) => {
+            (Repr::Euler(seq), EulerMode::Continuous | EulerMode::AsGiven) => {
                 Some(crate::rotation::unwrap::EulerUnwrap::new(seq))
             }
             _ => None,
@@ -102,7 +106,7 @@ impl Style {
         angles: [f64; 3],
     ) -> Option<crate::rotation::unwrap::EulerUnwrap> {
         match (self.repr, self.euler) {
-            (Repr::Euler(out), EulerMode::Continuous) if out == seq => Some(
+            (Repr::Euler(out), EulerMode::Continuous | EulerMode::AsGiven) if out == seq => Some(
                 crate::rotation::unwrap::EulerUnwrap::with_start(seq, angles),
             ),
             _ => self.unwrapper(),
