@@ -194,14 +194,18 @@ fn dense_output_with_velocities_reads_back_as_itself() {
     }
 }
 
+/// The binary's standard output for `args` (which must succeed).
+fn stdout(args: &[&str]) -> Vec<u8> {
+    crate::support::stdout_of(crate::support::bin().args(args)).into_bytes()
+}
+
 /// `reduce` as a user runs it: `reduce clip.csv --tolerance 0.5 -o keys.json && interp keys.json
 /// --fps 30 -o back.csv` gives every frame of the clip within 0.5°, for every scheme (the same
 /// `--scheme` both times), with and without velocities.
 #[test]
 fn reduce_then_interp_gives_every_frame_back() {
     let dir = tempfile::tempdir().unwrap();
-    let run =
-        |args: &[&str]| crate::support::stdout_of(crate::support::bin().args(args)).into_bytes();
+    let run = stdout;
     let clip = dir.path().join("clip.csv");
     let clip = clip.to_str().unwrap();
     run(&[
@@ -262,8 +266,7 @@ fn reduce_then_interp_gives_every_frame_back() {
 #[test]
 fn reduce_with_path_euler_keeps_the_turns() {
     let dir = tempfile::tempdir().unwrap();
-    let run =
-        |args: &[&str]| crate::support::stdout_of(crate::support::bin().args(args)).into_bytes();
+    let run = stdout;
     let clip = dir.path().join("spin.json");
     let clip = clip.to_str().unwrap();
     for (wobble, scheme) in [(0.0, "slerp"), (8.0, "bezier"), (8.0, "hermite")] {
