@@ -19,8 +19,9 @@
 //! - **Greedy**: from each key, the farthest next key whose segment alone meets the tolerance,
 //!   over the estimates the next key may carry (`greedy_step`: doubling then bisection); where
 //!   several estimates reach it, the one from which the following step goes farthest (one step
-//!   of look-ahead, each estimate after the first searched only past the farthest so far). A segment with both end velocities given depends on its two keys only, for
-//!   hermite, bezier, squad and slerp.
+//!   of look-ahead, each estimate after the first searched only past the farthest so far). A
+//!   segment with both end velocities given depends on its two keys only, for hermite, bezier,
+//!   squad and slerp.
 //! - **Optimal**: each frame first takes its *preferred* estimate, the one from which a segment
 //!   starting there reaches farthest (`preferred_estimates`); then a shortest path over the
 //!   frames, an edge `i → j` wherever the segment `i..j` alone meets the tolerance (segments up
@@ -31,8 +32,10 @@
 //!   from a key, so its result is exactly minimal. Elsewhere (minaccel,
 //!   estimated tangents) its keys are then completed like greedy's, and where it would keep
 //!   more keys than greedy, greedy's are kept (with greedy's estimates).
+//! - **Shared keys** ([`reduce_shared`]): the same methods on all tracks at once, a segment
+//!   meeting the tolerances when it meets them on every track.
 //!
-//! Both end with **verification**: the curve through the chosen keys is built exactly as
+//! All end with **verification**: the curve through the chosen keys is built exactly as
 //! `interp` builds it ([`Curve`]), evaluated at every frame, and wherever a frame misses the
 //! tolerance the worst frame of that segment becomes a key (carrying its centred estimate),
 //! until none misses. The result is therefore guaranteed, whatever the scheme, and checked
@@ -401,14 +404,6 @@ impl<'a> Frames<'a> {
             }
         }
     }
-
-    /// The estimate frame `i` carries as a key: the first equal to `w` (a velocity this track's
-    /// own reduction gave it), else the centred one.
-    fn choose_velocity(&self, i: usize, w: DVec3) {
-        if let Some(e) = &self.estimates {
-            self.choose(i, e[i].iter().position(|&x| x == w).unwrap_or(0));
-        }
-    }
 }
 
 /// The rotation test of [`Frames::check`] (`error > tolerance·(1 − 1e-9)` misses) decided from
@@ -599,9 +594,11 @@ pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputRes
 /// Most threads [`reduce_each`] uses.
 pub const MAX_THREADS: usize = 8;
 
-/// Reduces several tracks to one set of key times (`--shared-keys`): each track's own keys, their
-/// union, then verification of every track on the union until all meet the tolerances. The
-/// tracks must have the same frame times.
+/// Reduces several tracks to one set of key times (`--shared-keys`): the methods run on all
+/// tracks at once, a segment meeting the tolerances when it meets them on every track (each
+/// track's key carrying its own estimate; optimal is exactly the fewest shared keys for slerp),
+/// then verification of every track on the keys until all meet the tolerances. The tracks must
+/// have the same frame times.
 pub fn reduce_shared(
     tracks: &[TrackFrames<'_>],
     opts: &ReduceOptions,
@@ -614,30 +611,39 @@ pub fn reduce_shared(
             "--shared-keys: the tracks have different frame times; shared keys need one grid"
         ));
     }
+    let n = times.len();
     let frames: Vec<Frames> = tracks.iter().map(|t| Frames::new(t, opts)).collect();
-    let mut keys: Vec<usize> = Vec::new();
-    for (r, f) in reduce_each(tracks, opts)?.into_iter().zip(&frames) {
-        // Each track's own keys keep the velocities its own reduction chose.
-        if let Some(w) = &r.velocities {
-            for (&k, &w) in r.keys.iter().zip(w) {
-                f.choose_velocity(k, w);
-            }
-        }
-        keys.extend(r.keys);
+    if n < 2 {
+        return tracks.iter().map(|t| reduce_frames(t, opts)).collect();
     }
-    keys.sort_unstable();
-    keys.dedup();
-    // Keys only grow, so in the pass that adds none every track was measured on the final keys.
-    let errors = loop {
-        let before = keys.len();
-        let mut errors = Vec::with_capacity(frames.len());
-        for f in &frames {
-            let (k, e) = verified(f, keys, opts)?;
-            keys = k;
-            errors.push(e);
-        }
-        if keys.len() == before {
-            break errors;
+    let greedy = shared_greedy_keys(&frames, opts)?;
+    let greedy_choice: Vec<Vec<u8>> = frames
+        .iter()
+        .map(|f| {
+            f.keep_choices(&greedy);
+            f.choice.iter().map(std::cell::Cell::get).collect()
+        })
+        .collect();
+    let greedy = shared_verified(&frames, greedy, opts)?;
+    let (keys, errors) = match opts.method {
+        Method::Greedy => greedy,
+        Method::Optimal => {
+            let window = optimal_window(&greedy.0);
+            let best = shared_optimal_keys(&frames, window, opts)?;
+            for f in &frames {
+                f.keep_choices(&best);
+            }
+            let best = shared_verified(&frames, best, opts)?;
+            if best.0.len() <= greedy.0.len() {
+                best
+            } else {
+                for (f, g) in frames.iter().zip(&greedy_choice) {
+                    for (c, &g) in f.choice.iter().zip(g) {
+                        c.set(g);
+                    }
+                }
+                greedy
+            }
         }
     };
     Ok(frames
@@ -647,14 +653,112 @@ pub fn reduce_shared(
             velocities: frames.key_velocities(&keys),
             keys: keys.clone(),
             max_error: e.max,
-            mean_error: e.sum / frames.quats.len() as f64,
+            mean_error: e.sum / n as f64,
         })
         .collect())
 }
 
+/// Whether segment `a..b` meets the tolerances on every track, each track's frame `b` carrying
+/// the first of its estimates with which it does (its choice set to it). `first` is the track
+/// to test first: the one that missed last time (updated).
+fn shared_feasible(
+    frames: &[Frames],
+    a: usize,
+    b: usize,
+    first: &std::cell::Cell<usize>,
+    opts: &ReduceOptions,
+) -> InputResult<bool> {
+    let m = frames.len();
+    for j in 0..m {
+        let t = (first.get() + j) % m;
+        let f = &frames[t];
+        let mut ok = false;
+        for c in 0..f.choices {
+            if f.feasible_with(a, b, c, opts)? {
+                ok = true;
+                break;
+            }
+        }
+        if !ok {
+            first.set(t);
+            return Ok(false);
+        }
+    }
+    Ok(true)
+}
+
+/// Greedy shared keys: from each key the farthest next key whose segment meets the tolerances on
+/// every track ([`shared_feasible`], doubling then bisection), each track's key carrying the first
+/// of its estimates that meets them there.
+fn shared_greedy_keys(frames: &[Frames], opts: &ReduceOptions) -> InputResult<Vec<usize>> {
+    let n = frames[0].quats.len();
+    let first = std::cell::Cell::new(0);
+    let mut keys = vec![0];
+    let mut a = 0;
+    while a < n - 1 {
+        let b = farthest_by(n, a + 1, |b| shared_feasible(frames, a, b, &first, opts))?;
+        // The key's estimates: those of the test at `b` itself.
+        shared_feasible(frames, a, b, &first, opts)?;
+        keys.push(b);
+        a = b;
+    }
+    Ok(keys)
+}
+
+/// Optimal shared keys: the shortest path over the frames with an edge `a → b` wherever the
+/// segment meets the tolerances on every track ([`shared_feasible`]: each track's frame `b`
+/// carrying the first of its estimates with which it does), each track's frame `a` carrying the
+/// estimate of the edge by which the path reached `a`. Without estimates to choose (slerp, or
+/// no velocities) that is the fewest shared keys with segments of at most `window` frames; slerp
+/// has no window: the search from a key stops where any track's early cut ([`SlerpSpeeds`]) says
+/// no longer segment can meet the tolerance on it, so its result is exactly the fewest.
+fn shared_optimal_keys(
+    frames: &[Frames],
+    window: usize,
+    opts: &ReduceOptions,
+) -> InputResult<Vec<usize>> {
+    let n = frames[0].quats.len();
+    let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
+    let first = std::cell::Cell::new(0);
+    let mut speeds: Vec<SlerpSpeeds> = Vec::new();
+    // Each track's estimate at each frame, from the edge that reached it.
+    let mut reached: Vec<Vec<u8>> = frames.iter().map(|_| vec![0; n]).collect();
+    shortest_path(n, |a, b, improves| {
+        if b == a + 1 {
+            speeds = frames.iter().map(|_| SlerpSpeeds::new(a)).collect();
+            for (f, r) in frames.iter().zip(&reached) {
+                f.choose(a, usize::from(r[a]));
+            }
+        }
+        if slerp {
+            if !speeds.iter_mut().zip(frames).all(|(s, f)| s.admit(f, b)) {
+                return Ok(Edge::Stop);
+            }
+        } else if b > a + window {
+            return Ok(Edge::Stop);
+        }
+        if !improves || (slerp && !speeds.iter().zip(frames).all(|(s, f)| s.allows(f, b))) {
+            return Ok(Edge::No);
+        }
+        if !shared_feasible(frames, a, b, &first, opts)? {
+            return Ok(Edge::No);
+        }
+        for (f, r) in frames.iter().zip(&mut reached) {
+            r[b] = f.choice[b].get();
+        }
+        Ok(Edge::Yes)
+    })
+    .inspect(|keys| {
+        for (f, r) in frames.iter().zip(&reached) {
+            for &k in keys {
+                f.choose(k, usize::from(r[k]));
+            }
+        }
+    })
+}
+
 /// From key `a` (its velocity chosen), the farthest next key `b ≥ from` whose segment alone meets
-/// the tolerances with `b` carrying estimate `c`, given that `from` does: doubling past `from`,
-/// then bisection between the last length that meets them and the first that does not.
+/// the tolerances with `b` carrying estimate `c`, given that `from` does ([`farthest_by`]).
 fn farthest(
     frames: &Frames,
     a: usize,
@@ -662,12 +766,23 @@ fn farthest(
     c: usize,
     opts: &ReduceOptions,
 ) -> InputResult<usize> {
-    let n = frames.quats.len();
+    farthest_by(frames.quats.len(), from, |b| {
+        frames.feasible_with(a, b, c, opts)
+    })
+}
+
+/// The farthest frame `b ≥ from` (of `n`) that passes `test`, given that `from` does: doubling
+/// past `from`, then bisection between the last frame that passes and the first that does not.
+fn farthest_by(
+    n: usize,
+    from: usize,
+    mut test: impl FnMut(usize) -> InputResult<bool>,
+) -> InputResult<usize> {
     let (mut good, mut step) = (from, 1);
     let mut bad = None;
     while good < n - 1 {
         let b = (good + step).min(n - 1);
-        if frames.feasible_with(a, b, c, opts)? {
+        if test(b)? {
             good = b;
             step *= 2;
         } else {
@@ -679,7 +794,7 @@ fn farthest(
         let mut lo = good;
         while hi - lo > 1 {
             let mid = (lo + hi) / 2;
-            if frames.feasible_with(a, mid, c, opts)? {
+            if test(mid)? {
                 lo = mid;
             } else {
                 hi = mid;
@@ -796,34 +911,65 @@ fn preferred_estimates(frames: &Frames, opts: &ReduceOptions) -> InputResult<()>
 /// frames (each carrying its preferred estimate, [`preferred_estimates`]) alone meets the
 /// tolerances, for segments of at most `window` frames.
 fn optimal_keys(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
-    let n = frames.quats.len();
     if frames.choices > 1 {
         preferred_estimates(frames, opts)?;
     }
+    let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
+    let mut speeds = SlerpSpeeds::new(0);
+    shortest_path(frames.quats.len(), |a, b, improves| {
+        if b == a + 1 {
+            speeds = SlerpSpeeds::new(a);
+        }
+        if slerp {
+            if !speeds.admit(frames, b) {
+                return Ok(Edge::Stop);
+            }
+        } else if b > a + window {
+            return Ok(Edge::Stop);
+        }
+        Ok(
+            if improves && (!slerp || speeds.allows(frames, b)) && frames.feasible(a, b, opts)? {
+                Edge::Yes
+            } else {
+                Edge::No
+            },
+        )
+    })
+}
+
+/// What [`shortest_path`] learns of the segment from one frame to a later one.
+enum Edge {
+    /// The segment meets the tolerances.
+    Yes,
+    /// It does not (or it need not be tested).
+    No,
+    /// Neither it nor any longer segment from the same frame does.
+    Stop,
+}
+
+/// The fewest keys from frame 0 to frame `n − 1` (`n ≥ 2`) over the edges `edge(a, b,
+/// improves)` says meet the tolerances, the frames `b` tried in increasing order from each reachable
+/// `a` (`improves`: an edge `a → b` would shorten the path to `b`, so it needs testing). Ties go
+/// to the earliest predecessor.
+fn shortest_path(
+    n: usize,
+    mut edge: impl FnMut(usize, usize, bool) -> InputResult<Edge>,
+) -> InputResult<Vec<usize>> {
     let mut cost = vec![usize::MAX; n];
     let mut prev = vec![0usize; n];
     cost[0] = 0;
-    let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
     for a in 0..n - 1 {
         if cost[a] == usize::MAX {
             continue;
         }
-        let mut speeds = SlerpSpeeds::new(a);
-        let last = if slerp {
-            n - 1
-        } else {
-            (a + window).min(n - 1)
-        };
-        for b in a + 1..last + 1 {
-            if slerp && !speeds.admit(frames, b) {
-                break;
-            }
-            if cost[a] + 1 < cost[b]
-                && (!slerp || speeds.allows(frames, b))
-                && frames.feasible(a, b, opts)?
-            {
-                cost[b] = cost[a] + 1;
-                prev[b] = a;
+        for b in a + 1..n {
+            match edge(a, b, cost[a] + 1 < cost[b])? {
+                Edge::Yes => {
+                    cost[b] = cost[a] + 1;
+                    prev[b] = a;
+                }
+                Edge::No => {}
+                Edge::Stop => break,
             }
         }
     }
@@ -935,6 +1081,28 @@ fn verified(
         keys.extend(added);
         keys.sort_unstable();
         keys.dedup();
+    }
+}
+
+/// [`verified`] on every track, until the keys meet the tolerances on all. Returns the keys and
+/// each track's error over its frames.
+fn shared_verified(
+    frames: &[Frames],
+    mut keys: Vec<usize>,
+    opts: &ReduceOptions,
+) -> InputResult<(Vec<usize>, Vec<Errors>)> {
+    // Keys only grow, so in the pass that adds none every track was measured on the final keys.
+    loop {
+        let before = keys.len();
+        let mut errors = Vec::with_capacity(frames.len());
+        for f in frames {
+            let (k, e) = verified(f, keys, opts)?;
+            keys = k;
+            errors.push(e);
+        }
+        if keys.len() == before {
+            return Ok((keys, errors));
+        }
     }
 }
 

@@ -445,9 +445,13 @@ fn reduce_then_interp_on_real_motion_capture() {
     };
     let want = table(&clip);
     assert_eq!(want.len(), 31 * 61);
-    for scheme in ["bezier", "hermite", "slerp"] {
-        for method in ["greedy", "optimal"] {
-            let args = [
+    for (scheme, method, shared) in ["bezier", "hermite", "slerp"]
+        .into_iter()
+        .flat_map(|s| ["greedy", "optimal"].map(move |m| (s, m)))
+        .flat_map(|(s, m)| [(s, m, false), (s, m, true)])
+    {
+        {
+            let mut args = vec![
                 os("reduce"),
                 clip.clone().into(),
                 os("--tolerance"),
@@ -463,7 +467,30 @@ fn reduce_then_interp_on_real_motion_capture() {
                 os("-o"),
                 keys.clone().into(),
             ];
+            if shared {
+                args.push(os("--shared-keys"));
+            }
             run(&args.iter().map(|s| s.as_os_str()).collect::<Vec<_>>());
+            if shared {
+                // One set of key frames for every joint.
+                let doc: serde_json::Value =
+                    serde_json::from_slice(&std::fs::read(&keys).unwrap()).unwrap();
+                let frames = |t: &serde_json::Value| -> Vec<u64> {
+                    t["keys"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .map(|k| k["frame"].as_u64().unwrap())
+                        .collect()
+                };
+                let tracks = doc["tracks"].as_array().unwrap();
+                assert_eq!(tracks.len(), 31);
+                let first = frames(&tracks[0]);
+                assert_eq!((first[0], first[first.len() - 1]), (0, 60));
+                for t in tracks {
+                    assert_eq!(frames(t), first, "{scheme} {method}: {}", t["name"]);
+                }
+            }
             let args = [
                 os("interp"),
                 keys.clone().into(),
@@ -480,7 +507,7 @@ fn reduce_then_interp_on_real_motion_capture() {
             for (k, (q, p)) in &want {
                 let (gq, gp) = got[k];
                 let d = rot_angle(gq, *q).to_degrees();
-                assert!(d <= 0.5, "{scheme} {method} {k:?}: {d}°");
+                assert!(d <= 0.5, "{scheme} {method} shared {shared} {k:?}: {d}°");
                 for i in 0..3 {
                     assert!(
                         (gp[i] - p[i]).abs() <= 0.01 + 1e-9,

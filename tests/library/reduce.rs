@@ -202,3 +202,102 @@ fn quaternion_signs_do_not_change_the_keys() {
         }
     }
 }
+
+/// `--shared-keys` (`reduce_shared`): over three random tracks on one clock, every scheme and
+/// method, with and without velocities: one set of keys for all tracks, the first and last frame
+/// kept, every track within the tolerance (replayed independently), `optimal` never more keys
+/// than `greedy`, and no more keys than the union of the tracks' own keys would keep.
+#[test]
+fn shared_keys_meet_the_tolerance_on_every_track() {
+    use inbetween::reduce::{TrackFrames, reduce_shared};
+    for (seed, noise, tol) in [(11u64, 0.0f64, 0.5), (12, 0.1, 1.0), (13, 0.3, 2.0)] {
+        let tracks: Vec<(Vec<f64>, Vec<DQuat>)> = [
+            [1.2, -0.7, 0.9, 0.3, -1.1, 0.4],
+            [-0.4, 1.1, 0.2, -0.9, 0.6, 1.3],
+            [0.3, 0.2, -1.4, 0.5, 0.9, -0.6],
+        ]
+        .iter()
+        .enumerate()
+        .map(|(i, c)| motion(61, *c, noise.to_radians(), seed * 7 + i as u64))
+        .collect();
+        let frames: Vec<TrackFrames> = tracks
+            .iter()
+            .map(|(t, q)| TrackFrames {
+                times: t,
+                rotations: q,
+                positions: None,
+                euler: None,
+            })
+            .collect();
+        for scheme in Scheme::ALL {
+            for velocities in [true, false] {
+                let mut counts = Vec::new();
+                for method in [Method::Greedy, Method::Optimal] {
+                    let o = opts(scheme, method, velocities, tol);
+                    let shared = reduce_shared(&frames, &o).unwrap();
+                    let keys = &shared[0].keys;
+                    assert_eq!((keys[0], *keys.last().unwrap()), (0, 60));
+                    let mut union: Vec<usize> = Vec::new();
+                    for ((t, q), r) in tracks.iter().zip(&shared) {
+                        assert_eq!(&r.keys, keys);
+                        let e = replay(t, q, r, &o);
+                        assert!(e <= o.tolerance, "{scheme} {method:?} {velocities}: {e}");
+                        union.extend(reduce(t, q, None, &o).unwrap().keys);
+                    }
+                    union.sort_unstable();
+                    union.dedup();
+                    assert!(
+                        keys.len() <= union.len(),
+                        "{scheme} {method:?} {velocities}: {} shared keys, union {}",
+                        keys.len(),
+                        union.len()
+                    );
+                    counts.push(keys.len());
+                }
+                assert!(counts[1] <= counts[0], "{scheme} {velocities}: {counts:?}");
+            }
+        }
+    }
+}
+
+/// Slerp's shared `optimal` is the fewest keys that meet the tolerance on every track: a shortest
+/// path over every segment, each tested on all tracks here.
+#[test]
+fn shared_optimal_slerp_is_the_true_minimum() {
+    use inbetween::reduce::{TrackFrames, reduce_shared};
+    for (seed, noise, tol) in [(21u64, 0.0, 0.5), (22, 0.1, 1.0), (23, 0.3, 1.0)] {
+        let tracks: Vec<(Vec<f64>, Vec<DQuat>)> = (0..3)
+            .map(|i| {
+                let c = [0.9 - 0.4 * i as f64, -0.5, 0.7, 0.2 * i as f64, -0.8, 0.3];
+                motion(70, c, f64::to_radians(noise), seed + 100 * i)
+            })
+            .collect();
+        let frames: Vec<TrackFrames> = tracks
+            .iter()
+            .map(|(t, q)| TrackFrames {
+                times: t,
+                rotations: q,
+                positions: None,
+                euler: None,
+            })
+            .collect();
+        let o = opts(Scheme::Slerp, Method::Optimal, false, tol);
+        let r = reduce_shared(&frames, &o).unwrap();
+        let n = 70;
+        let mut cost = vec![usize::MAX; n];
+        cost[0] = 1;
+        for b in 1..n {
+            for a in 0..b {
+                if cost[a] != usize::MAX
+                    && cost[a] + 1 < cost[b]
+                    && tracks
+                        .iter()
+                        .all(|(t, q)| slerp_segment_fits(t, q, a, b, o.tolerance))
+                {
+                    cost[b] = cost[a] + 1;
+                }
+            }
+        }
+        assert_eq!(r[0].keys.len(), cost[n - 1], "seed {seed}: {:?}", r[0].keys);
+    }
+}
