@@ -44,7 +44,7 @@
 use crate::curve::{Curve, CurveOptions, Scheme};
 use crate::error::InputResult;
 use crate::rotation::quat::{log, rotation_angle_between};
-use crate::tangent::{PathMode, apply_path};
+use crate::tangent::{EndConditions, Ends, PathMode, apply_path};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
 
@@ -208,6 +208,9 @@ struct Frames<'a> {
     threshold: Threshold,
     /// The frame that last missed in [`Frames::feasible`].
     hint: std::cell::Cell<usize>,
+    /// The key before the segments being tested, which their first key's tangent depends on
+    /// when tangents are estimated ([`Frames::segment_curve`]); set by the methods.
+    before: std::cell::Cell<Option<usize>>,
     /// The frames' spacing (s) when they are evenly spaced ([`even_spacing`]): then segments
     /// are evaluated at the frames as `interp` generates in-betweens.
     spacing: Option<f64>,
@@ -255,6 +258,7 @@ impl<'a> Frames<'a> {
             },
             threshold: Threshold::new(opts),
             hint: std::cell::Cell::new(0),
+            before: std::cell::Cell::new(None),
             spacing: even_spacing(times),
         }
     }
@@ -280,7 +284,7 @@ impl<'a> Frames<'a> {
 
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
     /// builds it.
-    fn curve(&self, keys: &[usize], opts: &ReduceOptions) -> InputResult<Curve> {
+    fn curve(&self, keys: &[usize], opts: &CurveOptions) -> InputResult<Curve> {
         let t: Vec<f64> = keys.iter().map(|&i| self.times[i]).collect();
         let q: Vec<DQuat> = keys.iter().map(|&i| self.quats[i]).collect();
         let mut track = Track::new(t, q)?;
@@ -290,10 +294,39 @@ impl<'a> Frames<'a> {
         if let Some(p) = self.positions {
             track = track.with_translations(keys.iter().map(|&i| p[i]).collect())?;
         }
-        if let Some((seq, e)) = self.euler.filter(|_| opts.curve.path == PathMode::Euler) {
+        if let Some((seq, e)) = self.euler.filter(|_| opts.path == PathMode::Euler) {
             track = track.with_euler_angles(seq, keys.iter().map(|&i| e[i]).collect())?;
         }
-        Curve::new(&track, &opts.curve)
+        Curve::new(&track, opts)
+    }
+
+    /// The curve [`Frames::feasible`] tests segment `a..b` on, as the whole curve will have it:
+    /// the keys `a` and `b`, and where the keys' tangents are estimated from their neighbours (no
+    /// velocities) the key before `a` ([`Frames::before`]) and a stand-in for the key after `b`
+    /// (as far past `b` as `a` is before it); the start's end condition only on the first frame,
+    /// the end's only on the last (rest as a zero velocity there), and a loop's seam as a chord
+    /// end (verification, on the whole curve, settles the seam).
+    fn segment_curve(&self, a: usize, b: usize, opts: &ReduceOptions) -> InputResult<Curve> {
+        let n = self.quats.len();
+        let neighbours = self.estimates.is_none();
+        let mut keys = Vec::with_capacity(4);
+        keys.extend(self.before.get().filter(|&p| neighbours && p < a));
+        keys.extend([a, b]);
+        keys.extend((neighbours && b < n - 1).then(|| (2 * b - a).min(n - 1)));
+        let ends = opts.curve.ends;
+        // Rest is the velocity of an end without one: with velocities, the key's own.
+        let rest = neighbours && ends.ends == Ends::Rest;
+        let given =
+            |at: bool, v: Option<DVec3>| at.then(|| v.or(rest.then_some(DVec3::ZERO))).flatten();
+        let curve = CurveOptions {
+            ends: EndConditions {
+                ends: Ends::Chord,
+                start: given(keys[0] == 0, ends.start),
+                end: given(keys[keys.len() - 1] == n - 1, ends.end),
+            },
+            ..opts.curve
+        };
+        self.curve(&keys, &curve)
     }
 
     /// The worst frame strictly between keys `a` and `b` of `curve` and whether every frame
@@ -339,7 +372,9 @@ impl<'a> Frames<'a> {
         if b == a + 1 {
             return Ok(true);
         }
-        let curve = self.curve(&[a, b], opts)?;
+        let curve = self.segment_curve(a, b, opts)?;
+        // The segment's index in that curve: after the key before `a`, if it has one.
+        let piece = curve.key_times().partition_point(|&t| t < self.times[a]);
         let within = |k: usize, q: DQuat| {
             if !self.threshold.within(opts, q, self.quats[k]) {
                 return false;
@@ -359,7 +394,7 @@ impl<'a> Frames<'a> {
         if let Some(dt) = self.spacing {
             let delta = self.times[b] - self.times[a];
             let mut k = a + 1;
-            let all = curve.segment_points(0, (dt / delta, dt / delta), b - a - 1, |q| {
+            let all = curve.segment_points(piece, (dt / delta, dt / delta), b - a - 1, |q| {
                 let ok = k == hint || within(k, q);
                 k += 1;
                 ok
@@ -485,6 +520,9 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResu
     let greedy = verified(&frames, greedy, opts)?;
     let (keys, errors) = match opts.method {
         Method::Greedy => greedy,
+        // minaccel's segments are not local: a shortest path would solve a curve per tested
+        // segment (minutes on a few hundred frames) for a test that is not exact anyway.
+        Method::Optimal if opts.curve.scheme == Scheme::MinAccel => greedy,
         Method::Optimal => {
             let greedy_choice: Vec<u8> = frames.choice.iter().map(std::cell::Cell::get).collect();
             let window = optimal_window(&greedy.0);
@@ -627,6 +665,7 @@ pub fn reduce_shared(
     let greedy = shared_verified(&frames, greedy, opts)?;
     let (keys, errors) = match opts.method {
         Method::Greedy => greedy,
+        Method::Optimal if opts.curve.scheme == Scheme::MinAccel => greedy,
         Method::Optimal => {
             let window = optimal_window(&greedy.0);
             let best = shared_optimal_keys(&frames, window, opts)?;
@@ -696,6 +735,9 @@ fn shared_greedy_keys(frames: &[Frames], opts: &ReduceOptions) -> InputResult<Ve
     let mut keys = vec![0];
     let mut a = 0;
     while a < n - 1 {
+        for f in frames {
+            f.before.set(keys.len().checked_sub(2).map(|i| keys[i]));
+        }
         let b = farthest_by(n, a + 1, |b| shared_feasible(frames, a, b, &first, opts))?;
         // The key's estimates: those of the test at `b` itself.
         shared_feasible(frames, a, b, &first, opts)?;
@@ -723,11 +765,12 @@ fn shared_optimal_keys(
     let mut speeds: Vec<SlerpSpeeds> = Vec::new();
     // Each track's estimate at each frame, from the edge that reached it.
     let mut reached: Vec<Vec<u8>> = frames.iter().map(|_| vec![0; n]).collect();
-    shortest_path(n, |a, b, improves| {
+    shortest_path(n, |a, b, improves, before| {
         if b == a + 1 {
             speeds = frames.iter().map(|_| SlerpSpeeds::new(a)).collect();
             for (f, r) in frames.iter().zip(&reached) {
                 f.choose(a, usize::from(r[a]));
+                f.before.set(before);
             }
         }
         if slerp {
@@ -862,9 +905,11 @@ fn greedy_keys(frames: &Frames, opts: &ReduceOptions) -> InputResult<Vec<usize>>
     let n = frames.quats.len();
     let mut keys = vec![0];
     let all: Vec<usize> = (0..frames.choices).collect();
+    frames.before.set(None);
     let (_, mut step) = look_ahead(frames, 0, &all, opts)?;
     loop {
         let (b, reach) = step;
+        frames.before.set(keys.last().copied());
         keys.push(b);
         if b >= n - 1 {
             return Ok(keys);
@@ -916,9 +961,10 @@ fn optimal_keys(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputRe
     }
     let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
     let mut speeds = SlerpSpeeds::new(0);
-    shortest_path(frames.quats.len(), |a, b, improves| {
+    shortest_path(frames.quats.len(), |a, b, improves, before| {
         if b == a + 1 {
             speeds = SlerpSpeeds::new(a);
+            frames.before.set(before);
         }
         if slerp {
             if !speeds.admit(frames, b) {
@@ -947,13 +993,14 @@ enum Edge {
     Stop,
 }
 
-/// The fewest keys from frame 0 to frame `n − 1` (`n ≥ 2`) over the edges `edge(a, b,
-/// improves)` says meet the tolerances, the frames `b` tried in increasing order from each reachable
-/// `a` (`improves`: an edge `a → b` would shorten the path to `b`, so it needs testing). Ties go
-/// to the earliest predecessor.
+/// The fewest keys from frame 0 to frame `n − 1` (`n ≥ 2`) over the edges `edge(a, b, improves,
+/// before)` says meet the tolerances, the frames `b` tried in increasing order from each
+/// reachable `a` (`improves`: an edge `a → b` would shorten the path to `b`, so it needs
+/// testing; `before`: the key before `a` on the shortest path to it). Ties go to the earliest
+/// predecessor.
 fn shortest_path(
     n: usize,
-    mut edge: impl FnMut(usize, usize, bool) -> InputResult<Edge>,
+    mut edge: impl FnMut(usize, usize, bool, Option<usize>) -> InputResult<Edge>,
 ) -> InputResult<Vec<usize>> {
     let mut cost = vec![usize::MAX; n];
     let mut prev = vec![0usize; n];
@@ -963,7 +1010,8 @@ fn shortest_path(
             continue;
         }
         for b in a + 1..n {
-            match edge(a, b, cost[a] + 1 < cost[b])? {
+            let before = (a > 0).then(|| prev[a]);
+            match edge(a, b, cost[a] + 1 < cost[b], before)? {
                 Edge::Yes => {
                     cost[b] = cost[a] + 1;
                     prev[b] = a;
@@ -1061,7 +1109,7 @@ fn verified(
     opts: &ReduceOptions,
 ) -> InputResult<(Vec<usize>, Errors)> {
     loop {
-        let curve = frames.curve(&keys, opts)?;
+        let curve = frames.curve(&keys, &opts.curve)?;
         let at_key = |k: usize| error(opts, curve.rotation(frames.times[k]), frames.quats[k]);
         let mut errors = Errors::default();
         let mut added = Vec::new();

@@ -20,14 +20,25 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
+    if let Some(p) = args.output.precision {
+        return Err(InputError::new(format!(
+            "--precision {p}: reduce writes its keys with every digit, as its guarantee was \
+             checked on them; rounded keys can miss the tolerance"
+        ))
+        .into());
+    }
     let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match output_format(&args.output, input.format) {
         OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
         OutputFormat::Doc(f) => f,
-        // A BVH input's keys default to JSON; npy and BVH are not keyframe documents.
+        // A BVH input's keys default to JSON (on standard output, or to an `-o` whose name does
+        // not say bvh: `-o keys`, `/dev/null`); npy and BVH are not keyframe documents.
         OutputFormat::Bvh
-            if args.output.output.is_none() && args.output.output_format.is_none() =>
+            if args.output.output_format.is_none()
+                && !args.output.output.as_deref().is_some_and(|p| {
+                    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("bvh"))
+                }) =>
         {
             inbetween::io::Format::Json
         }
@@ -143,6 +154,11 @@ fn keys_style(
     Ok(style)
 }
 
+/// The smallest tolerance `reduce` takes (rad, or D times this with `--distance D`): the
+/// curve's evaluation carries round-off of about 1e-15 rad, so a tolerance near it cannot be
+/// verified (every frame would end up a key and still miss).
+const MIN_TOLERANCE: f64 = 1e-9;
+
 /// How much a glTF output's tolerance is tightened (radians, or D times this with
 /// `--distance D`): the keys are stored as float32 (about 2.4e-7 rad at most).
 const FLOAT32_MARGIN: f64 = 1e-6;
@@ -168,6 +184,22 @@ fn reduce_tracks(
                 Some(_) => margin,
                 None => args.input.angles.from_rad(margin),
             }
+        ))
+        .into());
+    }
+    let floor = MIN_TOLERANCE * args.distance.unwrap_or(1.0);
+    if tolerance < floor {
+        let (least, unit) = match args.distance {
+            Some(_) => (floor, "length units"),
+            None => (
+                args.input.angles.from_rad(floor),
+                args.input.angles.as_str(),
+            ),
+        };
+        return Err(InputError::new(format!(
+            "--tolerance {:e}: below what reduce can verify (rotations carry about 1e-15 rad of \
+             round-off); give at least {least:e} {unit}",
+            args.tolerance
         ))
         .into());
     }

@@ -607,3 +607,44 @@ proptest::proptest! {
         }
     }
 }
+
+/// `reduce`'s refusals and defaults found by a user's review: `--precision` (rounded keys can
+/// miss the tolerance) and a tolerance below what can be verified are input errors with nothing
+/// written; a BVH input's keys go out as JSON to an `-o` whose name does not say bvh.
+#[test]
+fn reduce_refuses_rounding_and_unverifiable_tolerances() {
+    let dir = tempfile::tempdir().unwrap();
+    let clip = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let clip = clip.to_str().unwrap();
+    let refused = |extra: &[&str], says: &str| {
+        let mut args = vec!["reduce", clip, "--translation-tolerance", "1"];
+        args.extend(extra);
+        let out = crate::support::bin().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{extra:?}");
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(says), "{extra:?}: {err}");
+    };
+    refused(
+        &["--tolerance", "0.1", "--precision", "3"],
+        "--precision 3: reduce writes",
+    );
+    refused(&["--tolerance", "1e-15"], "give at least 5.7295779513082");
+    refused(
+        &["--tolerance", "1e-12", "--distance", "10"],
+        "give at least 1e-8 length units",
+    );
+    let keys = dir.path().join("keys");
+    stdout(&[
+        "reduce",
+        clip,
+        "--tolerance",
+        "1",
+        "--translation-tolerance",
+        "1",
+        "-o",
+        keys.to_str().unwrap(),
+    ]);
+    let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&keys).unwrap()).unwrap();
+    assert_eq!(doc["tracks"].as_array().unwrap().len(), 31);
+}

@@ -301,3 +301,74 @@ fn shared_optimal_slerp_is_the_true_minimum() {
         assert_eq!(r[0].keys.len(), cost[n - 1], "seed {seed}: {:?}", r[0].keys);
     }
 }
+
+/// End conditions apply at the ends of the whole curve only: `--start-velocity`, `--end-velocity`
+/// and `--ends rest` keep at most half as many keys again as the default ends (the segment tests
+/// once gave them to every segment, and kept most frames), and a loop (`--ends cyclic`, the
+/// last frame the first's rotation) reduces; every result meets the tolerance replayed with the
+/// same ends.
+#[test]
+fn end_conditions_apply_at_the_ends_only() {
+    use inbetween::{EndConditions, Ends};
+    let (t, q) = motion(121, [1.2, -0.7, 0.9, 0.3, -1.1, 0.4], 0.0, 5);
+    // A loop: one period of a smooth closed motion.
+    let period = t[120];
+    let lq: Vec<DQuat> = t
+        .iter()
+        .map(|&t| {
+            let a = std::f64::consts::TAU * t / period;
+            DQuat::from_euler(
+                glam::EulerRot::ZYX,
+                0.8 * a.sin(),
+                0.5 * (2.0 * a).cos(),
+                0.3 * a.cos(),
+            )
+        })
+        .collect();
+    let spin = DVec3::new(0.0, 0.0, 5.0);
+    for scheme in [Scheme::Bezier, Scheme::Hermite, Scheme::Squad] {
+        for velocities in [true, false] {
+            let plain = opts(scheme, Method::Greedy, velocities, 0.2);
+            let base = reduce(&t, &q, None, &plain).unwrap().keys.len();
+            for ends in [
+                EndConditions {
+                    ends: Ends::Chord,
+                    start: Some(spin),
+                    end: None,
+                },
+                EndConditions {
+                    ends: Ends::Chord,
+                    start: None,
+                    end: Some(-spin),
+                },
+                EndConditions::from(Ends::Rest),
+            ] {
+                let mut o = plain;
+                o.curve.ends = ends;
+                let r = reduce(&t, &q, None, &o).unwrap();
+                assert!(
+                    replay(&t, &q, &r, &o) <= o.tolerance,
+                    "{scheme} {velocities} {ends:?}"
+                );
+                assert!(
+                    r.keys.len() <= base * 3 / 2 + 3,
+                    "{scheme} {velocities} {ends:?}: {} keys, {base} with chord ends",
+                    r.keys.len()
+                );
+            }
+            let base = reduce(&t, &lq, None, &plain).unwrap().keys.len();
+            let mut o = plain;
+            o.curve.ends = Ends::Cyclic.into();
+            let r = reduce(&t, &lq, None, &o).unwrap();
+            assert!(
+                replay(&t, &lq, &r, &o) <= o.tolerance,
+                "{scheme} {velocities} cyclic"
+            );
+            assert!(
+                r.keys.len() <= base * 3 / 2 + 3,
+                "{scheme} {velocities} cyclic: {} keys, {base} with chord ends",
+                r.keys.len()
+            );
+        }
+    }
+}
