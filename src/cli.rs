@@ -79,7 +79,7 @@ pub struct ReduceArgs {
     pub output: OutputArgs,
 
     /// Largest rotation error of any input frame, in --angles units (with --distance, a length).
-    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
     pub tolerance: f64,
 
     /// The scheme the keys are for (interp's --scheme; use the same with interp).
@@ -131,7 +131,7 @@ fn parse_positive(s: &str) -> Result<f64, String> {
 /// Where the keys come from and how to read them.
 #[derive(Debug, Args)]
 pub struct InputArgs {
-    /// Keyframe file (CSV or JSON); `-` or nothing reads standard input.
+    /// Input file: CSV, JSON, BVH or glTF (.gltf, .glb); `-` or nothing reads standard input.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
 

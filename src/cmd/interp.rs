@@ -7,7 +7,6 @@ use inbetween::io::Format;
 use inbetween::io::OutputFormat;
 use inbetween::io::bvh::frames::BvhFrames;
 use inbetween::io::bvh::{self, resample};
-use inbetween::io::gltf::ContainerFormat;
 use inbetween::io::gltf::document::Mode;
 use inbetween::io::gltf::frames::{GltfFrames, check_grid};
 use inbetween::io::output::{Output, WriteBehind};
@@ -166,18 +165,7 @@ pub fn run(
             for w in check_grid(&clip, fps)? {
                 warn(&w);
             }
-            // Without --output-format or a .gltf/.glb name, the input's container.
-            let named = args.output.output_format.is_some()
-                || args
-                    .output
-                    .output
-                    .as_deref()
-                    .is_some_and(|p| ContainerFormat::from_path(p).is_some());
-            let container = if named {
-                container
-            } else {
-                clip.asset().container()
-            };
+            let container = super::settings::gltf_container(&args.output, container, &clip);
             Some((clip, container))
         }
         _ => None,

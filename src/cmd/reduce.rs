@@ -278,6 +278,7 @@ fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Res
             rotations: r.keys.iter().map(|&i| t.rotations()[i]).collect(),
         })
         .collect();
+    let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     let mut out = Output::open(args.output.output.as_deref())?;
     std::io::Write::write_all(&mut out, &bytes)?;

@@ -301,6 +301,25 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
         })
 }
 
+/// The container of glTF output: the one `--output-format` or the `-o` name (`.gltf`, `.glb`)
+/// says, else the input asset's own (`container` is [`output_format`]'s, which falls back to GLB).
+pub fn gltf_container(
+    args: &OutputArgs,
+    container: ContainerFormat,
+    clip: &GltfClip,
+) -> ContainerFormat {
+    let named = args.output_format.is_some()
+        || args
+            .output
+            .as_deref()
+            .is_some_and(|p| ContainerFormat::from_path(p).is_some());
+    if named {
+        container
+    } else {
+        clip.asset().container()
+    }
+}
+
 /// `file` or `file: track "name"`, for messages about a whole track.
 pub fn track_label(source: &str, t: &Track) -> String {
     inbetween::io::document::track_label(source, t.name())

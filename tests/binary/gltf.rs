@@ -825,6 +825,22 @@ fn reduce_writes_slerp_keys_into_the_asset() {
     }
     // The 31 LINEAR keys of Hips' smooth spin need far fewer.
     assert!(channel(&back, 0, 0).values().len() < 16);
+    // Without -o, the input's container, as interp writes it: a .gltf input as glTF JSON.
+    let o = run(args!(
+        "reduce",
+        &src,
+        "--animation",
+        "Walk",
+        "--scheme",
+        "slerp",
+        "--tolerance",
+        "0.5",
+        "--fps",
+        "30"
+    ));
+    assert_eq!(o.status.code(), Some(0));
+    let text: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(text["animations"].is_array());
     let (b, c, cmu) = (
         dir.path().join("b.glb"),
         dir.path().join("c.glb"),
