@@ -108,6 +108,34 @@ fn slerp_segment_fits(t: &[f64], q: &[DQuat], a: usize, b: usize, tol: f64) -> b
     })
 }
 
+/// The fewest keys from frame 0 to frame `n − 1` whose segments all `fit`: a shortest path over
+/// every segment, each tested.
+fn fewest_keys(n: usize, fits: impl Fn(usize, usize) -> bool) -> usize {
+    let mut cost = vec![usize::MAX; n];
+    cost[0] = 1;
+    for b in 1..n {
+        for a in 0..b {
+            if cost[a] != usize::MAX && cost[a] + 1 < cost[b] && fits(a, b) {
+                cost[b] = cost[a] + 1;
+            }
+        }
+    }
+    cost[n - 1]
+}
+
+/// Tracks of (times, rotations) as `reduce_shared`'s input.
+fn track_frames(tracks: &[(Vec<f64>, Vec<DQuat>)]) -> Vec<inbetween::reduce::TrackFrames<'_>> {
+    tracks
+        .iter()
+        .map(|(t, q)| inbetween::reduce::TrackFrames {
+            times: t,
+            rotations: q,
+            positions: None,
+            euler: None,
+        })
+        .collect()
+}
+
 #[test]
 fn optimal_slerp_is_the_true_minimum() {
     for seed in 0..6u64 {
@@ -148,20 +176,10 @@ fn optimal_slerp_is_the_true_minimum_on_longer_tracks() {
         let (t, q) = motion(90, c, f64::to_radians(noise), seed);
         let o = opts(Scheme::Slerp, Method::Optimal, false, tol);
         let r = reduce(&t, &q, None, &o).unwrap();
-        let n = t.len();
-        let mut cost = vec![usize::MAX; n];
-        cost[0] = 1;
-        for b in 1..n {
-            for a in 0..b {
-                if cost[a] != usize::MAX
-                    && cost[a] + 1 < cost[b]
-                    && slerp_segment_fits(&t, &q, a, b, o.tolerance)
-                {
-                    cost[b] = cost[a] + 1;
-                }
-            }
-        }
-        assert_eq!(r.keys.len(), cost[n - 1], "seed {seed}: {:?}", r.keys);
+        let fewest = fewest_keys(t.len(), |a, b| {
+            slerp_segment_fits(&t, &q, a, b, o.tolerance)
+        });
+        assert_eq!(r.keys.len(), fewest, "seed {seed}: {:?}", r.keys);
     }
 }
 
@@ -209,7 +227,7 @@ fn quaternion_signs_do_not_change_the_keys() {
 /// than `greedy`, and no more keys than the union of the tracks' own keys would keep.
 #[test]
 fn shared_keys_meet_the_tolerance_on_every_track() {
-    use inbetween::reduce::{TrackFrames, reduce_shared};
+    use inbetween::reduce::reduce_shared;
     for (seed, noise, tol) in [(11u64, 0.0f64, 0.5), (12, 0.1, 1.0), (13, 0.3, 2.0)] {
         let tracks: Vec<(Vec<f64>, Vec<DQuat>)> = [
             [1.2, -0.7, 0.9, 0.3, -1.1, 0.4],
@@ -220,15 +238,7 @@ fn shared_keys_meet_the_tolerance_on_every_track() {
         .enumerate()
         .map(|(i, c)| motion(61, *c, noise.to_radians(), seed * 7 + i as u64))
         .collect();
-        let frames: Vec<TrackFrames> = tracks
-            .iter()
-            .map(|(t, q)| TrackFrames {
-                times: t,
-                rotations: q,
-                positions: None,
-                euler: None,
-            })
-            .collect();
+        let frames = track_frames(&tracks);
         for scheme in Scheme::ALL {
             for velocities in [true, false] {
                 let mut counts = Vec::new();
@@ -264,7 +274,7 @@ fn shared_keys_meet_the_tolerance_on_every_track() {
 /// path over every segment, each tested on all tracks here.
 #[test]
 fn shared_optimal_slerp_is_the_true_minimum() {
-    use inbetween::reduce::{TrackFrames, reduce_shared};
+    use inbetween::reduce::reduce_shared;
     for (seed, noise, tol) in [(21u64, 0.0, 0.5), (22, 0.1, 1.0), (23, 0.3, 1.0)] {
         let tracks: Vec<(Vec<f64>, Vec<DQuat>)> = (0..3)
             .map(|i| {
@@ -272,33 +282,15 @@ fn shared_optimal_slerp_is_the_true_minimum() {
                 motion(70, c, f64::to_radians(noise), seed + 100 * i)
             })
             .collect();
-        let frames: Vec<TrackFrames> = tracks
-            .iter()
-            .map(|(t, q)| TrackFrames {
-                times: t,
-                rotations: q,
-                positions: None,
-                euler: None,
-            })
-            .collect();
+        let frames = track_frames(&tracks);
         let o = opts(Scheme::Slerp, Method::Optimal, false, tol);
         let r = reduce_shared(&frames, &o).unwrap();
-        let n = 70;
-        let mut cost = vec![usize::MAX; n];
-        cost[0] = 1;
-        for b in 1..n {
-            for a in 0..b {
-                if cost[a] != usize::MAX
-                    && cost[a] + 1 < cost[b]
-                    && tracks
-                        .iter()
-                        .all(|(t, q)| slerp_segment_fits(t, q, a, b, o.tolerance))
-                {
-                    cost[b] = cost[a] + 1;
-                }
-            }
-        }
-        assert_eq!(r[0].keys.len(), cost[n - 1], "seed {seed}: {:?}", r[0].keys);
+        let fewest = fewest_keys(70, |a, b| {
+            tracks
+                .iter()
+                .all(|(t, q)| slerp_segment_fits(t, q, a, b, o.tolerance))
+        });
+        assert_eq!(r[0].keys.len(), fewest, "seed {seed}: {:?}", r[0].keys);
     }
 }
 
