@@ -110,7 +110,8 @@ pub struct ReduceArgs {
     #[arg(long)]
     pub no_velocities: bool,
 
-    /// Report per track on stderr: frames in, keys out, ratio, max and mean error.
+    /// Report per track on stderr: frames in, keys out, ratio, max and mean error, max position
+    /// error.
     #[arg(short, long)]
     pub verbose: bool,
 }

@@ -93,6 +93,9 @@ pub struct Reduced {
     pub max_error: f64,
     /// Mean error over the frames.
     pub mean_error: f64,
+    /// Largest position error over the frames (length units), for a track whose positions were
+    /// reduced (`translation_tolerance`).
+    pub max_position_error: Option<f64>,
 }
 
 /// Each frame's angular velocity (rad/s, world frame): the derivative of the quadratic through
@@ -263,6 +266,11 @@ impl<'a> Frames<'a> {
         }
     }
 
+    /// Whether the track's positions are reduced (it has them, and a tolerance for them).
+    fn reduces_positions(&self, opts: &ReduceOptions) -> bool {
+        self.positions.is_some() && opts.translation_tolerance.is_some()
+    }
+
     /// The velocity frame `i` carries as a key (its chosen estimate), when keys carry them.
     fn velocity(&self, i: usize) -> Option<DVec3> {
         self.estimates
@@ -350,6 +358,7 @@ impl<'a> Frames<'a> {
             let mut score = e / opts.tolerance;
             if let (Some(p), Some(tol)) = (self.positions, opts.translation_tolerance) {
                 let d = (curve.position(self.times[k]).unwrap_or(DVec3::ZERO) - p[k]).length();
+                errors.position = Some(errors.position.unwrap_or(0.0).max(d));
                 bad |= d > tol;
                 score = score.max(d / tol);
             }
@@ -513,6 +522,7 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResu
             keys,
             max_error: 0.0,
             mean_error: 0.0,
+            max_position_error: frames.reduces_positions(opts).then_some(0.0),
         });
     }
     let greedy = greedy_keys(&frames, opts)?;
@@ -552,6 +562,9 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResu
         keys,
         max_error: errors.max,
         mean_error: errors.sum / n as f64,
+        max_position_error: frames
+            .reduces_positions(opts)
+            .then(|| errors.position.unwrap_or(0.0)),
     })
 }
 
@@ -693,6 +706,9 @@ pub fn reduce_shared(
             keys: keys.clone(),
             max_error: e.max,
             mean_error: e.sum / n as f64,
+            max_position_error: frames
+                .reduces_positions(opts)
+                .then(|| e.position.unwrap_or(0.0)),
         })
         .collect())
 }
@@ -1086,11 +1102,13 @@ impl SlerpSpeeds {
     }
 }
 
-/// The rotation error over a track's frames: largest, and sum in frame order.
+/// The rotation error over a track's frames: largest, and sum in frame order; and the largest
+/// position error, where positions are reduced.
 #[derive(Debug, Clone, Copy, Default)]
 struct Errors {
     max: f64,
     sum: f64,
+    position: Option<f64>,
 }
 
 impl Errors {

@@ -234,9 +234,16 @@ fn reduce_tracks(
                 Some(_) => x,
                 None => args.input.angles.from_rad(x),
             };
+            let unit_name = match args.distance {
+                Some(_) => "length units",
+                None => args.input.angles.as_str(),
+            };
+            let position = r
+                .max_position_error
+                .map_or(String::new(), |p| format!(", max position error {p:.3e}"));
             eprintln!(
                 "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
-                 {:.3e}",
+                 {:.3e} ({unit_name}){position}",
                 inbetween::error::shorten(t.name().unwrap_or("-")),
                 t.len(),
                 r.keys.len(),

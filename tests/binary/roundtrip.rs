@@ -648,3 +648,60 @@ fn reduce_refuses_rounding_and_unverifiable_tolerances() {
     let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&keys).unwrap()).unwrap();
     assert_eq!(doc["tracks"].as_array().unwrap().len(), 31);
 }
+
+/// `reduce -v` reports each track's largest position error, and it is what `interp` of the keys
+/// gives back (CMU 01_01's root, positions within 0.01).
+#[test]
+fn reduce_reports_the_position_error_interp_gives() {
+    let dir = tempfile::tempdir().unwrap();
+    let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let bvh = bvh.to_str().unwrap();
+    let path = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let (keys, back, frames) = (path("keys.json"), path("back.csv"), path("frames.csv"));
+    let out = crate::support::bin()
+        .args([
+            "reduce",
+            bvh,
+            "--tolerance",
+            "0.5",
+            "--translation-tolerance",
+            "0.01",
+            "-v",
+            "-o",
+            &keys,
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    let line = err.lines().find(|l| l.contains("track Hips:")).unwrap();
+    let reported: f64 = line
+        .split("max position error ")
+        .nth(1)
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    stdout(&["interp", &keys, "--fps", "120", "-o", &back]);
+    stdout(&["convert", bvh, "-o", &frames]);
+    let hips = |p: &str| -> Vec<[f64; 3]> {
+        crate::support::read_table(std::path::Path::new(p))
+            .into_iter()
+            .filter(|r| r["track"] == "Hips")
+            .map(|r| ["tx", "ty", "tz"].map(|c| r[c].parse::<f64>().unwrap()))
+            .collect()
+    };
+    let (got, want) = (hips(&back), hips(&frames));
+    assert_eq!(got.len(), 61);
+    let measured = got
+        .iter()
+        .zip(&want)
+        .map(|(g, w)| (0..3).map(|i| (g[i] - w[i]).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    assert!(measured > 0.0 && measured <= 0.01);
+    // -v prints four significant digits.
+    assert!(
+        (reported - measured).abs() <= 1e-3 * measured,
+        "{reported} vs {measured}"
+    );
+}
