@@ -222,6 +222,29 @@ fn reduce_tracks(
             ..TrackFrames::of(t)
         })
         .collect();
+    if args.shared_keys
+        && let Some(first) = tracks.first()
+        && let Some(other) = tracks.iter().find(|t| t.times() != first.times())
+    {
+        let span = |t: &inbetween::Track| {
+            let times = t.times();
+            format!(
+                "{} frames, {} s to {} s",
+                times.len(),
+                times[0],
+                times[times.len() - 1]
+            )
+        };
+        return Err(InputError::new(format!(
+            "{}: --shared-keys needs one grid of frame times, but {} ({}) and {} ({}) differ",
+            doc.source,
+            super::settings::track_label("", first).trim_start_matches(": "),
+            span(first),
+            super::settings::track_label("", other).trim_start_matches(": "),
+            span(other)
+        ))
+        .into());
+    }
     let reduced: Vec<Reduced> = if args.shared_keys {
         reduce_shared(&frames, &opts)
     } else {

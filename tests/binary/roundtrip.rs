@@ -647,6 +647,32 @@ fn reduce_refuses_rounding_and_unverifiable_tolerances() {
     ]);
     let doc: serde_json::Value = serde_json::from_slice(&std::fs::read(&keys).unwrap()).unwrap();
     assert_eq!(doc["tracks"].as_array().unwrap().len(), 31);
+    // --shared-keys on tracks of different frame times names them.
+    let two = dir.path().join("two.csv");
+    std::fs::write(
+        &two,
+        "track,time,w,x,y,z\na,0,1,0,0,0\na,0.1,1,0,0,0\na,0.2,1,0,0,0\nb,0,1,0,0,0\nb,0.15,1,0,0,0\n",
+    )
+    .unwrap();
+    let out = crate::support::bin()
+        .args([
+            "reduce",
+            two.to_str().unwrap(),
+            "--tolerance",
+            "1",
+            "--shared-keys",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains(
+            "track \"a\" (3 frames, 0 s to 0.2 s) and track \"b\" (2 frames, 0 s to 0.15 s)"
+        ),
+        "{err}"
+    );
 }
 
 /// `reduce -v` reports each track's largest position error, and it is what `interp` of the keys
