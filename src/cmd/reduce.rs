@@ -226,22 +226,21 @@ fn reduce_tracks(
         && let Some(first) = tracks.first()
         && let Some(other) = tracks.iter().find(|t| t.times() != first.times())
     {
-        let span = |t: &inbetween::Track| {
+        let label = |t: &inbetween::Track| {
             let times = t.times();
             format!(
-                "{} frames, {} s to {} s",
+                "track \"{}\" ({} frames, {} s to {} s)",
+                inbetween::error::shorten(t.name().unwrap_or("-")),
                 times.len(),
                 times[0],
                 times[times.len() - 1]
             )
         };
         return Err(InputError::new(format!(
-            "{}: --shared-keys needs one grid of frame times, but {} ({}) and {} ({}) differ",
+            "{}: --shared-keys needs one grid of frame times, but {} and {} differ",
             doc.source,
-            super::settings::track_label("", first).trim_start_matches(": "),
-            span(first),
-            super::settings::track_label("", other).trim_start_matches(": "),
-            span(other)
+            label(first),
+            label(other)
         ))
         .into());
     }
