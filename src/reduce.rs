@@ -525,31 +525,65 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResu
             max_position_error: frames.reduces_positions(opts).then_some(0.0),
         });
     }
-    let greedy = greedy_keys(&frames, opts)?;
-    frames.keep_choices(&greedy);
-    let greedy = verified(&frames, greedy, opts)?;
-    let (keys, errors) = match opts.method {
-        Method::Greedy => greedy,
-        // minaccel's segments are not local: a shortest path would solve a curve per tested
-        // segment (minutes on a few hundred frames) for a test that is not exact anyway.
-        Method::Optimal if opts.curve.scheme == Scheme::MinAccel => greedy,
-        Method::Optimal => {
-            let greedy_choice: Vec<u8> = frames.choice.iter().map(std::cell::Cell::get).collect();
-            let window = optimal_window(&greedy.0);
-            let best = optimal_keys(&frames, window, opts)?;
-            frames.keep_choices(&best);
-            let best = verified(&frames, best, opts)?;
-            if best.0.len() <= greedy.0.len() {
-                best
-            } else {
-                for (c, &g) in frames.choice.iter().zip(&greedy_choice) {
-                    c.set(g);
-                }
-                greedy
-            }
+    let frames = [frames];
+    let (keys, errors) = method_keys(
+        &frames,
+        opts,
+        || greedy_keys(&frames[0], opts),
+        |window| optimal_keys(&frames[0], window, opts),
+    )?;
+    reduced(&frames[0], keys, errors[0], opts)
+}
+
+/// The keys `opts.method` gives tracks reduced together (one track, or shared keys): `greedy`'s
+/// keys, verified; for optimal, `optimal`'s (given the window of greedy's keys), verified, unless
+/// they are more than greedy's, whose estimates are then restored. minaccel's optimal keeps
+/// greedy's keys: its segments are not local, and a shortest path would solve a curve per tested
+/// segment (minutes on a few hundred frames) for a test that is not exact anyway. Returns the
+/// keys and each track's errors on them.
+fn method_keys(
+    frames: &[Frames],
+    opts: &ReduceOptions,
+    greedy: impl FnOnce() -> InputResult<Vec<usize>>,
+    optimal: impl FnOnce(usize) -> InputResult<Vec<usize>>,
+) -> InputResult<(Vec<usize>, Vec<Errors>)> {
+    let keep = |keys: &[usize]| {
+        for f in frames {
+            f.keep_choices(keys);
         }
     };
-    // The guarantee, as verification measured it on the final keys (every frame, keys too).
+    let keys = greedy()?;
+    keep(&keys);
+    let greedy_choice: Vec<Vec<u8>> = frames
+        .iter()
+        .map(|f| f.choice.iter().map(std::cell::Cell::get).collect())
+        .collect();
+    let greedy = shared_verified(frames, keys, opts)?;
+    if opts.method == Method::Greedy || opts.curve.scheme == Scheme::MinAccel {
+        return Ok(greedy);
+    }
+    let best = optimal(optimal_window(&greedy.0))?;
+    keep(&best);
+    let best = shared_verified(frames, best, opts)?;
+    if best.0.len() <= greedy.0.len() {
+        return Ok(best);
+    }
+    for (f, g) in frames.iter().zip(&greedy_choice) {
+        for (c, &g) in f.choice.iter().zip(g) {
+            c.set(g);
+        }
+    }
+    Ok(greedy)
+}
+
+/// A track's result: its keys, their velocities, the errors verification measured on them (the
+/// guarantee checked once more).
+fn reduced(
+    frames: &Frames,
+    keys: Vec<usize>,
+    errors: Errors,
+    opts: &ReduceOptions,
+) -> InputResult<Reduced> {
     if errors.max > opts.tolerance * (1.0 + 1e-12) {
         return Err(crate::error::input_err!(
             "internal error: reduce's keys miss a frame by {:e} (tolerance {:e})",
@@ -561,7 +595,7 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResu
         velocities: frames.key_velocities(&keys),
         keys,
         max_error: errors.max,
-        mean_error: errors.sum / n as f64,
+        mean_error: errors.sum / frames.quats.len() as f64,
         max_position_error: frames
             .reduces_positions(opts)
             .then(|| errors.position.unwrap_or(0.0)),
@@ -667,50 +701,17 @@ pub fn reduce_shared(
     if n < 2 {
         return tracks.iter().map(|t| reduce_frames(t, opts)).collect();
     }
-    let greedy = shared_greedy_keys(&frames, opts)?;
-    let greedy_choice: Vec<Vec<u8>> = frames
-        .iter()
-        .map(|f| {
-            f.keep_choices(&greedy);
-            f.choice.iter().map(std::cell::Cell::get).collect()
-        })
-        .collect();
-    let greedy = shared_verified(&frames, greedy, opts)?;
-    let (keys, errors) = match opts.method {
-        Method::Greedy => greedy,
-        Method::Optimal if opts.curve.scheme == Scheme::MinAccel => greedy,
-        Method::Optimal => {
-            let window = optimal_window(&greedy.0);
-            let best = shared_optimal_keys(&frames, window, opts)?;
-            for f in &frames {
-                f.keep_choices(&best);
-            }
-            let best = shared_verified(&frames, best, opts)?;
-            if best.0.len() <= greedy.0.len() {
-                best
-            } else {
-                for (f, g) in frames.iter().zip(&greedy_choice) {
-                    for (c, &g) in f.choice.iter().zip(g) {
-                        c.set(g);
-                    }
-                }
-                greedy
-            }
-        }
-    };
-    Ok(frames
+    let (keys, errors) = method_keys(
+        &frames,
+        opts,
+        || shared_greedy_keys(&frames, opts),
+        |window| shared_optimal_keys(&frames, window, opts),
+    )?;
+    frames
         .iter()
         .zip(errors)
-        .map(|(frames, e)| Reduced {
-            velocities: frames.key_velocities(&keys),
-            keys: keys.clone(),
-            max_error: e.max,
-            mean_error: e.sum / n as f64,
-            max_position_error: frames
-                .reduces_positions(opts)
-                .then(|| e.position.unwrap_or(0.0)),
-        })
-        .collect())
+        .map(|(f, e)| reduced(f, keys.clone(), e, opts))
+        .collect()
 }
 
 /// Whether segment `a..b` meets the tolerances on every track, each track's frame `b` carrying
@@ -1157,19 +1158,22 @@ fn shared_verified(
     mut keys: Vec<usize>,
     opts: &ReduceOptions,
 ) -> InputResult<(Vec<usize>, Vec<Errors>)> {
-    // Keys only grow, so in the pass that adds none every track was measured on the final keys.
-    loop {
-        let before = keys.len();
-        let mut errors = Vec::with_capacity(frames.len());
-        for f in frames {
-            let (k, e) = verified(f, keys, opts)?;
-            keys = k;
-            errors.push(e);
+    // Each track's errors and the number of keys they were measured on. Keys only grow, so a
+    // track measured on as many keys as there are now was measured on the final keys.
+    let mut measured: Vec<Option<(usize, Errors)>> = vec![None; frames.len()];
+    for t in (0..frames.len()).cycle() {
+        if measured
+            .iter()
+            .all(|m| m.is_some_and(|(n, _)| n == keys.len()))
+        {
+            break;
         }
-        if keys.len() == before {
-            return Ok((keys, errors));
-        }
+        let (k, e) = verified(&frames[t], keys, opts)?;
+        keys = k;
+        measured[t] = Some((keys.len(), e));
     }
+    let errors = measured.into_iter().flatten().map(|(_, e)| e).collect();
+    Ok((keys, errors))
 }
 
 /// Whether a scheme's segments are determined by their two keys alone when both carry
