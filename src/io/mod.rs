@@ -9,6 +9,7 @@
 pub mod bvh;
 pub mod document;
 pub mod gltf;
+pub mod names;
 pub mod output;
 pub mod read;
 pub mod write;
