@@ -1,7 +1,7 @@
 //! Track names that cannot collide, for formats whose objects may share a name (BVH joints,
 //! glTF nodes).
 //!
-//! The rule (docs/spec.md §6): a name no earlier object has is kept as given; a later
+//! The rule (docs/spec.md §3, *BVH* and *glTF*): a name no earlier object has is kept as given; a later
 //! duplicate gets `#<id>` appended, where `id` is the object's index in its file (the joint's
 //! position in the hierarchy, the node's index), and when that too is taken, by any given name
 //! or an earlier result, `#<id>#2`, `#<id>#3`, … the first that is free. Every result is
