@@ -551,3 +551,71 @@ fn parse_precision(s: &str) -> Result<usize, String> {
         )),
     }
 }
+
+impl Command {
+    /// One meaning per spelling: `-o -` is standard output exactly as no `-o` is (so that
+    /// defaults which depend on "is there an output file" treat both alike).
+    pub fn normalise(&mut self) {
+        let output = match self {
+            Command::Convert(a) => &mut a.output.output,
+            Command::Interp(a) => &mut a.output.output,
+            Command::Reduce(a) => &mut a.output.output,
+            Command::Analyze(a) => &mut a.output,
+            Command::Plot(_) => return,
+        };
+        if output.as_deref().is_some_and(|p| p.as_os_str() == "-") {
+            *output = None;
+        }
+    }
+}
+
+/// A usage message with every run of more than [`MAX_QUOTED_CHARS`] characters that are not
+/// white space or quotes cut to that many and `…` (clap echoes a bad value whole, and the tip
+/// for an unknown flag echoes it twice).
+///
+/// [`MAX_QUOTED_CHARS`]: inbetween::error::MAX_QUOTED_CHARS
+pub fn bounded(msg: &str) -> String {
+    let limit = inbetween::error::MAX_QUOTED_CHARS;
+    let mut out = String::with_capacity(msg.len().min(4096));
+    let mut run = 0usize;
+    let mut cut = false;
+    for c in msg.chars() {
+        if c.is_whitespace() || c == '\'' || c == '"' {
+            run = 0;
+            cut = false;
+            out.push(c);
+        } else {
+            run += 1;
+            if run <= limit {
+                out.push(c);
+            } else if !cut {
+                out.push('…');
+                cut = true;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bounded;
+
+    #[test]
+    fn long_runs_are_cut_and_quotes_kept() {
+        let long = "7".repeat(100_000);
+        let msg = format!("error: invalid value '{long}' for '--fps <RATE>': found {long}\n");
+        let b = bounded(&msg);
+        let cut = format!("{}…", "7".repeat(60));
+        assert_eq!(
+            b,
+            format!("error: invalid value '{cut}' for '--fps <RATE>': found {cut}\n")
+        );
+    }
+
+    #[test]
+    fn short_messages_are_unchanged() {
+        let msg = "error: unexpected argument '--frob' found\n\n  tip: try '--fps'\n";
+        assert_eq!(bounded(msg), msg);
+    }
+}

@@ -11,9 +11,30 @@ use cli::{Cli, Command};
 use inbetween::Error;
 use std::process::ExitCode;
 
+/// clap's own message (help and version as clap prints them), with every value it echoes cut
+/// to 60 characters: a 100 kB `--fps` value is quoted once, shortened, never whole.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion)
+        || e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    {
+        // Help goes where clap sends it; only an unwritable stdout is a failure.
+        return match e.print() {
+            Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
+            Err(_) => ExitCode::from(1),
+        };
+    }
+    eprint!("{}", cli::bounded(&e.render().to_string()));
+    ExitCode::from(2)
+}
+
 fn main() -> ExitCode {
     signals::install();
-    let cli = Cli::parse();
+    let mut cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
+    cli.command.normalise();
     let mut stdin = std::io::stdin().lock();
     let mut warnings = warnings::Warnings::default();
     let mut warn = |msg: &str| {

@@ -18,4 +18,5 @@ mod readers;
 mod reading;
 mod reliability;
 mod roundtrip;
+mod usage;
 mod validation;
