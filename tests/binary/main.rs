@@ -8,6 +8,7 @@ mod animator;
 mod app_conventions;
 mod bvh;
 mod bvh_stream;
+mod bvh_untrusted;
 mod errors;
 mod gltf;
 mod hard_cases;

@@ -1,6 +1,9 @@
 //! [`BvhFrames`]: baked frames written as a BVH file on the input's skeleton.
 //!
-//! Each track is a joint (by name). A frame sets the joint's rotation channels — the rotation
+//! The tracks are the clip's document's, in its order: track `k` is the `k`-th joint that is a
+//! track ([`Clip::track_joints`]), by index, its name checked against the joint's
+//! [`track_name`](super::Joint::track_name) (unique, so two joints sharing a name cannot swap
+//! their data). A frame sets the joint's rotation channels — the rotation
 //! as continuous Euler angles in the joint's own channel order, degrees, starting from the
 //! first key's own triple (docs/spec.md §2, continuous Euler output) — and its position
 //! channels, from the track's positions. Every track is written over the same frames (the
@@ -26,9 +29,11 @@ pub struct BvhFrames<W: Write> {
     first: Option<i64>,
     /// Rows the first track made (the others must make as many).
     rows: usize,
+    /// The joints that are tracks, in the tracks' order.
+    track_joints: Vec<usize>,
     /// The current track's joint: its rotation sequence and columns, its position columns.
-    rotation: Option<(EulerSeq, [usize; 3])>,
-    position: Option<[usize; 3]>,
+    rotation: Option<(EulerSeq, [Option<usize>; 3])>,
+    position: Option<[Option<usize>; 3]>,
     unwrap: Option<EulerUnwrap>,
     track_index: usize,
 }
@@ -45,6 +50,7 @@ impl<W: Write> BvhFrames<W> {
     pub fn new(out: W, clip: Arc<Clip>, fps: Fps) -> BvhFrames<W> {
         BvhFrames {
             out: Some(out),
+            track_joints: clip.track_joints(),
             clip,
             fps,
             values: Vec::new(),
@@ -95,9 +101,18 @@ impl<W: Write> BvhFrames<W> {
 
 impl<W: Write> FrameSink for BvhFrames<W> {
     fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
-        let joint = name
-            .and_then(|n| self.clip.joint(n))
-            .ok_or_else(|| internal(format!("no joint for track {name:?}")))?;
+        let joint = self
+            .track_joints
+            .get(self.track_index)
+            .map(|&j| &self.clip.joints()[j])
+            .filter(|j| name == Some(j.track_name()))
+            .ok_or_else(|| {
+                internal(format!(
+                    "track {} ({:?}) is not a joint of the skeleton",
+                    self.track_index,
+                    name.map(crate::error::shorten)
+                ))
+            })?;
         self.rotation = joint.rotation();
         self.position = joint.position();
         self.unwrap = self.rotation.map(|(seq, _)| EulerUnwrap::new(seq));
@@ -131,6 +146,13 @@ impl<W: Write> FrameSink for BvhFrames<W> {
     }
 
     fn finish(&mut self) -> io::Result<()> {
+        if self.track_index != self.track_joints.len() {
+            return Err(internal(format!(
+                "{} tracks for {} joints with channels",
+                self.track_index,
+                self.track_joints.len()
+            )));
+        }
         let out = self
             .out
             .as_mut()
@@ -143,5 +165,67 @@ impl<W: Write> FrameSink for BvhFrames<W> {
             &self.values,
         )?;
         out.flush()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::io::bvh::read::tests::{least_of_three, many_joints};
+    use crate::io::bvh::{document::document, parse};
+
+    /// Every track's frames into the sink, as `bake` hands them: begin, two frames, end.
+    fn feed(sink: &mut BvhFrames<Vec<u8>>, doc: &crate::io::document::Document) {
+        for t in &doc.tracks {
+            sink.begin_track(t.name.as_deref()).unwrap();
+            for (k, key) in t.keys.iter().enumerate() {
+                sink.frame(k as i64, k as f64, key.rot, None).unwrap();
+            }
+            sink.end_track().unwrap();
+        }
+        sink.finish().unwrap();
+    }
+
+    /// Finding each track's joint is one step: 4n joints take about 4 times as long as n, not
+    /// 16 (a linear search by name: a minute for 100 000 joints).
+    #[test]
+    fn finding_each_tracks_joint_is_linear() {
+        let time = |n: usize| {
+            let clip = Arc::new(parse(&many_joints(n, 300), "many.bvh").unwrap().0);
+            let doc = document((*clip).clone(), "many.bvh", Vec::new());
+            least_of_three(|| {
+                let mut sink = BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
+                feed(&mut sink, &doc);
+                assert!(sink.into_inner().unwrap().len() > 12 * n);
+            })
+        };
+        let (small, large) = (time(3000), time(12_000));
+        assert!(
+            large < 8.0 * small,
+            "{small} s for 3000 joints, {large} s for 12000"
+        );
+    }
+
+    /// Joints sharing a name each get their own track's frames (by index), and a track that is
+    /// not the next joint's is an internal error, not data in the wrong place.
+    #[test]
+    fn tracks_go_to_their_own_joints() {
+        let text = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Zrotation\n}\n\
+                    ROOT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Zrotation\n}\n\
+                    MOTION\nFrames: 1\nFrame Time: 0.04\n10 20\n";
+        let clip = Arc::new(parse(text, "a.bvh").unwrap().0);
+        let doc = document((*clip).clone(), "a.bvh", Vec::new());
+        let mut sink = BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
+        feed(&mut sink, &doc);
+        let out = String::from_utf8(sink.into_inner().unwrap()).unwrap();
+        assert!(out.ends_with("Frame Time: 0.04\n10 20\n"), "{out}");
+        let mut sink = BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
+        let err = sink.begin_track(Some("a#1")).unwrap_err().to_string();
+        assert!(err.starts_with("internal error: track 0"), "{err}");
+        let mut sink = BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
+        sink.begin_track(Some("a")).unwrap();
+        sink.end_track().unwrap();
+        let err = sink.finish().unwrap_err().to_string();
+        assert_eq!(err, "internal error: 1 tracks for 2 joints with channels");
     }
 }

@@ -46,8 +46,8 @@
 //! assert!(warnings.is_empty());
 //! assert_eq!((clip.fps().num(), clip.fps().den()), (30, 1));
 //! let (seq, cols) = clip.joints()[0].rotation().unwrap();
-//! assert_eq!((seq.as_str(), cols), ("ZXY", [3, 4, 5]));
-//! assert_eq!(clip.row(1)[cols[0]], 11.0);
+//! assert_eq!((seq.as_str(), cols), ("ZXY", [Some(3), Some(4), Some(5)]));
+//! assert_eq!(clip.row(1)[3], 11.0);
 //! // Written back: the hierarchy byte for byte, the frame time with 9 significant digits.
 //! let mut out = Vec::new();
 //! bvh::write(&mut out, clip.hierarchy(), clip.fps(), clip.channel_count(), clip.values())?;
@@ -70,6 +70,7 @@ pub use write::{BvhWriter, write};
 
 use crate::clock::Fps;
 use crate::rotation::EulerSeq;
+use std::collections::HashMap;
 use std::ops::Range;
 
 /// One channel of a joint: a position or a rotation about one axis.
@@ -152,6 +153,8 @@ pub struct Joint {
     first_column: usize,
     end_site: Option<[f64; 3]>,
     line: usize,
+    /// Set by the parser once every joint is known ([`Joint::track_name`]).
+    track_name: String,
 }
 
 impl Joint {
@@ -192,45 +195,73 @@ impl Joint {
         self.line
     }
 
-    /// The joint's rotation when it has exactly the three rotation channels (in any order,
-    /// possibly interleaved with position channels): the intrinsic Euler sequence of their
-    /// listed order (`Zrotation Xrotation Yrotation` is `ZXY`: `R = Rz·Rx·Ry`, degrees) and
-    /// the three row columns holding the angles, in that order. `None` when it has no
-    /// rotation channels or only some of them.
-    pub fn rotation(&self) -> Option<(EulerSeq, [usize; 3])> {
-        let mut letters = String::with_capacity(3);
-        let mut cols = [0; 3];
+    /// The joint's rotation when it has rotation channels (one, two or three, in any order,
+    /// possibly interleaved with position channels): an intrinsic Euler sequence and, for each
+    /// of its three angles, the row column holding it (degrees), or `None` for an axis the
+    /// joint does not list, whose angle is 0. The sequence is the listed axes in their listed
+    /// order (`Zrotation Xrotation Yrotation` is `ZXY`: `R = Rz·Rx·Ry`), completed by the axes
+    /// the joint does not list in x, y, z order: `Xrotation` alone (a hinge) is `XYZ` with
+    /// columns `[Some(c), None, None]`, `Zrotation Xrotation` is `ZXY` with `[Some(c₁),
+    /// Some(c₂), None]`. The missing angles being 0, the rotation is the product of the listed
+    /// axes' rotations whatever the completion; this one keeps the listed angles first, so the
+    /// columns written back are exactly the joint's own. `None` without rotation channels.
+    pub fn rotation(&self) -> Option<(EulerSeq, [Option<usize>; 3])> {
+        let mut letters = [0u8; 3];
+        let mut cols = [None; 3];
+        let mut n = 0;
+        let mut listed = [false; 3];
         for (i, c) in self.channels.iter().enumerate() {
-            if c.is_rotation() {
-                if letters.len() == 3 {
-                    return None;
-                }
-                cols[letters.len()] = self.first_column + i;
-                letters.push(['X', 'Y', 'Z'][c.axis()]);
+            // A joint never lists a channel twice (the parser refuses it): at most 3.
+            if c.is_rotation() && n < 3 {
+                cols[n] = Some(self.first_column + i);
+                letters[n] = b"XYZ"[c.axis()];
+                listed[c.axis()] = true;
+                n += 1;
             }
         }
-        if letters.len() != 3 {
+        if n == 0 {
             return None;
         }
-        // Three distinct axes (a joint never lists a channel twice), so this is a valid
-        // Tait–Bryan sequence.
-        EulerSeq::parse(&letters).ok().map(|seq| (seq, cols))
+        for (axis, _) in listed.iter().enumerate().filter(|(_, l)| !**l) {
+            letters[n] = b"XYZ"[axis];
+            n += 1;
+        }
+        // Three distinct axes: a valid Tait–Bryan sequence.
+        let seq = std::str::from_utf8(&letters)
+            .ok()
+            .and_then(|s| EulerSeq::parse(s).ok())?;
+        Some((seq, cols))
     }
 
     /// The row columns of `Xposition`, `Yposition`, `Zposition` (in that order, whatever the
-    /// listed order) when the joint has all three.
-    pub fn position(&self) -> Option<[usize; 3]> {
+    /// listed order) when the joint has position channels, `None` for an axis it does not list
+    /// (whose position is 0); `None` without position channels.
+    pub fn position(&self) -> Option<[Option<usize>; 3]> {
         let col = |want: Channel| {
             self.channels
                 .iter()
                 .position(|&c| c == want)
                 .map(|i| self.first_column + i)
         };
-        Some([
-            col(Channel::Xposition)?,
-            col(Channel::Yposition)?,
-            col(Channel::Zposition)?,
-        ])
+        let cols = [
+            col(Channel::Xposition),
+            col(Channel::Yposition),
+            col(Channel::Zposition),
+        ];
+        cols.iter().any(Option::is_some).then_some(cols)
+    }
+
+    /// The name of the joint's track: its [`name`](Joint::name), made unique among the
+    /// hierarchy's joints by [`unique_names`](crate::io::names::unique_names) with the joint's
+    /// index in [`Clip::joints`] (docs/spec.md §3, *BVH*): the first joint of a name keeps it,
+    /// a later one is `name#<index>` (then `name#<index>#2`, … when that is taken).
+    pub fn track_name(&self) -> &str {
+        &self.track_name
+    }
+
+    /// Whether the joint is a track: it has rotation or position channels.
+    pub fn is_track(&self) -> bool {
+        !self.channels.is_empty()
     }
 }
 
@@ -239,7 +270,8 @@ impl Joint {
 ///
 /// Invariants (kept by [`parse`], the only constructor): at least one channel; the joints'
 /// columns tile `0..channel_count()` in file order; `values().len() == frame_count() ·
-/// channel_count()`; every value finite; the frame time positive and finite.
+/// channel_count()`; every value finite; the frame time positive and finite; the joints'
+/// track names distinct.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Clip {
     joints: Vec<Joint>,
@@ -250,6 +282,8 @@ pub struct Clip {
     fps: Fps,
     channels: usize,
     values: Vec<f64>,
+    /// Each joint's index by its [`Joint::track_name`].
+    by_track_name: HashMap<String, usize>,
 }
 
 impl Clip {
@@ -258,9 +292,23 @@ impl Clip {
         &self.joints
     }
 
-    /// The joint with this name, the first one if the name is used twice.
+    /// The joint whose [track name](Joint::track_name) is `name`: the first joint of a given
+    /// name (which keeps it), or a later one by its `name#<index>`. One hash lookup.
     pub fn joint(&self, name: &str) -> Option<&Joint> {
-        self.joints.iter().find(|j| j.name == name)
+        self.joint_index(name).map(|j| &self.joints[j])
+    }
+
+    /// The index in [`Clip::joints`] of the joint [`Clip::joint`] finds.
+    pub fn joint_index(&self, name: &str) -> Option<usize> {
+        self.by_track_name.get(name).copied()
+    }
+
+    /// The indices of the joints that are tracks ([`Joint::is_track`]: those with channels),
+    /// in file order: the order of the tracks of the clip's document.
+    pub fn track_joints(&self) -> Vec<usize> {
+        (0..self.joints.len())
+            .filter(|&j| self.joints[j].is_track())
+            .collect()
     }
 
     /// The exact text of the `HIERARCHY` section: from the `HIERARCHY` keyword up to the start
@@ -392,13 +440,92 @@ mod tests {
         );
     }
 
+    /// A one-joint file with `channels`, one row of `values`.
+    fn one_joint(channels: &str, values: &str) -> Clip {
+        let n = channels.split_whitespace().count();
+        let text = format!(
+            "HIERARCHY\nROOT a\n{{\nOFFSET 0 0 0\nCHANNELS {n} {channels}\n}}\n\
+             MOTION\nFrames: 1\nFrame Time: 0.01\n{values}\n"
+        );
+        parse(&text, "a.bvh").unwrap().0
+    }
+
     #[test]
-    fn a_joint_with_some_rotation_channels_has_no_rotation() {
-        let text = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 2 Zrotation Xrotation\n}\n\
-                    MOTION\nFrames: 1\nFrame Time: 0.01\n1 2\n";
-        let (clip, _) = parse(text, "a.bvh").unwrap();
+    fn one_or_two_rotation_channels_are_the_listed_axes_completed_in_xyz_order() {
+        use glam::DQuat;
+        let elementary = |axis: char, deg: f64| match axis {
+            'X' => DQuat::from_rotation_x(deg.to_radians()),
+            'Y' => DQuat::from_rotation_y(deg.to_radians()),
+            _ => DQuat::from_rotation_z(deg.to_radians()),
+        };
+        // (listed axes, the completed sequence: listed first, then the others in x, y, z order)
+        let cases = [
+            ("X", "XYZ"),
+            ("Y", "YXZ"),
+            ("Z", "ZXY"),
+            ("XY", "XYZ"),
+            ("YX", "YXZ"),
+            ("XZ", "XZY"),
+            ("ZX", "ZXY"),
+            ("YZ", "YZX"),
+            ("ZY", "ZYX"),
+        ];
+        for (listed, want) in cases {
+            let channels: Vec<String> = listed.chars().map(|c| format!("{c}rotation")).collect();
+            let values = ["25", "-70"][..listed.len()].join(" ");
+            let clip = one_joint(&channels.join(" "), &values);
+            let joint = &clip.joints()[0];
+            let (seq, cols) = joint.rotation().unwrap();
+            assert_eq!(seq.as_str(), want, "{listed}");
+            let mut want_cols = [None; 3];
+            for (i, c) in want_cols.iter_mut().enumerate().take(listed.len()) {
+                *c = Some(i);
+            }
+            assert_eq!(cols, want_cols, "{listed}");
+            assert_eq!(joint.position(), None);
+            assert!(joint.is_track());
+            // The rotation with the missing angles 0 is the product of the listed ones.
+            let angles = cols.map(|c| c.map_or(0.0, |c| clip.row(0)[c]).to_radians());
+            let product = listed
+                .chars()
+                .zip([25.0, -70.0])
+                .fold(DQuat::IDENTITY, |q, (axis, deg)| q * elementary(axis, deg));
+            let q = seq.to_quat(angles);
+            assert!(
+                q.dot(product).abs() > 1.0 - 1e-15,
+                "{listed}: {q} vs {product}"
+            );
+        }
+    }
+
+    #[test]
+    fn some_position_channels_are_a_position_with_the_others_at_zero() {
+        let clip = one_joint("Yposition Xrotation", "3 4");
+        let joint = &clip.joints()[0];
+        assert_eq!(joint.position(), Some([None, Some(0), None]));
+        assert_eq!(joint.rotation().unwrap().1, [Some(1), None, None]);
+        let clip = one_joint("Zposition", "3");
+        assert_eq!(clip.joints()[0].position(), Some([None, None, Some(0)]));
         assert_eq!(clip.joints()[0].rotation(), None);
-        assert_eq!(clip.joints()[0].position(), None);
+        assert!(clip.joints()[0].is_track());
+    }
+
+    #[test]
+    fn joints_sharing_a_name_have_distinct_track_names_found_by_hash() {
+        let text = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n\
+                    JOINT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\n\
+                    JOINT a#1\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n}\n}\n\
+                    MOTION\nFrames: 1\nFrame Time: 0.01\n1 2 3\n";
+        let (clip, _) = parse(text, "a.bvh").unwrap();
+        let names: Vec<&str> = clip.joints().iter().map(Joint::track_name).collect();
+        // The second `a` (index 1) would be `a#1`, which the third joint is given.
+        assert_eq!(names, ["a", "a#1#2", "a#1"]);
+        assert_eq!(clip.joint_index("a"), Some(0));
+        assert_eq!(clip.joint_index("a#1#2"), Some(1));
+        assert_eq!(clip.joint_index("a#1"), Some(2));
+        assert_eq!(clip.joint("a#1").unwrap().name(), "a#1");
+        assert_eq!(clip.joint_index("b"), None);
+        assert_eq!(clip.track_joints(), [0, 1, 2]);
     }
 }
 
@@ -418,10 +545,13 @@ mod fixtures {
             .collect();
         let want = [Some("ZXY"), Some("ZYX"), Some("YXZ"), None, Some("ZXY")];
         assert_eq!(seqs, want.map(|s| s.map(String::from)));
-        assert_eq!(clip.joint("Tail").unwrap().position(), Some([13, 15, 17]));
+        assert_eq!(
+            clip.joint("Tail").unwrap().position(),
+            Some([Some(13), Some(15), Some(17)])
+        );
         assert_eq!(
             clip.joint("Tail").unwrap().rotation().unwrap().1,
-            [12, 14, 16]
+            [Some(12), Some(14), Some(16)]
         );
         assert_eq!((clip.frame_count(), clip.channel_count()), (4, 18));
     }
@@ -429,23 +559,28 @@ mod fixtures {
 
 /// Writes one frame of a joint into its row of channel values: the rotation as the next
 /// continuous Euler triple of `unwrap` in degrees at the rotation columns, the position at the
-/// position columns (each only where the joint has those channels).
+/// position columns (each only where the joint has those channels: the angles and coordinates
+/// of axes it does not list are not written).
 pub(crate) fn fill_joint_row(
     row: &mut [f64],
-    rotation: Option<(crate::rotation::EulerSeq, [usize; 3])>,
+    rotation: Option<(crate::rotation::EulerSeq, [Option<usize>; 3])>,
     unwrap: Option<&mut crate::rotation::unwrap::EulerUnwrap>,
-    position_cols: Option<[usize; 3]>,
+    position_cols: Option<[Option<usize>; 3]>,
     q: glam::DQuat,
     position: Option<glam::DVec3>,
 ) {
     if let (Some((_, cols)), Some(u)) = (rotation, unwrap) {
         for (c, a) in cols.iter().zip(u.next(q)) {
-            row[*c] = a.to_degrees();
+            if let Some(c) = c {
+                row[*c] = a.to_degrees();
+            }
         }
     }
     if let (Some(cols), Some(p)) = (position_cols, position) {
         for (c, x) in cols.iter().zip(p.to_array()) {
-            row[*c] = x;
+            if let Some(c) = c {
+                row[*c] = x;
+            }
         }
     }
 }

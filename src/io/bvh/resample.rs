@@ -66,15 +66,10 @@ pub struct Options {
     pub threads: usize,
 }
 
-/// The indices (in [`Clip::joints`]) of the joints that are tracks: those with rotation
-/// channels (all three) or position channels (all three), in file order.
+/// The indices (in [`Clip::joints`]) of the joints that are tracks: those with rotation or
+/// position channels, in file order ([`Clip::track_joints`]).
 pub fn track_joints(clip: &Clip) -> Vec<usize> {
-    (0..clip.joints().len())
-        .filter(|&j| {
-            let joint = &clip.joints()[j];
-            joint.rotation().is_some() || joint.position().is_some()
-        })
-        .collect()
+    clip.track_joints()
 }
 
 /// The span of every track of the clip, in seconds: from row 0 to the last row, at the clip's
@@ -151,8 +146,8 @@ impl Resampled {
 /// One joint's baked frames as its channel values (see [`super::frames`]).
 struct JointFrames {
     width: usize,
-    rotation: Option<(EulerSeq, [usize; 3])>,
-    position: Option<[usize; 3]>,
+    rotation: Option<(EulerSeq, [Option<usize>; 3])>,
+    position: Option<[Option<usize>; 3]>,
     unwrap: Option<EulerUnwrap>,
     values: Vec<f64>,
 }
@@ -162,12 +157,14 @@ impl JointFrames {
         let first = joint.columns().start;
         let rotation = joint
             .rotation()
-            .map(|(seq, cols)| (seq, cols.map(|c| c - first)));
+            .map(|(seq, cols)| (seq, cols.map(|c| c.map(|c| c - first))));
         let width = joint.channels().len();
         JointFrames {
             width,
             rotation,
-            position: joint.position().map(|cols| cols.map(|c| c - first)),
+            position: joint
+                .position()
+                .map(|cols| cols.map(|c| c.map(|c| c - first))),
             unwrap: rotation.map(|(seq, _)| EulerUnwrap::new(seq)),
             values: Vec::with_capacity(frames * width),
         }
