@@ -90,7 +90,9 @@ pub fn read_input(
     };
     let (doc, format, clip) = if inbetween::io::is_gltf(&bytes, path, args.input_format) {
         let dir = path.map(inbetween::io::gltf_dir);
-        let asset = Asset::from_slice(&bytes, &source, dir.as_deref())?;
+        let asset =
+            Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
+        inbetween::io::output::protect_inputs(asset.referenced_files());
         let clip = GltfClip::new(asset, args.animation.as_deref())?;
         let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode);
         (doc, Format::Gltf, Some(Arc::new(clip)))

@@ -60,6 +60,41 @@ static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
     closed: false,
 });
 
+/// Files no output may replace: those an input references (a glTF asset's buffers and
+/// images), as canonical paths.
+static PROTECTED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Marks `files` (canonical paths, such as
+/// [`Asset::referenced_files`](crate::io::gltf::Asset::referenced_files)) as files the input
+/// reads: [`Output::open`] then refuses them as a destination (an input error), so that `-o`
+/// naming an asset's own `.bin` does not destroy the input.
+pub fn protect_inputs(files: &[PathBuf]) {
+    PROTECTED
+        .lock()
+        .unwrap_or_else(PoisonError::into_inner)
+        .extend_from_slice(files);
+}
+
+/// The protected file `target` is (through links or another name for it), if any.
+fn protected(target: &Path) -> Option<PathBuf> {
+    let list = PROTECTED.lock().unwrap_or_else(PoisonError::into_inner);
+    if list.is_empty() {
+        return None;
+    }
+    let canonical = std::fs::canonicalize(target).ok()?;
+    #[cfg(unix)]
+    let same = |p: &PathBuf| {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(p), std::fs::metadata(&canonical)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => *p == canonical,
+        }
+    };
+    #[cfg(not(unix))]
+    let same = |p: &PathBuf| *p == canonical;
+    list.iter().find(|p| same(p)).cloned()
+}
+
 fn registry() -> MutexGuard<'static, Registry> {
     REGISTRY.lock().unwrap_or_else(PoisonError::into_inner)
 }
@@ -213,6 +248,15 @@ impl Output {
             .into());
         }
         let target = resolve_links(p)?;
+        if let Some(input) = protected(&target) {
+            return Err(input_err!(
+                "-o {}: expected a new file, found {}, which the input references (writing it \
+                 would destroy the input)",
+                p.display(),
+                input.display()
+            )
+            .into());
+        }
         let existing = match std::fs::symlink_metadata(&target) {
             Ok(meta) => Some(meta),
             Err(e) => {

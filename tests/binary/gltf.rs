@@ -476,7 +476,7 @@ fn errors_exit_2_naming_the_file_and_the_channel() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("walk.gltf: animation 0 (\"Walk\"): channel 3:"),
+        err.contains("walk.gltf: animations[0].channels[3] (animation \"Walk\""),
         "{err}"
     );
     assert!(!dir.path().join("o.glb").exists());

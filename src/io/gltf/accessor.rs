@@ -4,75 +4,226 @@
 //! URI with base64 content, or a file beside the asset; an accessor is `count` elements of
 //! `componentType` × `type` in a buffer view, `byteStride` apart (tightly packed when absent),
 //! optionally sparse (§3.6.2.3). Nothing here trusts a length or offset it has not checked: a
-//! truncated buffer or an accessor running past its view is an error, never a panic.
+//! truncated buffer or an accessor running past its view is an error, never a panic, and no
+//! allocation is larger than the bytes that back it.
+//!
+//! An asset comes from a stranger, so a URI is untrusted ([`resolve`]): it is percent-decoded
+//! first, then accepted only as a relative path that stays inside the asset's folder once
+//! symbolic links are resolved, naming a regular file; at most `byteLength` bytes of it are
+//! read, and they count against the asset's byte budget.
 
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};
-use std::path::Path;
+use std::io::Read;
+use std::path::{Component, Path, PathBuf};
 
-/// The bytes of every buffer of `doc`, each exactly its declared `byteLength` long. `blob` is the
-/// GLB `BIN` chunk; `base_dir` is the folder relative URIs are resolved against (none for an
-/// asset read from bytes: then a file reference is an error). Errors are messages without the
-/// file name (the caller adds it).
-pub(super) fn load_buffers(
-    doc: &gltf::Document,
-    blob: Option<&[u8]>,
-    base_dir: Option<&Path>,
-) -> Result<Vec<Vec<u8>>, String> {
-    let mut out = Vec::new();
-    for buffer in doc.buffers() {
-        let i = buffer.index();
-        let (mut data, what) = match buffer.source() {
-            gltf::buffer::Source::Bin => match blob {
-                Some(b) => (b.to_vec(), "the BIN chunk".to_string()),
-                None => {
-                    return Err(format!(
-                        "buffer {i}: refers to the GLB BIN chunk, but the file has none"
-                    ));
-                }
-            },
-            gltf::buffer::Source::Uri(uri) => {
-                let shown = crate::error::shorten(uri).into_owned();
-                (
-                    read_uri(uri, base_dir)
-                        .map_err(|e| format!("buffer {i} (\"{shown}\"): {e}"))?,
-                    format!("\"{shown}\""),
-                )
-            }
-        };
-        let len = buffer.length();
-        if data.len() < len {
-            return Err(format!(
-                "buffer {i}: byteLength is {len} but {what} has only {} bytes",
-                data.len()
-            ));
-        }
-        data.truncate(len);
-        out.push(data);
-    }
-    Ok(out)
+/// Where buffers come from and how many bytes they may take.
+pub(super) struct Sources<'a> {
+    /// The GLB `BIN` chunk.
+    pub blob: Option<&'a [u8]>,
+    /// The folder relative URIs are resolved against (none for an asset read from bytes: then
+    /// a file reference is an error).
+    pub base_dir: Option<&'a Path>,
+    /// The most bytes the asset may read in all, its own bytes included.
+    pub limit: u64,
+    /// The bytes read so far (the asset's own bytes, then each external buffer's).
+    pub used: u64,
 }
 
-/// The bytes a buffer URI names: a base64 `data:` URI, or a relative file reference
-/// (percent-encoded, §3.6.1.1) resolved against `base_dir`.
-fn read_uri(uri: &str, base_dir: Option<&Path>) -> Result<Vec<u8>, String> {
-    if let Some(rest) = uri.strip_prefix("data:") {
-        let Some((_, payload)) = rest.split_once(";base64,") else {
-            return Err("expected a base64 data: URI".to_string());
+/// The buffers' bytes, and the files they were read from (canonical paths).
+pub(super) struct Loaded {
+    pub buffers: Vec<Vec<u8>>,
+    pub files: Vec<PathBuf>,
+}
+
+/// The bytes of every buffer of `doc`, each exactly its declared `byteLength` long. Errors are
+/// messages located by JSON path (`buffers[1].uri: …`), without the file name (the caller adds
+/// it).
+pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Loaded, String> {
+    let mut buffers = Vec::new();
+    let mut files = Vec::new();
+    for buffer in doc.buffers() {
+        let i = buffer.index();
+        let len = buffer.length();
+        let data = match buffer.source() {
+            gltf::buffer::Source::Bin => {
+                if i != 0 {
+                    return Err(format!(
+                        "buffers[{i}]: has no uri, but only buffers[0] may refer to the GLB BIN \
+                         chunk (glTF 2.0 §4.4.3.3)"
+                    ));
+                }
+                let Some(b) = src.blob else {
+                    return Err(
+                        "buffers[0]: has no uri, so it refers to the GLB BIN chunk, but the file \
+                         has none"
+                            .to_string(),
+                    );
+                };
+                if b.len() < len {
+                    return Err(format!(
+                        "buffers[0].byteLength: {len}, but the BIN chunk has only {} bytes",
+                        b.len()
+                    ));
+                }
+                b[..len].to_vec()
+            }
+            gltf::buffer::Source::Uri(uri) => {
+                let at = |e: String| {
+                    format!("buffers[{i}].uri (\"{}\"): {e}", crate::error::shorten(uri))
+                };
+                if let Some(rest) = uri.strip_prefix("data:") {
+                    let mut data = decode_data_uri(rest).map_err(at)?;
+                    if data.len() < len {
+                        return Err(format!(
+                            "buffers[{i}].byteLength: {len}, but its data: URI holds only {} \
+                             bytes",
+                            data.len()
+                        ));
+                    }
+                    data.truncate(len);
+                    data
+                } else {
+                    let Some(dir) = src.base_dir else {
+                        return Err(at(
+                            "an external file needs the asset's path to be found".to_string()
+                        ));
+                    };
+                    let path = resolve(uri, dir).map_err(at)?;
+                    let after = src.used.saturating_add(len as u64);
+                    if after > src.limit {
+                        return Err(format!(
+                            "buffers[{i}].byteLength: {len} bytes from \"{}\" would take the \
+                             input past {} bytes (--max-input-bytes)",
+                            crate::error::shorten(uri),
+                            src.limit
+                        ));
+                    }
+                    let data = read_file(&path, len).map_err(at)?;
+                    if data.len() < len {
+                        return Err(format!(
+                            "buffers[{i}].byteLength: {len}, but \"{}\" has only {} bytes",
+                            crate::error::shorten(uri),
+                            data.len()
+                        ));
+                    }
+                    src.used = after;
+                    files.push(path);
+                    data
+                }
+            }
         };
-        return base64::engine::general_purpose::STANDARD
-            .decode(payload)
-            .map_err(|e| format!("invalid base64 data: {e}"));
+        buffers.push(data);
     }
-    if uri.contains("://") || uri.starts_with('/') {
+    Ok(Loaded { buffers, files })
+}
+
+/// The bytes of a base64 `data:` URI (what follows `data:`).
+fn decode_data_uri(rest: &str) -> Result<Vec<u8>, String> {
+    let Some((_, payload)) = rest.split_once(";base64,") else {
+        return Err("expected a base64 data: URI".to_string());
+    };
+    base64::engine::general_purpose::STANDARD
+        .decode(payload)
+        .map_err(|e| format!("invalid base64 data: {e}"))
+}
+
+/// Whether `uri` starts with a scheme (RFC 3986 §3.1: a letter, then letters, digits, `+`, `-`
+/// or `.`, then `:`), as `https:` or `data:` do.
+pub(super) fn has_scheme(uri: &str) -> bool {
+    uri.split_once(':').is_some_and(|(s, _)| {
+        s.starts_with(|c: char| c.is_ascii_alphabetic())
+            && s.chars()
+                .all(|c| c.is_ascii_alphanumeric() || "+-.".contains(c))
+    })
+}
+
+/// The path a relative URI names inside `base_dir`, checked without touching the file system:
+/// percent-decoded first (§3.6.1.1), then refused when it has a scheme, is absolute, holds a
+/// NUL, or climbs out of the folder with `..`.
+pub(super) fn relative_path(uri: &str) -> Result<PathBuf, String> {
+    if has_scheme(uri) {
         return Err("expected a relative file name or a data: URI".to_string());
     }
     let name = percent_decode(uri)?;
-    let Some(dir) = base_dir else {
-        return Err("an external file needs the asset's path to be found".to_string());
-    };
-    let path = dir.join(&name);
-    std::fs::read(&path).map_err(|e| format!("cannot read {}: {e}", path.display()))
+    if name.is_empty() {
+        return Err("expected a file name, found an empty URI".to_string());
+    }
+    if name.contains('\0') {
+        return Err("the file name holds a NUL character".to_string());
+    }
+    if name.starts_with('/') || name.starts_with('\\') || has_scheme(&name) {
+        return Err(format!(
+            "\"{}\" is an absolute path: expected a file inside the asset's folder",
+            crate::error::shorten(&name)
+        ));
+    }
+    let path = PathBuf::from(&name);
+    let mut depth = 0usize;
+    for c in path.components() {
+        match c {
+            Component::Normal(_) => depth += 1,
+            Component::CurDir => {}
+            Component::ParentDir if depth > 0 => depth -= 1,
+            _ => {
+                return Err(format!(
+                    "\"{}\" leaves the asset's folder: expected a file inside it",
+                    crate::error::shorten(&name)
+                ));
+            }
+        }
+    }
+    Ok(path)
+}
+
+/// The canonical path of the file a relative URI names in `base_dir` ([`relative_path`]),
+/// refused unless it is a regular file inside the folder once symbolic links are resolved (a
+/// link pointing out, a device, a FIFO, a directory).
+pub(super) fn resolve(uri: &str, base_dir: &Path) -> Result<PathBuf, String> {
+    let rel = relative_path(uri)?;
+    let joined = base_dir.join(&rel);
+    let shown = || crate::error::shorten(&joined.display().to_string()).into_owned();
+    let path =
+        std::fs::canonicalize(&joined).map_err(|e| format!("cannot read {}: {e}", shown()))?;
+    let base = std::fs::canonicalize(base_dir)
+        .map_err(|e| format!("cannot resolve the asset's folder: {e}"))?;
+    if !path.starts_with(&base) {
+        return Err(format!(
+            "{} leads to {}, outside the asset's folder (through a symbolic link): expected a \
+             file inside it",
+            shown(),
+            crate::error::shorten(&path.display().to_string())
+        ));
+    }
+    let meta = std::fs::metadata(&path).map_err(|e| format!("cannot read {}: {e}", shown()))?;
+    if !meta.is_file() {
+        return Err(format!(
+            "{} is not a regular file (a directory, a device or a FIFO): expected a file",
+            shown()
+        ));
+    }
+    Ok(path)
+}
+
+/// At most the first `len` bytes of the regular file `path` (checked by [`resolve`]; checked
+/// again once open, so that a file swapped for a FIFO or a device is not read).
+pub(super) fn read_file(path: &Path, len: usize) -> Result<Vec<u8>, String> {
+    let shown = || crate::error::shorten(&path.display().to_string()).into_owned();
+    let cannot = |e: std::io::Error| format!("cannot read {}: {e}", shown());
+    let file = std::fs::File::open(path).map_err(cannot)?;
+    let meta = file.metadata().map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(format!("{} is not a regular file", shown()));
+    }
+    // Room for what the file holds, never more than asked for.
+    let room = usize::try_from(meta.len()).map_or(len, |n| n.min(len));
+    let mut data = Vec::new();
+    data.try_reserve_exact(room)
+        .map_err(|_| format!("cannot read {}: out of memory for {room} bytes", shown()))?;
+    file.take(len as u64)
+        .read_to_end(&mut data)
+        .map_err(cannot)?;
+    Ok(data)
 }
 
 /// `%20` → space and so on (RFC 3986 percent-encoding, UTF-8).
@@ -153,13 +304,13 @@ pub(super) fn read(
     storage: Storage,
 ) -> Result<Vec<f64>, String> {
     let i = acc.index();
-    let fail = |m: String| format!("accessor {i}: {m}");
+    let fail = |m: String| format!("accessors[{i}]: {m}");
     if acc.dimensions() != dims {
-        return Err(fail(format!(
-            "expected type {}, found {}",
+        return Err(format!(
+            "accessors[{i}].type: expected {}, found {}",
             dims_name(dims),
             dims_name(acc.dimensions())
-        )));
+        ));
     }
     let t = acc.data_type();
     let allowed = match storage {
@@ -185,30 +336,39 @@ pub(super) fn read(
                 "FLOAT or normalized BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
             }
         };
-        return Err(fail(format!(
-            "expected componentType {expected}, found {found}"
-        )));
+        return Err(format!(
+            "accessors[{i}].componentType: expected {expected}, found {found}"
+        ));
     }
     let n = dims.multiplicity();
     let size = t.size();
     let count = acc.count();
     let total = count
         .checked_mul(n)
-        .ok_or_else(|| fail(format!("count {count} is too large")))?;
+        .ok_or_else(|| format!("accessors[{i}].count: {count} is too large"))?;
     let mut out = match acc.view() {
         Some(view) => {
             let buffer = &buffers[view.buffer().index()];
             let bytes = view_bytes(&view, buffer).map_err(&fail)?;
             strided(bytes, acc.offset(), view.stride(), count, n, size, t).map_err(&fail)?
         }
-        None => vec![0.0; total],
+        // No bytes back these zeros: the callers bound `count` first (by the keys a sampler
+        // has), and a failed reservation is an error, not an abort.
+        None => {
+            let mut zeros = Vec::new();
+            zeros
+                .try_reserve_exact(total)
+                .map_err(|_| format!("accessors[{i}].count: {count} is too large"))?;
+            zeros.resize(total, 0.0);
+            zeros
+        }
     };
     if let Some(sparse) = acc.sparse() {
         let k = sparse.count();
         if k > count {
-            return Err(fail(format!(
-                "sparse count {k} is larger than the accessor's count {count}"
-            )));
+            return Err(format!(
+                "accessors[{i}].sparse.count: {k} is larger than the accessor's count {count}"
+            ));
         }
         let idx_view = sparse.indices().view();
         let idx_type = match sparse.indices().index_type() {
@@ -217,12 +377,12 @@ pub(super) fn read(
             gltf::accessor::sparse::IndexType::U32 => DataType::U32,
         };
         let idx_bytes = view_bytes(&idx_view, &buffers[idx_view.buffer().index()])
-            .map_err(|e| fail(format!("sparse indices: {e}")))?;
+            .map_err(|e| format!("accessors[{i}].sparse.indices: {e}"))?;
         // Raw unsigned integers, never normalized.
         let idx_size = idx_type.size();
         let start = sparse.indices().offset();
         check_range(idx_bytes.len(), start, idx_size, k, idx_size)
-            .map_err(|e| fail(format!("sparse indices: {e}")))?;
+            .map_err(|e| format!("accessors[{i}].sparse.indices: {e}"))?;
         let indices: Vec<f64> = (0..k)
             .map(|j| {
                 let b = &idx_bytes[start + j * idx_size..];
@@ -235,15 +395,16 @@ pub(super) fn read(
             .collect();
         let val_view = sparse.values().view();
         let val_bytes = view_bytes(&val_view, &buffers[val_view.buffer().index()])
-            .map_err(|e| fail(format!("sparse values: {e}")))?;
+            .map_err(|e| format!("accessors[{i}].sparse.values: {e}"))?;
         let values = strided(val_bytes, sparse.values().offset(), None, k, n, size, t)
-            .map_err(|e| fail(format!("sparse values: {e}")))?;
+            .map_err(|e| format!("accessors[{i}].sparse.values: {e}"))?;
         let mut previous: Option<f64> = None;
         for (j, &index) in indices.iter().enumerate() {
             if previous.is_some_and(|p| index <= p) || index >= count as f64 {
-                return Err(fail(format!(
-                    "sparse index {j} is {index}: expected strictly increasing indices below {count}"
-                )));
+                return Err(format!(
+                    "accessors[{i}].sparse.indices: index {j} is {index}: expected strictly \
+                     increasing indices below {count}"
+                ));
             }
             previous = Some(index);
             let e = index as usize;
@@ -286,7 +447,7 @@ fn view_bytes<'b>(view: &gltf::buffer::View, buffer: &'b [u8]) -> Result<&'b [u8
         .and_then(|end| buffer.get(offset..end))
         .ok_or_else(|| {
             format!(
-                "buffer view {} (bytes {offset}..{}) runs past the end of buffer {} ({} bytes)",
+                "bufferViews[{}] (bytes {offset}..{}) runs past the end of buffers[{}] ({} bytes)",
                 view.index(),
                 offset.saturating_add(len),
                 view.buffer().index(),

@@ -199,10 +199,12 @@ impl GltfClip {
     pub fn document(&self, fps: Fps, mode: Mode) -> Document {
         let src = self.asset.source();
         let mut tracks = Vec::new();
-        let mut warnings = Vec::new();
+        // The reader's findings (channels ignored, rotations normalised) come first.
+        let mut warnings = self.asset.warnings().to_vec();
         let sources = self.sources(mode);
         let mut sources = sources.iter();
         for (a, anim) in self.animations.iter().enumerate() {
+            warnings.extend(anim.warnings().iter().cloned());
             for ch in anim.rotations() {
                 let s = sources.next().expect("a source per channel");
                 let label = format!("{src}: {}", self.channel_label(a, ch.index()));

@@ -92,12 +92,12 @@ fn an_asset_without_its_bin_is_an_error_naming_it() {
     let e = Asset::from_slice(&bytes, "s.gltf", None).unwrap_err();
     assert_eq!(
         e.message(),
-        "s.gltf: buffer 0 (\"samplers.bin\"): an external file needs the asset's path to be found"
+        "s.gltf: buffers[0].uri (\"samplers.bin\"): an external file needs the asset's path to be found"
     );
     let e = Asset::from_slice(&bytes, "s.gltf", Some(Path::new("/nonexistent"))).unwrap_err();
     assert!(
         e.message().starts_with(
-            "s.gltf: buffer 0 (\"samplers.bin\"): cannot read /nonexistent/samplers.bin"
+            "s.gltf: buffers[0].uri (\"samplers.bin\"): cannot read /nonexistent/samplers.bin"
         ),
         "{e}"
     );
@@ -240,31 +240,31 @@ fn damaged_assets_are_located_errors() {
             Box::new(|v| v["animations"][0]["samplers"][0]["output"] = 999.into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): sampler 0: accessor 0: 4 elements of 4 bytes from byte 0 run past the end of its buffer view (12 bytes)",
+            "s.gltf: animations[0].samplers[0].input (animation \"Mixed\"): accessors[0]: 4 elements of 4 bytes from byte 0 run past the end of its buffer view (12 bytes)",
             Box::new(|v| v["bufferViews"][0]["byteLength"] = 12.into()),
         ),
         (
-            "s.gltf: buffer 0: byteLength is 9999 but \"samplers.bin\" has only 796 bytes",
+            "s.gltf: buffers[0].byteLength: 9999, but \"samplers.bin\" has only 796 bytes",
             Box::new(|v| v["buffers"][0]["byteLength"] = 9999.into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): channel 0: output accessor 1 has 3 elements: expected 4 for 4 keys (STEP)",
+            "s.gltf: animations[0].channels[0] (animation \"Mixed\", node \"step\"): samplers[0].output: accessors[1].count: 3 elements, expected 4 for 4 keys (STEP)",
             Box::new(|v| v["accessors"][1]["count"] = 3.into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): channel 4: output accessor 6 has 14 elements: expected 15 for 5 keys (CUBICSPLINE)",
+            "s.gltf: animations[0].channels[4] (animation \"Mixed\", node \"cubic\"): samplers[4].output: accessors[6].count: 14 elements, expected 15 for 5 keys (CUBICSPLINE)",
             Box::new(|v| v["accessors"][6]["count"] = 14.into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): channel 0: accessor 1: expected type VEC4, found VEC3",
+            "s.gltf: animations[0].channels[0] (animation \"Mixed\", node \"step\"): samplers[0].output: accessors[1].type: expected VEC4, found VEC3",
             Box::new(|v| v["accessors"][1]["type"] = "VEC3".into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): channel 1: accessor 2: expected componentType FLOAT or normalized BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT, found BYTE",
+            "s.gltf: animations[0].channels[1] (animation \"Mixed\", node \"byte\"): samplers[1].output: accessors[2].componentType: expected FLOAT or normalized BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT, found BYTE",
             Box::new(|v| v["accessors"][2]["normalized"] = false.into()),
         ),
         (
-            "s.gltf: animation 0 (\"Mixed\"): sampler 0: accessor 1: expected type SCALAR, found VEC4",
+            "s.gltf: animations[0].samplers[0].input (animation \"Mixed\"): accessors[1].type: expected SCALAR, found VEC4",
             Box::new(|v| v["animations"][0]["samplers"][0]["input"] = 1.into()),
         ),
     ];
@@ -296,17 +296,17 @@ fn bad_numbers_are_located_errors() {
     let e = read_with_float(8, 0.25).unwrap_err();
     assert_eq!(
         e.message(),
-        "s.gltf: animation 0 (\"Mixed\"): sampler 0: input accessor 0: time 2 is 0.25 after 0.5: expected strictly increasing times"
+        "s.gltf: animations[0].samplers[0].input (animation \"Mixed\"): accessors[0]: time 2 is 0.25 after 0.5: expected strictly increasing times"
     );
     let e = read_with_float(4, f32::NAN).unwrap_err();
     assert_eq!(
         e.message(),
-        "s.gltf: animation 0 (\"Mixed\"): sampler 0: input accessor 0: time 1 is NaN: expected a finite number"
+        "s.gltf: animations[0].samplers[0].input (animation \"Mixed\"): accessors[0]: time 1 is not a number: expected a finite number"
     );
     let e = read_with_float(16 + 4, f32::INFINITY).unwrap_err();
     assert_eq!(
         e.message(),
-        "s.gltf: animation 0 (\"Mixed\"): channel 0: output accessor 1: key 0: inf: expected finite components"
+        "s.gltf: animations[0].channels[0] (animation \"Mixed\", node \"step\"): samplers[0].output: accessors[1]: key 0: component 1 is +infinity: expected finite components"
     );
     let mut zero = std::fs::read(fixture("samplers.bin")).unwrap();
     zero[16..32].fill(0);
@@ -322,7 +322,7 @@ fn bad_numbers_are_located_errors() {
         .unwrap_err();
     assert_eq!(
         e.message(),
-        "s.gltf: animation 0 (\"Mixed\"): channel 0: output accessor 1: key 0: expected a unit quaternion, found zero"
+        "s.gltf: animations[0].channels[0] (animation \"Mixed\", node \"step\"): samplers[0].output: accessors[1]: key 0: expected a unit quaternion, found zero"
     );
 }
 

@@ -112,29 +112,43 @@ fn is_relative_reference(uri: &str) -> bool {
     !scheme && !uri.starts_with('/') && !uri.starts_with('\\')
 }
 
-/// The percent-encoded path from `out_dir` to `base_dir`, ending in `/` (`"../in/"`), or `None`
-/// when they are the same folder or either cannot be resolved.
-fn uri_prefix(out_dir: &Path, base_dir: &Path) -> Option<String> {
-    let out = std::fs::canonicalize(out_dir).ok()?;
-    let base = std::fs::canonicalize(base_dir).ok()?;
-    if out == base {
-        return None;
+/// Whether `out_dir` and `base_dir` are one folder (or either cannot be resolved).
+fn same_folder(out_dir: &Path, base_dir: &Path) -> bool {
+    match (
+        std::fs::canonicalize(out_dir),
+        std::fs::canonicalize(base_dir),
+    ) {
+        (Ok(o), Ok(b)) => o == b,
+        _ => true,
     }
-    let (o, b): (Vec<_>, Vec<_>) = (out.components().collect(), base.components().collect());
-    let common = o.iter().zip(&b).take_while(|(x, y)| x == y).count();
-    let mut prefix = "../".repeat(o.len() - common);
-    for part in &b[common..] {
-        let part = part.as_os_str().to_str()?;
-        for byte in part.bytes() {
-            if byte.is_ascii_alphanumeric() || b"-._~".contains(&byte) {
-                prefix.push(byte as char);
-            } else {
-                prefix += &format!("%{byte:02X}");
-            }
-        }
-        prefix.push('/');
+}
+
+/// A base64 `data:` URI of `bytes` with media type `mime`.
+fn data_uri(mime: &str, bytes: &[u8]) -> String {
+    format!(
+        "data:{mime};base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
+/// The media type of an image: its `mimeType` when given, else from its first bytes (PNG,
+/// JPEG, WebP, KTX2), else `application/octet-stream`.
+fn image_mime(declared: Option<&str>, bytes: &[u8]) -> String {
+    if let Some(m) = declared {
+        return m.to_string();
     }
-    Some(prefix)
+    let m = if bytes.starts_with(b"\x89PNG\r\n\x1a\n") {
+        "image/png"
+    } else if bytes.starts_with(&[0xFF, 0xD8, 0xFF]) {
+        "image/jpeg"
+    } else if bytes.len() >= 12 && &bytes[..4] == b"RIFF" && &bytes[8..12] == b"WEBP" {
+        "image/webp"
+    } else if bytes.starts_with(b"\xabKTX 20\xbb") {
+        "image/ktx2"
+    } else {
+        "application/octet-stream"
+    };
+    m.to_string()
 }
 
 fn array_mut<'v>(obj: &'v mut Value, key: &str) -> &'v mut Vec<Value> {
@@ -147,6 +161,60 @@ fn array_mut<'v>(obj: &'v mut Value, key: &str) -> &'v mut Vec<Value> {
 }
 
 impl Asset {
+    /// Replaces, in `json`, every relative URI of `buffers` (with the bytes read) and of
+    /// `images` that exist (read under the same rules as buffer files, within what is left of
+    /// the byte budget) with a `data:` URI, for an asset written into another folder than
+    /// `base`: the output then references no file outside its own folder. A missing image
+    /// keeps its URI.
+    fn embed_files(&self, json: &mut Value, base: &Path) -> Result<(), InputError> {
+        let src = &self.source;
+        if let Some(buffers) = json.get_mut("buffers").and_then(Value::as_array_mut) {
+            for (i, b) in buffers.iter_mut().enumerate() {
+                if b.get("uri")
+                    .and_then(Value::as_str)
+                    .is_some_and(is_relative_reference)
+                {
+                    b["uri"] = json!(data_uri("application/octet-stream", self.buffer(i)));
+                }
+            }
+        }
+        let mut used = self.bytes_read;
+        if let Some(images) = json.get_mut("images").and_then(Value::as_array_mut) {
+            for (i, image) in images.iter_mut().enumerate() {
+                let Some(uri) = image.get("uri").and_then(Value::as_str) else {
+                    continue;
+                };
+                if !is_relative_reference(uri) {
+                    continue;
+                }
+                let at = |e: String| {
+                    input_err!(
+                        "{src}: images[{i}].uri (\"{}\"): {e}",
+                        crate::error::shorten(uri)
+                    )
+                };
+                let rel = super::accessor::relative_path(uri).map_err(at)?;
+                if std::fs::symlink_metadata(base.join(rel)).is_err() {
+                    continue;
+                }
+                let path = super::accessor::resolve(uri, base).map_err(at)?;
+                let left = self.max_bytes.saturating_sub(used);
+                let bytes = super::accessor::read_file(&path, left.saturating_add(1) as usize)
+                    .map_err(at)?;
+                if bytes.len() as u64 > left {
+                    return Err(at(format!(
+                        "embedding it would take the input past {} bytes (--max-input-bytes)",
+                        self.max_bytes
+                    )));
+                }
+                used += bytes.len() as u64;
+                let mime = image_mime(image.get("mimeType").and_then(Value::as_str), &bytes);
+                image["uri"] = json!(data_uri(&mime, &bytes));
+            }
+        }
+        Ok(())
+    }
+
     /// Writes the asset with the rotation channels of `resampled` replaced, as `format`, to
     /// `out` (see the module documentation for what is appended and where). Errors: an input
     /// error for a bad request (an unknown animation or channel, a channel that is not a
@@ -185,22 +253,10 @@ impl Asset {
     ) -> Result<Vec<u8>, InputError> {
         let src = &self.source;
         let mut json = self.json.clone();
-        if let Some(prefix) =
-            out_dir.and_then(|o| self.base_dir.as_deref().and_then(|b| uri_prefix(o, b)))
+        if let (Some(out), Some(base)) = (out_dir, self.base_dir.as_deref())
+            && !same_folder(out, base)
         {
-            for key in ["buffers", "images"] {
-                let Some(items) = json.get_mut(key).and_then(Value::as_array_mut) else {
-                    continue;
-                };
-                for item in items.iter_mut() {
-                    let Some(uri) = item.get("uri").and_then(Value::as_str) else {
-                        continue;
-                    };
-                    if is_relative_reference(uri) {
-                        item["uri"] = json!(format!("{prefix}{uri}"));
-                    }
-                }
-            }
+            self.embed_files(&mut json, base)?;
         }
         let mut new = Appended::default();
         // New accessors as (new view number, accessor JSON without bufferView).
@@ -254,9 +310,9 @@ impl Asset {
             let channels: Vec<_> = anim.channels().collect();
             for (c, rotations) in &r.channels {
                 let c = *c;
-                let Some(ch) = channels.get(c) else {
+                let Some(ch) = self.typed_channel(a, c).and_then(|t| channels.get(t)) else {
                     return Err(input_err!(
-                        "{src}: animation {a}: no channel {c} (it has {})",
+                        "{src}: animation {a}: no channel {c} that is read (it has {})",
                         channels.len()
                     ));
                 };
@@ -430,7 +486,7 @@ fn continuous_unit(qs: &[DQuat]) -> Result<Vec<DVec4>, usize> {
 
 #[cfg(test)]
 mod uri_tests {
-    use super::{is_relative_reference, uri_prefix};
+    use super::{image_mime, is_relative_reference};
 
     #[test]
     fn relative_references_are_files_without_a_scheme() {
@@ -447,16 +503,11 @@ mod uri_tests {
     }
 
     #[test]
-    fn the_prefix_leads_from_the_output_folder_to_the_input_folder() {
-        let root = tempfile::tempdir().unwrap();
-        let (input, output) = (root.path().join("in put"), root.path().join("a/out"));
-        std::fs::create_dir_all(&input).unwrap();
-        std::fs::create_dir_all(&output).unwrap();
-        assert_eq!(
-            uri_prefix(&output, &input).as_deref(),
-            Some("../../in%20put/")
-        );
-        assert_eq!(uri_prefix(&input, &input), None);
-        assert_eq!(uri_prefix(&root.path().join("missing"), &input), None);
+    fn image_media_types() {
+        assert_eq!(image_mime(Some("image/x"), b""), "image/x");
+        assert_eq!(image_mime(None, b"\x89PNG\r\n\x1a\nrest"), "image/png");
+        assert_eq!(image_mime(None, &[0xFF, 0xD8, 0xFF, 0xE0]), "image/jpeg");
+        assert_eq!(image_mime(None, b"RIFF\0\0\0\0WEBPVP8 "), "image/webp");
+        assert_eq!(image_mime(None, b"GIF89a"), "application/octet-stream");
     }
 }
