@@ -217,6 +217,9 @@ struct Frames<'a> {
     /// The frames' spacing (s) when they are evenly spaced ([`even_spacing`]): then segments
     /// are evaluated at the frames as `interp` generates in-betweens.
     spacing: Option<f64>,
+    /// The times the keys will be written at, per frame, when they differ from the frames'
+    /// ([`TrackFrames::key_times`]).
+    key_times: Option<&'a [f64]>,
 }
 
 /// The spacing of evenly spaced frame times: every time within 1e-9 of a frame of the spacing
@@ -262,7 +265,9 @@ impl<'a> Frames<'a> {
             threshold: Threshold::new(opts),
             hint: std::cell::Cell::new(0),
             before: std::cell::Cell::new(None),
-            spacing: even_spacing(times),
+            // Keys at other times than their frames' are evaluated directly at the frame times.
+            spacing: even_spacing(times).filter(|_| track.key_times.is_none()),
+            key_times: track.key_times,
         }
     }
 
@@ -293,7 +298,8 @@ impl<'a> Frames<'a> {
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
     /// builds it.
     fn curve(&self, keys: &[usize], opts: &CurveOptions) -> InputResult<Curve> {
-        let t: Vec<f64> = keys.iter().map(|&i| self.times[i]).collect();
+        let key_times = self.key_times.unwrap_or(self.times);
+        let t: Vec<f64> = keys.iter().map(|&i| key_times[i]).collect();
         let q: Vec<DQuat> = keys.iter().map(|&i| self.quats[i]).collect();
         let mut track = Track::new(t, q)?;
         if self.estimates.is_some() {
@@ -342,7 +348,7 @@ impl<'a> Frames<'a> {
     fn check(
         &self,
         curve: &Curve,
-        (a, b): (usize, usize),
+        (piece, a, b): (usize, usize, usize),
         opts: &ReduceOptions,
         errors: &mut Errors,
     ) -> (bool, usize) {
@@ -351,8 +357,12 @@ impl<'a> Frames<'a> {
         // A hair inside the tolerance, so that keys written and read back (velocities in
         // degrees per second round to the last bit) still meet it.
         let tol = opts.tolerance * (1.0 - 1e-9);
+        let points = self.generated(curve, (piece, a, b));
         for k in a + 1..b {
-            let e = error(opts, curve.rotation(self.times[k]), self.quats[k]);
+            let q = points
+                .as_ref()
+                .map_or_else(|| curve.rotation(self.times[k]), |p| p[k - a - 1]);
+            let e = error(opts, q, self.quats[k]);
             errors.add(e);
             let mut bad = e > tol;
             let mut score = e / opts.tolerance;
@@ -367,7 +377,34 @@ impl<'a> Frames<'a> {
                 worst = (score, k);
             }
         }
+        if b > a + 1
+            && let Some(u) = near_antipode(curve, piece)
+        {
+            // The frame nearest the blend's near-antipode becomes a key.
+            let k = a + (u * (b - a) as f64).round() as usize;
+            return (false, k.clamp(a + 1, b - 1));
+        }
         (ok, worst.1)
+    }
+
+    /// The frames strictly inside segment `piece` of `curve` (from frame `a` to frame `b`) as
+    /// `interp` generates them at the frames' rate ([`Curve::segment_points`]: forward
+    /// differences from the segment's first frame after its key, the first at
+    /// `u₀ = (t_{a+1} − t_a)/Δ`, then steps of the spacing over `Δ`), when the frames are
+    /// evenly spaced and the scheme is a segment scheme; else `None` (evaluated directly).
+    fn generated(&self, curve: &Curve, (piece, a, b): (usize, usize, usize)) -> Option<Vec<DQuat>> {
+        let dt = self.spacing?;
+        if b <= a + 1 {
+            return None;
+        }
+        let delta = self.times[b] - self.times[a];
+        let u0 = (self.times[a + 1] - self.times[a]) / delta;
+        let mut points = Vec::with_capacity(b - a - 1);
+        curve.segment_points(piece, (u0, dt / delta), b - a - 1, |q| {
+            points.push(q);
+            true
+        })?;
+        Some(points)
     }
 
     /// Whether the segment `a..b` alone meets the tolerances. Stops at the first frame that
@@ -383,7 +420,11 @@ impl<'a> Frames<'a> {
         }
         let curve = self.segment_curve(a, b, opts)?;
         // The segment's index in that curve: after the key before `a`, if it has one.
-        let piece = curve.key_times().partition_point(|&t| t < self.times[a]);
+        let start = self.key_times.map_or(self.times[a], |t| t[a]);
+        let piece = curve.key_times().partition_point(|&t| t < start);
+        if near_antipode(&curve, piece).is_some() {
+            return Ok(false);
+        }
         let within = |k: usize, q: DQuat| {
             if !self.threshold.within(opts, q, self.quats[k]) {
                 return false;
@@ -450,6 +491,23 @@ impl<'a> Frames<'a> {
     }
 }
 
+/// How near an antipode (`‖a + b‖` of a blend's two points, [`crate::curve::antipode_gap`])
+/// the blends of a segment with frames inside may come. Where they come nearer, the geodesic
+/// between them is barely defined: a perturbation `ε` of its points (round-off: direct
+/// evaluation against `interp`'s forward differences, a velocity written to the last digit)
+/// moves it by about `π·ε/gap`, and at the antipode itself by anything up to half a turn. A
+/// segment nearer than this is never feasible, and verification splits it (docs/spec.md §4.7).
+pub const ANTIPODE_MARGIN: f64 = 1e-3;
+
+/// Where the blends of segment `piece` of `curve` come within [`ANTIPODE_MARGIN`] of an
+/// antipode: the `u` where they come nearest.
+fn near_antipode(curve: &Curve, piece: usize) -> Option<f64> {
+    curve
+        .segment_antipode_gap(piece)
+        .filter(|&(gap, _)| gap < ANTIPODE_MARGIN)
+        .map(|(_, u)| u)
+}
+
 /// The rotation test of [`Frames::check`] (`error > tolerance·(1 − 1e-9)` misses) decided from
 /// `|a·b|`, the cosine of half the angle between the rotations, which the error decreases with:
 /// clearly above the threshold's cosine a frame meets the tolerance, clearly below it misses,
@@ -507,6 +565,7 @@ pub fn reduce(
         rotations: quats,
         positions,
         euler: None,
+        key_times: None,
     };
     reduce_frames(&frames, opts)
 }
@@ -614,6 +673,10 @@ pub struct TrackFrames<'a> {
     /// The Euler angles (radians) the frames were given as: with `--path euler`
     /// ([`PathMode::Euler`]) the keys' curve keeps the turns their angles make.
     pub euler: Option<(crate::EulerSeq, &'a [DVec3])>,
+    /// The time each frame will have as a key when it differs from the frame's (glTF output
+    /// writes float32 times): the keys' curve is built on these and verified at the frame
+    /// times, as a player evaluates it. Increasing, one per frame; `None`: the frame times.
+    pub key_times: Option<&'a [f64]>,
 }
 
 impl<'a> TrackFrames<'a> {
@@ -625,6 +688,7 @@ impl<'a> TrackFrames<'a> {
             rotations: track.rotations(),
             positions: track.translations(),
             euler: track.euler_angles(),
+            key_times: None,
         }
     }
 }
@@ -1129,18 +1193,25 @@ fn verified(
 ) -> InputResult<(Vec<usize>, Errors)> {
     loop {
         let curve = frames.curve(&keys, &opts.curve)?;
-        let at_key = |k: usize| error(opts, curve.rotation(frames.times[k]), frames.quats[k]);
+        let at_key = |k: usize| {
+            let e = error(opts, curve.rotation(frames.times[k]), frames.quats[k]);
+            // A key is its frame, unless it is written at another time (float32).
+            if e > opts.tolerance * (1.0 - 1e-9) {
+                return Err(key_time_miss(frames, k, e, opts));
+            }
+            Ok(e)
+        };
         let mut errors = Errors::default();
         let mut added = Vec::new();
-        for w in keys.windows(2) {
-            errors.add(at_key(w[0]));
-            let (ok, worst) = frames.check(&curve, (w[0], w[1]), opts, &mut errors);
+        for (piece, w) in keys.windows(2).enumerate() {
+            errors.add(at_key(w[0])?);
+            let (ok, worst) = frames.check(&curve, (piece, w[0], w[1]), opts, &mut errors);
             if !ok {
                 added.push(worst);
             }
         }
         if let Some(&last) = keys.last() {
-            errors.add(at_key(last));
+            errors.add(at_key(last)?);
         }
         if added.is_empty() {
             return Ok((keys, errors));
@@ -1149,6 +1220,27 @@ fn verified(
         keys.sort_unstable();
         keys.dedup();
     }
+}
+
+/// The error for a key that misses its own frame: only a key written at another time than its
+/// frame's ([`TrackFrames::key_times`]) can, when the motion in that time difference exceeds
+/// the tolerance.
+fn key_time_miss(
+    frames: &Frames,
+    k: usize,
+    e: f64,
+    opts: &ReduceOptions,
+) -> crate::error::InputError {
+    let written = frames.key_times.map_or(frames.times[k], |t| t[k]);
+    let unit = if opts.distance.is_some() { "" } else { " rad" };
+    crate::error::input_err!(
+        "frame {k} ({} s): its key is written at {written} s (float32), and the motion in those \
+         {:.1e} s misses the frame by {e:.3e}{unit}, more than the tolerance {:.3e}{unit}; give a \
+         larger tolerance or a timeline nearer 0",
+        frames.times[k],
+        (written - frames.times[k]).abs(),
+        opts.tolerance
+    )
 }
 
 /// [`verified`] on every track, until the keys meet the tolerances on all. Returns the keys and
@@ -1269,6 +1361,7 @@ mod tests {
                     rotations: &q,
                     positions: None,
                     euler: None,
+                    key_times: None,
                 };
                 let even = Frames::new(&frames, &opts);
                 assert!(even.spacing.is_some());

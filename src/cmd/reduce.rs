@@ -61,7 +61,7 @@ pub fn run(
         ))
         .into());
     }
-    let reduced = reduce_tracks(args, &input, 0.0, true)?;
+    let reduced = reduce_tracks(args, &input, 0.0, true, false)?;
     // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
     let out_doc = Document {
         source: doc.source.clone(),
@@ -164,12 +164,15 @@ const MIN_TOLERANCE: f64 = 1e-9;
 const FLOAT32_MARGIN: f64 = 1e-6;
 
 /// Every track reduced with the tolerance tightened by `margin` (in the tolerance's own unit),
-/// translations reduced too when `translations`; `-v` reports each track.
+/// translations reduced too when `translations`, and for glTF output (`float32_times`) verified
+/// on the key times as written (float32) at the frame times, as a player evaluates them; `-v`
+/// reports each track.
 fn reduce_tracks(
     args: &ReduceArgs,
     input: &Curves,
     margin: f64,
     translations: bool,
+    float32_times: bool,
 ) -> Result<Vec<Reduced>, Error> {
     let (doc, tracks) = (&input.doc, &input.tracks);
     let tolerance = match args.distance {
@@ -215,10 +218,16 @@ fn reduce_tracks(
         },
     };
     let located = |e: InputError| e.at(&doc.source);
+    let written: Vec<Option<Vec<f64>>> = tracks
+        .iter()
+        .map(|t| float32_times.then(|| t.times().iter().map(|&x| f64::from(x as f32)).collect()))
+        .collect();
     let frames: Vec<TrackFrames> = tracks
         .iter()
-        .map(|t| TrackFrames {
+        .zip(&written)
+        .map(|(t, w)| TrackFrames {
             positions: t.translations().filter(|_| translations),
+            key_times: w.as_deref(),
             ..TrackFrames::of(t)
         })
         .collect();
@@ -296,7 +305,7 @@ fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Res
         .into());
     }
     let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
-    let reduced = reduce_tracks(args, input, margin, false)?;
+    let reduced = reduce_tracks(args, input, margin, false, true)?;
     let keys: Vec<ChannelKeys> = input
         .tracks
         .iter()

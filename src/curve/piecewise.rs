@@ -498,6 +498,23 @@ impl Curve {
         })
     }
 
+    /// Where the blends of segment `i` come closest to antipodal ([`crate::curve::antipode_gap`]:
+    /// the smallest `‖a + b‖` and its `u`), `None` where they cannot come near it, and for
+    /// minaccel's grid curve, which has no blends. What `interp` checks before it generates the
+    /// segment's frames.
+    pub(crate) fn segment_antipode_gap(&self, i: usize) -> Option<(f64, f64)> {
+        let Pieces::Segments { segs, keys, blend } = &self.pieces else {
+            return None;
+        };
+        let segs = segs.get_or_init(|| Segs::new(keys, self.scheme, *blend));
+        match segs {
+            Segs::Slerp(v) => crate::curve::antipode_gap(v.get(i)?),
+            Segs::Hermite(v) => crate::curve::antipode_gap(v.get(i)?),
+            Segs::Squad(v) => crate::curve::antipode_gap(v.get(i)?),
+            Segs::Bezier(v) => crate::curve::antipode_gap(v.get(i)?),
+        }
+    }
+
     /// A one-key track: the key's rotation at every time, at rest.
     pub fn is_constant(&self) -> bool {
         self.breaks().len() == 1

@@ -18,6 +18,7 @@ mod output;
 mod plot;
 mod readers;
 mod reading;
+mod reduce_guarantee;
 mod reliability;
 mod roundtrip;
 mod usage;

@@ -132,6 +132,7 @@ fn track_frames(tracks: &[(Vec<f64>, Vec<DQuat>)]) -> Vec<inbetween::reduce::Tra
             rotations: q,
             positions: None,
             euler: None,
+            key_times: None,
         })
         .collect()
 }
