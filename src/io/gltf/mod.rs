@@ -542,6 +542,7 @@ const TRANSLATION_KIND: Kind<DVec3> = Kind {
 /// animation data and copies everything else through.
 fn validate(root: &gltf::json::Root) -> Result<(), String> {
     use gltf::json::validation::Validate;
+    positions_exist(root)?;
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, error| {
         let path = path().to_string();
@@ -557,6 +558,32 @@ fn validate(root: &gltf::json::Root) -> Result<(), String> {
             errors.len() - 1
         )),
     }
+}
+
+/// The one index the `gltf` crate's own validation dereferences before checking it: a mesh
+/// primitive's `POSITION` accessor (gltf-json 1.4.1's `primitive_validate_hook` indexes
+/// `accessors` with it to check `min` and `max`, and panics when it is out of range; found by
+/// the `gltf_reader` fuzz target).
+fn positions_exist(root: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::mesh::Semantic;
+    use gltf::json::validation::Checked;
+    let accessors = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(a) = primitive
+                .attributes
+                .get(&Checked::Valid(Semantic::Positions))
+                && a.value() >= accessors
+            {
+                return Err(format!(
+                    "invalid glTF: meshes[{m}].primitives[{p}].attributes.POSITION: accessor {} \
+                     does not exist (the asset has {accessors} accessors)",
+                    a.value()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// What the `gltf` crate's validation leaves unchecked in animations (its `Animation` checks

@@ -592,3 +592,18 @@ fn written_assets_pass_the_khronos_validator() {
         }
     }
 }
+
+/// Found by the `gltf_reader` fuzz target: the `gltf` crate's validation indexes `accessors`
+/// with a primitive's `POSITION` before checking it, and panicked.
+#[test]
+fn a_position_accessor_that_does_not_exist_is_an_error_not_a_panic() {
+    let json = br#"{"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 5}}]}]}"#;
+    let err = Asset::from_slice(json, "m.gltf", None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("meshes[0].primitives[0].attributes.POSITION: accessor 5 does not exist"),
+        "{err}"
+    );
+}
