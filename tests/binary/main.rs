@@ -10,6 +10,7 @@ mod bvh;
 mod bvh_stream;
 mod errors;
 mod gltf;
+mod gltf_tracks;
 mod hard_cases;
 mod numbers;
 mod output;
