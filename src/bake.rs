@@ -394,3 +394,206 @@ fn track_frames<S: Segment>(
         Ok(())
     })
 }
+
+/// Keys per piece of a sampled track ([`bake_sampled`]).
+const SAMPLED_CHUNK: i64 = 4096;
+
+/// A track given as a function of time (a glTF `STEP` or `CUBICSPLINE` sampler), written at
+/// every frame of `frames` (inclusive, `first <= last`) as the slerp curve through its samples
+/// at those frames, taken as keys: every frame is its sample (after `--path`, so signs stay
+/// continuous), and the frames before and after hold the ends, at rest (see [`bake_over`]).
+///
+/// The samples are never all in memory: the track is built in pieces of [`SAMPLED_CHUNK`]
+/// keys, each with one more key on either side, so that every frame, its angular velocity and
+/// its position are those of the whole track's curve (the tangents of a key depend on its two
+/// neighbours only). Memory is bounded by the piece; time is linear in the frames.
+pub struct Sampled<'a> {
+    /// The track's name.
+    pub name: Option<&'a str>,
+    /// The frames, `(first, last)`, `first <= last`.
+    pub frames: (i64, i64),
+    /// The rotation (a unit quaternion) and position (when the track has positions) at a time.
+    pub sample: &'a dyn Fn(f64) -> (DQuat, Option<DVec3>),
+}
+
+impl Sampled<'_> {
+    /// The curve through the samples at frames `lo..=hi` (`lo <= hi`), each rotation times
+    /// `sign` (±1, exact), under `opts` (`Ends::Cyclic` becomes chord ends: a piece is no loop).
+    pub fn piece(
+        &self,
+        fps: Fps,
+        opts: &crate::CurveOptions,
+        (lo, hi): (i64, i64),
+        sign: f64,
+    ) -> crate::error::InputResult<Curve> {
+        use crate::error::input_err;
+        let mut times = Vec::with_capacity((hi - lo + 1) as usize);
+        let mut quats = Vec::with_capacity(times.capacity());
+        let mut positions = Vec::new();
+        for k in lo..=hi {
+            let t = fps.time_of(k);
+            let (q, p) = (self.sample)(t);
+            times.push(t);
+            quats.push(q * sign);
+            if let Some(p) = p {
+                positions.push(p);
+            }
+        }
+        let track = if lo == hi {
+            crate::Track::constant(times[0], quats[0])
+        } else {
+            crate::Track::new(times, quats)
+        };
+        let located = |e: crate::TrackError| {
+            let k = e.index().map_or(lo, |i| lo + i as i64);
+            input_err!("{e}").at(format!(
+                "frame {k} ({} s)",
+                crate::error::num(fps.time_of(k))
+            ))
+        };
+        let mut track = track.map_err(located)?;
+        if !positions.is_empty() {
+            track = track.with_translations(positions).map_err(located)?;
+        }
+        if let Some(n) = self.name {
+            track = track.with_name(n);
+        }
+        let mut opts = *opts;
+        if opts.ends.ends == crate::Ends::Cyclic {
+            opts.ends.ends = crate::Ends::Chord;
+        }
+        Curve::new(&track, &opts)
+    }
+
+    /// What building the whole track's curve under `opts` would refuse, found before any
+    /// output: the first piece's errors, and for cyclic ends the loop's (the last frame's
+    /// rotation is the first's).
+    pub fn check(&self, fps: Fps, opts: &crate::CurveOptions) -> crate::error::InputResult<()> {
+        let (first, last) = self.frames;
+        let b = (first + SAMPLED_CHUNK + 1).min(last).max(first);
+        self.piece(fps, opts, (first, b), 1.0)?;
+        if opts.ends.ends == crate::Ends::Cyclic && first < last {
+            let (t0, t1) = (fps.time_of(first), fps.time_of(last));
+            let ends =
+                crate::Track::new(vec![t0, t1], vec![(self.sample)(t0).0, (self.sample)(t1).0])
+                    .map_err(|e| crate::error::input_err!("{e}"))?;
+            let ends = match self.name {
+                Some(n) => ends.with_name(n),
+                None => ends,
+            };
+            Curve::new(&ends, opts)?;
+        }
+        Ok(())
+    }
+}
+
+/// Streams every frame of a [`Sampled`] track on the grid of `fps` over `[lo, hi]` (widened to
+/// the track's frames) into `sink`, as [`bake_over`] streams a curve through the same samples
+/// (`opts`, whose scheme should be slerp). Errors: the sink's, and a piece whose curve cannot
+/// be built (an internal error: the caller checks the track first, [`Sampled::check`]).
+pub fn bake_sampled(
+    track: &Sampled<'_>,
+    opts: &crate::CurveOptions,
+    fps: Fps,
+    (lo, hi): (f64, f64),
+    bake_opts: BakeOptions,
+    sink: &mut dyn FrameSink,
+    warn: &mut dyn FnMut(&str),
+) -> io::Result<()> {
+    let (first, last) = track.frames;
+    let internal = |e: crate::InputError| {
+        io::Error::other(format!("internal error: a sampled track: {}", e.message()))
+    };
+    if first >= last {
+        let curve = track
+            .piece(fps, opts, (first, first), 1.0)
+            .map_err(internal)?;
+        return bake_over(&curve, fps, (lo, hi), bake_opts, sink, warn);
+    }
+    let (t0, t1) = (fps.time_of(first), fps.time_of(last));
+    let (span_first, span_last) = fps.frames_between(lo.min(t0), hi.max(t1));
+    let rest = bake_opts.velocity.then_some(DVec3::ZERO);
+    // The ends held, with the end's position (as [`WithPositions`] gives it).
+    let hold = |sink: &mut dyn FrameSink, curve: &Curve, ks: std::ops::Range<i64>, q: DQuat| {
+        for k in ks {
+            let t = fps.time_of(k);
+            match curve.position(t) {
+                Some(p) => sink.frame_at(k, t, q, rest, p)?,
+                None => sink.frame(k, t, q, rest)?,
+            }
+        }
+        Ok::<(), io::Error>(())
+    };
+    let one_thread = BakeOptions {
+        parallel: false,
+        ..bake_opts
+    };
+    sink.begin_track(track.name)?;
+    let mut sign = 1.0;
+    let mut a = first;
+    loop {
+        let b = (a + SAMPLED_CHUNK).min(last);
+        let keys = ((a - 1).max(first), (b + 1).min(last));
+        let curve = track.piece(fps, opts, keys, sign).map_err(internal)?;
+        if a == first {
+            hold(sink, &curve, span_first..first, curve.rotation(t0))?;
+        }
+        // The frames this piece writes: a..b, and b too when it is the last.
+        let until = if b == last { b + 1 } else { b };
+        let mut window = Window {
+            sink: &mut *sink,
+            from: a,
+            until,
+        };
+        if curve.has_positions() {
+            let mut with = WithPositions {
+                sink: &mut window,
+                curve: &curve,
+            };
+            track_frames::<Slerp>(&curve, fps, one_thread, &mut with, warn)?;
+        } else {
+            track_frames::<Slerp>(&curve, fps, one_thread, &mut window, warn)?;
+        }
+        if b == last {
+            hold(sink, &curve, last + 1..span_last + 1, curve.rotation(t1))?;
+            break;
+        }
+        // The next piece starts one key before its first frame, on this piece's key b − 1: its
+        // sign there is the one the path rule left in this piece.
+        let knot = curve.knots().quats[(b - 1 - keys.0) as usize];
+        if knot != (track.sample)(fps.time_of(b - 1)).0 * sign {
+            sign = -sign;
+        }
+        a = b;
+    }
+    sink.end_track()
+}
+
+/// Passes on the frames `from..until` only (the caller writes the holds outside them).
+struct Window<'a> {
+    sink: &'a mut dyn FrameSink,
+    from: i64,
+    until: i64,
+}
+
+impl FrameSink for Window<'_> {
+    fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
+        if (self.from..self.until).contains(&k) {
+            return self.sink.frame(k, time, q, omega);
+        }
+        Ok(())
+    }
+    fn frame_at(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: DVec3,
+    ) -> io::Result<()> {
+        if (self.from..self.until).contains(&k) {
+            return self.sink.frame_at(k, time, q, omega, position);
+        }
+        Ok(())
+    }
+}

@@ -45,10 +45,14 @@ pub fn colour(s: Scheme) -> RGBColor {
 }
 
 /// `(t, ω)` samples of a curve: each key segment sampled from its start (right side) to its end
-/// (left side), so jumps at keys are kept; minaccel at its grid points.
+/// (left side), so jumps at keys are kept; minaccel at its grid points. A one-key track (a
+/// constant) is at rest over the second around its key that the chart shows.
 fn velocity_samples(curve: &Curve) -> Vec<(f64, DVec3)> {
     let mut out = Vec::new();
     let key_times = curve.key_times();
+    if let [t] = key_times[..] {
+        return vec![(t - 0.5, DVec3::ZERO), (t + 0.5, DVec3::ZERO)];
+    }
     match curve.scheme() {
         Scheme::Hermite | Scheme::Squad | Scheme::Bezier | Scheme::Slerp => {
             for i in 0..key_times.len() - 1 {
@@ -173,6 +177,10 @@ pub fn svg(
     let (mut y0, mut y1) = ys.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| {
         (a.min(y), b.max(y))
     });
+    if !(y0.is_finite() && y1.is_finite()) {
+        // Nothing to draw (no sample): the range of a curve at rest.
+        (y0, y1) = (0.0, 0.0);
+    }
     if what != What::Components {
         y0 = y0.min(0.0);
     }

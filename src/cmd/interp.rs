@@ -1,18 +1,19 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
-use super::settings::{curve_options, output_format, read_curves, tcb_flags};
+use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
 use crate::cli::{InterpArgs, PathArg, SpanArg};
+use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
 use inbetween::io::Format;
 use inbetween::io::OutputFormat;
 use inbetween::io::bvh::frames::BvhFrames;
 use inbetween::io::bvh::{self, resample};
-use inbetween::io::gltf::document::Mode;
+use inbetween::io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween::io::gltf::frames::{GltfFrames, check_grid};
 use inbetween::io::output::{Output, WriteBehind};
 use inbetween::io::write::{FrameWriter, NpyWriter};
 use inbetween::{
-    BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, Track, bake_over,
+    BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
 };
 use std::io::Read;
 
@@ -29,23 +30,45 @@ pub fn run(
     if let Some(done) = lean_bvh(args, warn) {
         return done;
     }
-    let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
+    let input = read_curves_in(
+        Mode::Sampled,
+        &args.input,
+        &args.curve,
+        args.scheme.into(),
+        stdin,
+        warn,
+    )?;
     let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    // A glTF input: each track's source (a hash of the unique track names). A STEP or
+    // CUBICSPLINE channel is its sampler's curve, sampled at every frame of its animation's
+    // span while it is written (never baked into memory): its span is those frames.
+    let gltf = input.gltf.as_deref();
+    let sources: Vec<Option<TrackSource>> = tracks
+        .iter()
+        .map(|t| {
+            gltf.zip(t.name())
+                .and_then(|(g, n)| g.source_of(n, Mode::Sampled))
+        })
+        .collect();
+    let sampled: Vec<Option<(i64, i64)>> = sources
+        .iter()
+        .map(|s| {
+            let s = s.as_ref().filter(|s| s.baked)?;
+            gltf.map(|g| g.sampled_frames(s.index, fps))
+        })
+        .collect();
+    let own_span = |i: usize| match sampled[i] {
+        Some((a, b)) => (fps.time_of(a), fps.time_of(b)),
+        None => tracks[i].span(),
+    };
     // The span each track is written over: the clip (the union of the tracks' key ranges, ends
     // held), or its own.
-    let clip = tracks
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
-            (lo.min(t.span().0), hi.max(t.span().1))
-        });
+    let clip = (0..tracks.len()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
+        (lo.min(own_span(i).0), hi.max(own_span(i).1))
+    });
     let format = output_format(&args.output, input.format);
     // A glTF input: each track's animation, whose span (every sampler's keys) the clip covers;
     // glTF output writes each animation over its own span.
-    let gltf = input.gltf.as_deref();
-    let animation_of = |t: &Track| {
-        let clip = gltf?;
-        clip.source_of(t.name()?, Mode::Frames).map(|s| s.animation)
-    };
     let clip = match gltf {
         Some(g) => (0..g.animations().len())
             .map(|a| g.span(a, fps))
@@ -53,17 +76,19 @@ pub fn run(
         None => clip,
     };
     let to_gltf = matches!(format, OutputFormat::Gltf(_));
-    let span = |t: &Track| match (args.span, animation_of(t).filter(|_| to_gltf)) {
-        (_, Some(a)) => gltf.map_or(clip, |g| g.span(a, fps)),
-        (SpanArg::Clip, None) => clip,
-        (SpanArg::Track, None) => t.span(),
+    let span = |i: usize| {
+        let animation = sources[i].as_ref().map(|s| s.animation);
+        match (args.span, animation.filter(|_| to_gltf)) {
+            (_, Some(a)) => gltf.map_or(clip, |g| g.span(a, fps)),
+            (SpanArg::Clip, None) => clip,
+            (SpanArg::Track, None) => own_span(i),
+        }
     };
-    for t in tracks {
-        near_misses(&doc.source, t.name(), t.span(), span(t), fps, warn);
+    for (i, t) in tracks.iter().enumerate() {
+        near_misses(&doc.source, t.name(), own_span(i), span(i), fps, warn);
     }
-    let rows: u64 = tracks
-        .iter()
-        .map(|t| fps.frame_count(span(t).0, span(t).1))
+    let rows: u64 = (0..tracks.len())
+        .map(|i| fps.frame_count(span(i).0, span(i).1))
         .fold(0, u64::saturating_add);
     if rows > args.max_frames {
         return Err(InputError::new(format!(
@@ -73,23 +98,33 @@ pub fn run(
         .into());
     }
     // Input errors found while building a curve (minaccel's grid cap) name the file too.
-    // A glTF STEP or CUBICSPLINE channel is already its curve at every frame: slerp between
-    // those frames reproduces them.
+    // A glTF STEP or CUBICSPLINE channel is its sampler, written as the slerp curve through its
+    // samples at the frames, which reproduces them.
     let baked = CurveOptions {
         scheme: Scheme::Slerp,
         ..input.opts
     };
     let curves = tracks
         .iter()
-        .map(|t| {
-            let is_baked = gltf
-                .zip(t.name())
-                .and_then(|(g, n)| g.source_of(n, Mode::Frames))
-                .is_some_and(|s| s.baked);
-            let opts = if is_baked { &baked } else { &input.opts };
-            Curve::new(t, opts).map_err(|e| e.at(&doc.source))
+        .enumerate()
+        .map(|(i, t)| match (gltf, &sources[i], sampled[i]) {
+            (Some(g), Some(s), Some(frames)) => {
+                let sampler = g.sampler(s.index, fps);
+                let check = Sampled {
+                    name: t.name(),
+                    frames,
+                    sample: &|time| sampler.at(time),
+                };
+                check
+                    .check(fps, &baked)
+                    .map_err(|e| Error::Input(e.at(&doc.source)))?;
+                Ok(TrackCurve::Sampled(sampler, frames))
+            }
+            _ => Curve::new(t, &input.opts)
+                .map(TrackCurve::Curve)
+                .map_err(|e| Error::Input(e.at(&doc.source))),
         })
-        .collect::<Result<Vec<_>, _>>()?;
+        .collect::<Result<Vec<_>, Error>>()?;
     let bake_opts = BakeOptions {
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
@@ -194,13 +229,37 @@ pub fn run(
             args.velocity,
         )),
     };
-    for (curve, track) in curves.iter().zip(tracks) {
-        bake_over(curve, fps, span(track), bake_opts, sink.as_mut(), warn)?;
+    for (i, (curve, track)) in curves.iter().zip(tracks).enumerate() {
+        match curve {
+            TrackCurve::Curve(curve) => {
+                bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), warn)?
+            }
+            TrackCurve::Sampled(sampler, frames) => {
+                let sampled = Sampled {
+                    name: track.name(),
+                    frames: *frames,
+                    sample: &|time| sampler.at(time),
+                };
+                bake_sampled(
+                    &sampled,
+                    &baked,
+                    fps,
+                    span(i),
+                    bake_opts,
+                    sink.as_mut(),
+                    warn,
+                )?
+            }
+        }
     }
     sink.finish()?;
     sink.into_output()?.commit()?;
     if args.verbose {
-        for (curve, r) in curves.iter().filter_map(|c| Some((c, c.solver_report()?))) {
+        let reports = curves.iter().filter_map(|c| match c {
+            TrackCurve::Curve(c) => Some((c, c.solver_report()?)),
+            TrackCurve::Sampled(..) => None,
+        });
+        for (curve, r) in reports {
             let name = inbetween::error::shorten(curve.name().unwrap_or("-"));
             eprintln!(
                 "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
@@ -361,6 +420,13 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         }
         Err(e) => Some(Err(e)),
     }
+}
+
+/// A track's curve as interp writes it: built from its keys, or a glTF sampler's curve sampled
+/// at its frames (`STEP`, `CUBICSPLINE`).
+enum TrackCurve {
+    Curve(Curve),
+    Sampled(Sampler, (i64, i64)),
 }
 
 /// A frame writer that hands back its output when done.

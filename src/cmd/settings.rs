@@ -94,7 +94,7 @@ pub fn read_input(
             Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
         inbetween::io::output::protect_inputs(asset.referenced_files());
         let clip = GltfClip::new(asset, args.animation.as_deref())?;
-        let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode);
+        let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
         (doc, Format::Gltf, Some(Arc::new(clip)))
     } else {
         if args.animation.is_some() {
@@ -214,7 +214,19 @@ pub fn read_curves(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<Curves, InputError> {
-    let (doc, format, gltf) = read_input(input, curve.fps, Mode::Frames, stdin, warn)?;
+    read_curves_in(Mode::Frames, input, curve, scheme, stdin, warn)
+}
+
+/// [`read_curves`], a glTF input's tracks read for `mode` (interp: [`Mode::Sampled`]).
+pub fn read_curves_in(
+    mode: Mode,
+    input: &InputArgs,
+    curve: &CurveArgs,
+    scheme: Scheme,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Curves, InputError> {
+    let (doc, format, gltf) = read_input(input, curve.fps, mode, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
     if let Some(w) = key_rate_warning(&doc, frame_fps) {
         warn(&w);

@@ -14,7 +14,7 @@ use glam::{DQuat, DVec3};
 use std::fmt;
 
 /// Where a key came from, for error messages.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Loc {
     /// A CSV line (1-based; the header is line 1).
     Line(u64),
@@ -29,6 +29,18 @@ pub enum Loc {
     },
     /// A motion row of a BVH file: frame `i` (0-based).
     Frame(usize),
+    /// A key of a glTF rotation channel: `animations[a].channels[c]`, its key index in the
+    /// sampler and its time as stored (float32 seconds).
+    Gltf {
+        /// The animation's index in the asset's `animations`.
+        animation: usize,
+        /// The channel's index in the animation's `channels`.
+        channel: usize,
+        /// The key's index in the sampler's input.
+        key: usize,
+        /// The key's time as stored (`None` when not known).
+        time: Option<f32>,
+    },
 }
 
 impl fmt::Display for Loc {
@@ -36,6 +48,18 @@ impl fmt::Display for Loc {
         match self {
             Loc::Line(l) => write!(f, "{l}"),
             Loc::Frame(i) => write!(f, " frame {i}"),
+            Loc::Gltf {
+                animation,
+                channel,
+                key,
+                time,
+            } => {
+                write!(f, " animations[{animation}].channels[{channel}] key {key}")?;
+                match time {
+                    Some(t) => write!(f, " ({t} s)"),
+                    None => Ok(()),
+                }
+            }
             Loc::Json {
                 track: Some(t),
                 key,
@@ -105,6 +129,17 @@ pub enum KeyOrigin {
         /// The list is called `frames`.
         frames: bool,
     },
+    /// glTF: the channel `animations[animation].channels[channel]`, and for each key of the
+    /// track the sampler's key it comes from (its index and stored time; a `STEP` channel's two
+    /// keys per held value come from one).
+    Gltf {
+        /// The animation's index in the asset's `animations`.
+        animation: usize,
+        /// The channel's index in the animation's `channels`.
+        channel: usize,
+        /// Per key of the track: the sampler key's index and stored time.
+        keys: Vec<(usize, f32)>,
+    },
 }
 
 /// A track's keys as Euler angles: the sequence, and each key's triple as written (radians).
@@ -166,6 +201,19 @@ impl DocTrack {
                 key: i,
                 frames: *frames,
             },
+            KeyOrigin::Gltf {
+                animation,
+                channel,
+                keys,
+            } => {
+                let (key, time) = keys.get(i).map_or((i, None), |&(k, t)| (k, Some(t)));
+                Loc::Gltf {
+                    animation: *animation,
+                    channel: *channel,
+                    key,
+                    time,
+                }
+            }
         }
     }
 }
@@ -257,7 +305,11 @@ impl Document {
                 }
                 e => e,
             };
-            input_err!("{e}").at(format!("{}: {field}", at(&self.source, loc)))
+            // A glTF key is named by its channel, index and stored time (no field).
+            match loc {
+                Loc::Gltf { .. } => input_err!("{e}").at(at(&self.source, loc)),
+                _ => input_err!("{e}").at(format!("{}: {field}", at(&self.source, loc))),
+            }
         })?;
         Ok(times)
     }

@@ -171,8 +171,8 @@ pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> boo
 
 /// Parses a document from raw bytes: the format as given, else from `path`'s extension, else
 /// sniffed. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
-/// snapped to and its `STEP`/`CUBICSPLINE` channels baked at `--key-fps`, else 30 fps
-/// ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
+/// snapped to `--key-fps`, else 30 fps, a `STEP` channel as its held values on those frames
+/// and a `CUBICSPLINE` one as its vertices ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
 /// UTF-8. `source` names the input in messages.
 pub fn parse_bytes(
     bytes: Vec<u8>,
@@ -187,7 +187,7 @@ pub fn parse_bytes(
         let clip = gltf::document::GltfClip::new(asset, None)?;
         let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
         return Ok((
-            clip.document(fps, gltf::document::Mode::Frames),
+            clip.document(fps, gltf::document::Mode::Frames)?,
             Format::Gltf,
         ));
     }
@@ -309,7 +309,7 @@ pub fn read_document(
             let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
             let clip = gltf::document::GltfClip::new(asset, None)?;
             let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
-            Ok(clip.document(fps, gltf::document::Mode::Frames))
+            clip.document(fps, gltf::document::Mode::Frames)
         }
     }
 }

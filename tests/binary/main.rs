@@ -11,6 +11,7 @@ mod bvh_stream;
 mod bvh_untrusted;
 mod errors;
 mod gltf;
+mod gltf_tracks;
 mod gltf_untrusted;
 mod hard_cases;
 mod numbers;

@@ -4,24 +4,35 @@
 //! all); [`GltfClip::document`] turns their rotation channels into tracks at a frame rate:
 //!
 //! - Names: the target node's name (`node<index>` for a node without one) when one animation is
-//!   chosen, else `animation/node` with the animation's name (its index when it has none). A
-//!   name used twice gets `#<node index>` appended.
+//!   chosen, else `animation/node` with the animation's name (its index when it has none), made
+//!   unique by [`crate::io::names::unique_names`] with the node index (a later duplicate gets
+//!   `#<node index>`, then `#<node index>#2`, …, never a name given or taken earlier). Names are
+//!   labels: a track is mapped back to its channel through [`GltfClip::source_of`], a hash of
+//!   these unique names, and [`GltfClip::source`] by position.
 //! - Times: float32 seconds; a key within two float32 ulps of a frame time of the rate is on
-//!   that frame ([`super::snap_key_time`]), so that keys exported at a rate come back exactly.
+//!   that frame ([`super::snap_key_time`]), so that keys exported at a rate come back exactly;
+//!   when that would not keep the times strictly increasing (two keys near one frame), the
+//!   keys involved keep their stored times ([`snapped_times`]).
 //! - `LINEAR`: the values are the track's keys, for the scheme of the command.
-//! - `STEP` and `CUBICSPLINE` ([`Mode::Frames`], for `interp`): the sampler already defines
-//!   its curve, so the track is that curve baked at every frame of the animation's span at the
-//!   rate (a `STEP` frame holds the last key at or before it, on the snapped times; a
-//!   `CUBICSPLINE` frame is Appendix C's evaluation, [`super::RotationChannel::sample`]). The
-//!   track is marked [`TrackSource::baked`]: whatever scheme reproduces it at its frames, and
-//!   `interp` uses slerp.
+//! - `STEP` and `CUBICSPLINE` ([`Mode::Frames`], [`Mode::Sampled`]): the sampler defines its
+//!   own curve, which `interp` samples at every frame of the animation's span while writing
+//!   ([`GltfClip::sampler`], [`crate::bake::bake_sampled`]; the track is marked
+//!   [`TrackSource::baked`]). A `STEP` track is two keys per held value, on the first and last
+//!   frame that hold it (a `STEP` frame holds the last key at or before it, on the snapped
+//!   times), which slerp reproduces at every frame: bounded by the input, whatever the rate. A
+//!   `CUBICSPLINE` track is, for `interp` ([`Mode::Sampled`]), its vertices `v_k` with the
+//!   angular velocities of their tangents ([`tangent_velocity`]), and for `analyze`, `plot`
+//!   and `reduce` ([`Mode::Frames`]) the curve at every frame. A `CUBICSPLINE` rotation whose
+//!   4-vector comes near zero between two keys has no rotation there: an input error.
 //! - [`Mode::Keys`] (for `convert`): every sampler's keys; a `CUBICSPLINE` key carries the
-//!   angular velocity of its tangent ([`tangent_velocity`]) and a `STEP` channel is written as
-//!   its keys, with a warning that the hold is not kept.
+//!   angular velocity of its tangent and a `STEP` channel is written as its keys, with a
+//!   warning that the hold is not kept.
 //! - Translations: the translation channel of the same node in the same animation, if any. When
 //!   its times are the rotation keys' (as float32), its values are the keys' positions;
 //!   otherwise it is sampled (by its own interpolation) at the rotation keys, with a warning.
-//!   A baked track samples it at every frame.
+//!   `interp` samples it at every frame of a baked track.
+//! - Keys are located in messages by what the file has: `animations[0].channels[2] key 3
+//!   (0.5 s)` ([`KeyOrigin::Gltf`]).
 
 use super::{Animation, Asset, Interpolation, RotationChannel, TranslationChannel, snap_key_time};
 use crate::clock::Fps;
@@ -29,13 +40,19 @@ use crate::error::{InputResult, input_err, shorten};
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use crate::rotation::Repr;
 use glam::{DQuat, DVec3, DVec4};
+use std::collections::HashMap;
 
 /// What the tracks are for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
-    /// Interpolation (`interp`, `analyze`, `plot`): `STEP` and `CUBICSPLINE` channels baked at
-    /// every frame.
+    /// Interpolation (`analyze`, `plot`, `reduce`): `STEP` and `CUBICSPLINE` channels are their
+    /// own curves: a `STEP` track is its held values (two keys each), a `CUBICSPLINE` track its
+    /// curve sampled at every frame of the animation's span.
     Frames,
+    /// `interp`: as [`Mode::Frames`], but a `CUBICSPLINE` track is its vertices (with their
+    /// tangents' velocities); `interp` samples the channel at every frame while writing
+    /// ([`GltfClip::sampler`]), never holding the frames.
+    Sampled,
     /// The keys as stored (`convert`): `CUBICSPLINE` tangents as per-key angular velocities.
     Keys,
 }
@@ -45,14 +62,16 @@ pub enum Mode {
 pub struct TrackSource {
     /// The track's name.
     pub name: String,
+    /// The track's position in the clip's tracks ([`GltfClip::sources`]).
+    pub index: usize,
     /// The animation's position in [`GltfClip::animations`].
     pub animation: usize,
     /// The channel's index in the animation's `channels`.
     pub channel: usize,
     /// The sampler's interpolation.
     pub interpolation: Interpolation,
-    /// The track is the sampler's curve baked at every frame ([`Mode::Frames`] with `STEP` or
-    /// `CUBICSPLINE`).
+    /// The track is the sampler's own curve, sampled at every frame by `interp`
+    /// ([`Mode::Frames`] with `STEP` or `CUBICSPLINE`; [`GltfClip::sampler`]).
     pub baked: bool,
 }
 
@@ -61,7 +80,32 @@ pub struct TrackSource {
 pub struct GltfClip {
     asset: Asset,
     animations: Vec<Animation>,
+    /// Per track: the animation's position and the channel's position in its `rotations()`.
+    tracks: Vec<(usize, usize)>,
+    /// Per track: the position of its node's translation channel in the animation's
+    /// `translations()`, if any (the first).
+    translations: Vec<Option<usize>>,
     names: Vec<String>,
+    by_name: HashMap<String, usize>,
+}
+
+/// A baked track's curve: the rotation channel (`STEP` on its snapped times) and the node's
+/// translation channel, sampled at any time ([`GltfClip::sampler`]).
+#[derive(Debug, Clone)]
+pub struct Sampler {
+    rotation: RotationChannel,
+    translation: Option<TranslationChannel>,
+}
+
+impl Sampler {
+    /// The rotation (a unit quaternion) and the position at `t` seconds, as glTF 2.0 Appendix C
+    /// evaluates the channels ([`RotationChannel::sample`]).
+    pub fn at(&self, t: f64) -> (DQuat, Option<DVec3>) {
+        (
+            self.rotation.sample(t),
+            self.translation.as_ref().map(|tr| tr.sample(t)),
+        )
+    }
 }
 
 impl GltfClip {
@@ -114,26 +158,40 @@ impl GltfClip {
             ));
         }
         let several = animations.len() > 1;
-        let mut names: Vec<String> = Vec::new();
-        for a in &animations {
-            for ch in a.rotations() {
-                let base = if several {
-                    format!("{}/{}", a.label(), ch.node_name())
+        let mut given: Vec<String> = Vec::new();
+        let mut ids: Vec<usize> = Vec::new();
+        let mut tracks = Vec::new();
+        let mut translations = Vec::new();
+        for (a, anim) in animations.iter().enumerate() {
+            let label = anim.label();
+            let mut by_node: HashMap<usize, usize> = HashMap::new();
+            for (j, tr) in anim.translations().iter().enumerate() {
+                by_node.entry(tr.node()).or_insert(j);
+            }
+            for (c, ch) in anim.rotations().iter().enumerate() {
+                given.push(if several {
+                    format!("{label}/{}", ch.node_name())
                 } else {
                     ch.node_name().to_string()
-                };
-                let name = if names.contains(&base) {
-                    format!("{base}#{}", ch.node())
-                } else {
-                    base
-                };
-                names.push(name);
+                });
+                ids.push(ch.node());
+                tracks.push((a, c));
+                translations.push(by_node.get(&ch.node()).copied());
             }
         }
+        let names = crate::io::names::unique_names(&given, &ids);
+        let by_name = names
+            .iter()
+            .enumerate()
+            .map(|(i, n)| (n.clone(), i))
+            .collect();
         Ok(GltfClip {
             asset,
             animations,
+            tracks,
+            translations,
             names,
+            by_name,
         })
     }
 
@@ -164,28 +222,46 @@ impl GltfClip {
         fps.frames_between(lo, hi)
     }
 
-    /// The tracks' sources, in document order, for `mode`.
-    pub fn sources(&self, mode: Mode) -> Vec<TrackSource> {
-        let mut out = Vec::new();
-        let mut names = self.names.iter();
-        for (a, anim) in self.animations.iter().enumerate() {
-            for ch in anim.rotations() {
-                let i = ch.interpolation();
-                out.push(TrackSource {
-                    name: names.next().expect("a name per channel").clone(),
-                    animation: a,
-                    channel: ch.index(),
-                    interpolation: i,
-                    baked: mode == Mode::Frames && i != Interpolation::Linear,
-                });
-            }
-        }
-        out
+    /// The number of tracks (rotation channels of the chosen animations).
+    pub fn len(&self) -> usize {
+        self.tracks.len()
     }
 
-    /// The source of the track named `name`.
+    /// Whether the clip has no track (never: [`GltfClip::new`] refuses that).
+    pub fn is_empty(&self) -> bool {
+        self.tracks.is_empty()
+    }
+
+    /// The rotation channel of track `i`.
+    fn channel(&self, i: usize) -> &RotationChannel {
+        let (a, c) = self.tracks[i];
+        &self.animations[a].rotations()[c]
+    }
+
+    /// The source of track `i` (its position in document order), for `mode`.
+    pub fn source(&self, i: usize, mode: Mode) -> TrackSource {
+        let ch = self.channel(i);
+        let interpolation = ch.interpolation();
+        TrackSource {
+            name: self.names[i].clone(),
+            index: i,
+            animation: self.tracks[i].0,
+            channel: ch.index(),
+            interpolation,
+            baked: mode != Mode::Keys && interpolation != Interpolation::Linear,
+        }
+    }
+
+    /// The tracks' sources, in document order, for `mode`.
+    pub fn sources(&self, mode: Mode) -> Vec<TrackSource> {
+        (0..self.tracks.len())
+            .map(|i| self.source(i, mode))
+            .collect()
+    }
+
+    /// The source of the track named `name` (names are unique): a hash lookup.
     pub fn source_of(&self, name: &str, mode: Mode) -> Option<TrackSource> {
-        self.sources(mode).into_iter().find(|s| s.name == name)
+        self.by_name.get(name).map(|&i| self.source(i, mode))
     }
 
     /// A label for animation `a` and channel `c` in messages: `animation 0 ("Walk") channel 2`.
@@ -193,32 +269,105 @@ impl GltfClip {
         format!("animation {} channel {c}", anim_label(&self.animations[a]))
     }
 
+    /// The translation channel of track `i`'s node in its animation, if any (the first).
+    fn translation(&self, i: usize) -> Option<&TranslationChannel> {
+        let (a, _) = self.tracks[i];
+        self.translations[i].map(|j| &self.animations[a].translations()[j])
+    }
+
+    /// The frames a baked track (`STEP`, `CUBICSPLINE`) is written on at `fps`, inclusive:
+    /// those of its animation's span, or, when the span holds none, the frame nearest its first
+    /// key (a pose).
+    pub fn sampled_frames(&self, i: usize, fps: Fps) -> (i64, i64) {
+        let (first, last) = self.frames(self.tracks[i].0, fps);
+        let t0 = self.channel(i).times()[0];
+        if first <= last {
+            (first, last)
+        } else if fps.in_range(t0) {
+            let k = fps.nearest_frame(t0);
+            (k, k)
+        } else {
+            (1, 0)
+        }
+    }
+
+    /// Track `i`'s curve as its sampler defines it, for any time: a `STEP` frame holds the last
+    /// key at or before it on the snapped key times, a `CUBICSPLINE` frame is Appendix C on the
+    /// stored times; the translation channel likewise.
+    pub fn sampler(&self, i: usize, fps: Fps) -> Sampler {
+        let ch = self.channel(i);
+        let mut rotation = ch.clone();
+        if ch.interpolation() == Interpolation::Step {
+            rotation.times = snapped_times(ch.times_f32(), fps);
+        }
+        let translation = self.translation(i).map(|tr| {
+            let mut tr = tr.clone();
+            if tr.interpolation() == Interpolation::Step {
+                tr.times = snapped_times(tr.times_f32(), fps);
+            }
+            tr
+        });
+        Sampler {
+            rotation,
+            translation,
+        }
+    }
+
     /// The chosen animations' rotation channels as tracks at `fps` (see the module
     /// documentation). Findings (translations sampled, `STEP` keys written as keys, disagreeing
-    /// `CUBICSPLINE` tangents) are the document's warnings.
-    pub fn document(&self, fps: Fps, mode: Mode) -> Document {
+    /// `CUBICSPLINE` tangents) are the document's warnings. Errors: a `CUBICSPLINE` rotation
+    /// whose 4-vector comes near zero ([`Mode::Frames`]).
+    pub fn document(&self, fps: Fps, mode: Mode) -> InputResult<Document> {
         let src = self.asset.source();
-        let mut tracks = Vec::new();
+        let mut tracks = Vec::with_capacity(self.tracks.len());
         // The reader's findings (channels ignored, rotations normalised) come first.
         let mut warnings = self.asset.warnings().to_vec();
-        let sources = self.sources(mode);
-        let mut sources = sources.iter();
-        for (a, anim) in self.animations.iter().enumerate() {
+        for anim in &self.animations {
             warnings.extend(anim.warnings().iter().cloned());
-            for ch in anim.rotations() {
-                let s = sources.next().expect("a source per channel");
-                let label = format!("{src}: {}", self.channel_label(a, ch.index()));
-                let translation = anim.translations().iter().find(|t| t.node() == ch.node());
-                let mut track = if s.baked {
-                    baked(ch, translation, self.frames(a, fps), fps)
-                } else {
-                    keyed(ch, translation, fps, mode, &label, &mut warnings)
-                };
-                track.name = Some(s.name.clone());
-                tracks.push(track);
-            }
         }
-        Document {
+        for i in 0..self.tracks.len() {
+            let s = self.source(i, mode);
+            let anim = &self.animations[s.animation];
+            let ch = self.channel(i);
+            let label = format!("{src}: {}", self.channel_label(s.animation, ch.index()));
+            let origin = |keys: Vec<(usize, f32)>| KeyOrigin::Gltf {
+                animation: anim.index(),
+                channel: ch.index(),
+                keys,
+            };
+            let translation = self.translation(i);
+            let mut track = match (s.baked, ch.interpolation()) {
+                (true, Interpolation::Step) => {
+                    held(ch, translation, self.sampled_frames(i, fps), fps, origin)
+                }
+                (true, _) => {
+                    // Its translations are sampled at its keys (interp samples them at every
+                    // frame): no warning, as for a STEP channel.
+                    check_cubic_norm(ch).map_err(|k| {
+                        input_err!(
+                            "{src}: animations[{}].channels[{}]: CUBICSPLINE keys {k} and {}: \
+                             the rotation's 4-vector comes within 1e-9 of zero between them, \
+                             where it has no direction (no rotation)",
+                            anim.index(),
+                            ch.index(),
+                            k + 1
+                        )
+                    })?;
+                    if mode == Mode::Sampled {
+                        let mut t =
+                            keyed(ch, translation, fps, mode, &label, &mut Vec::new(), origin);
+                        t.velocities = cubic_velocities(ch, None);
+                        t
+                    } else {
+                        baked(ch, translation, self.sampled_frames(i, fps), fps, origin)
+                    }
+                }
+                _ => keyed(ch, translation, fps, mode, &label, &mut warnings, origin),
+            };
+            track.name = Some(s.name);
+            tracks.push(track);
+        }
+        Ok(Document {
             source: src.to_string(),
             fps: None,
             rotation: Some(Repr::Quat),
@@ -226,7 +375,7 @@ impl GltfClip {
             named_tracks: true,
             warnings,
             skeleton: None,
-        }
+        })
     }
 }
 
@@ -238,13 +387,13 @@ fn anim_label(a: &Animation) -> String {
     }
 }
 
-fn new_track(keys: Vec<Key>) -> DocTrack {
+fn new_track(keys: Vec<Key>, origin: KeyOrigin) -> DocTrack {
     DocTrack {
         name: None,
         keys,
         start_velocity: None,
         end_velocity: None,
-        origin: KeyOrigin::Frames,
+        origin,
         euler: None,
         velocities: Vec::new(),
         tcb: Vec::new(),
@@ -252,50 +401,211 @@ fn new_track(keys: Vec<Key>) -> DocTrack {
     }
 }
 
-/// The channel's curve at every frame of `(first, last)` (a single key at frame `first`'s
-/// nearest when the span holds no frame). `STEP` is evaluated on the snapped key times,
-/// `CUBICSPLINE` exactly as Appendix C on the stored times.
+/// The first frame `f` with `fps.time_of(f) >= t` (exactly, as [`RotationChannel::sample`]
+/// compares times).
+fn first_frame_at_or_after(fps: Fps, t: f64) -> i64 {
+    let mut f = fps.nearest_frame(t);
+    while fps.time_of(f) < t {
+        f += 1;
+    }
+    while fps.time_of(f - 1) >= t {
+        f -= 1;
+    }
+    f
+}
+
+/// A `STEP` channel over the frames `(first, last)` as keys that slerp reproduces at every one
+/// of them: each held value on the first and the last frame that holds it (one key when one
+/// frame does), a value no frame holds left out. The values are exactly the sampler's
+/// ([`RotationChannel::sample`] on the snapped times), so `2n` keys at most for `n` glTF keys,
+/// however many frames.
+fn held(
+    ch: &RotationChannel,
+    translation: Option<&TranslationChannel>,
+    (first, last): (i64, i64),
+    fps: Fps,
+    origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
+) -> DocTrack {
+    let mut snapped = ch.clone();
+    snapped.times = snapped_times(ch.times_f32(), fps);
+    let n = snapped.times.len();
+    let mut frames: Vec<(i64, usize)> = Vec::new();
+    if first > last {
+        // Times beyond the frame numbers of the rate: the first key, which reading refuses.
+        let keys = vec![Key {
+            when: KeyTime::Seconds(snapped.times[0]),
+            rot: snapped.sample(snapped.times[0]),
+        }];
+        return new_track(keys, origin(vec![(0, ch.times_f32()[0])]));
+    }
+    let mut from = first;
+    for k in 0..n {
+        let to = if k + 1 < n {
+            (first_frame_at_or_after(fps, snapped.times[k + 1]) - 1).min(last)
+        } else {
+            last
+        };
+        if to >= from {
+            frames.push((from, k));
+            if to > from {
+                frames.push((to, k));
+            }
+            from = to + 1;
+        }
+    }
+    let keys = frames
+        .iter()
+        .map(|&(f, _)| {
+            let t = fps.time_of(f);
+            Key {
+                when: KeyTime::Seconds(t),
+                rot: snapped.sample(t),
+            }
+        })
+        .collect();
+    let stored = ch.times_f32();
+    let mut track = new_track(
+        keys,
+        origin(frames.iter().map(|&(_, k)| (k, stored[k])).collect()),
+    );
+    if let Some(tr) = translation {
+        let mut snapped_tr = tr.clone();
+        if tr.interpolation() == Interpolation::Step {
+            snapped_tr.times = snapped_times(tr.times_f32(), fps);
+        }
+        track.translations = frames
+            .iter()
+            .map(|&(f, _)| Some(snapped_tr.sample(fps.time_of(f))))
+            .collect();
+    }
+    track
+}
+
+/// The channel's curve at every frame of `(first, last)` (none when `first > last`: times
+/// beyond the rate's frame numbers, which reading refuses), with its translation channel's.
+/// Each key is located at the sampler key at or before it.
 fn baked(
     ch: &RotationChannel,
     translation: Option<&TranslationChannel>,
     (first, last): (i64, i64),
     fps: Fps,
+    origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
 ) -> DocTrack {
-    let mut snapped = ch.clone();
-    snapped.times = snapped_times(ch.times_f32(), fps);
-    let curve = match ch.interpolation() {
-        Interpolation::Step => &snapped,
-        _ => ch,
-    };
-    let frames: Vec<i64> = if first <= last {
-        (first..=last).collect()
-    } else {
-        vec![fps.nearest_frame(ch.times()[0])]
-    };
+    let frames: Vec<i64> = (first..=last).collect();
     let keys = frames
         .iter()
         .map(|&k| {
             let t = fps.time_of(k);
             Key {
                 when: KeyTime::Seconds(t),
-                rot: curve.sample(t),
+                rot: ch.sample(t),
             }
         })
         .collect();
-    let mut track = new_track(keys);
+    let times = ch.times();
+    let stored = ch.times_f32();
+    let at = frames
+        .iter()
+        .map(|&k| {
+            let i = times
+                .partition_point(|&x| x <= fps.time_of(k))
+                .saturating_sub(1);
+            (i, stored[i])
+        })
+        .collect();
+    let mut track = new_track(keys, origin(at));
     if let Some(tr) = translation {
         let mut snapped_tr = tr.clone();
-        snapped_tr.times = snapped_times(tr.times_f32(), fps);
-        let tr = match tr.interpolation() {
-            Interpolation::Step => &snapped_tr,
-            _ => tr,
-        };
+        if tr.interpolation() == Interpolation::Step {
+            snapped_tr.times = snapped_times(tr.times_f32(), fps);
+        }
         track.translations = frames
             .iter()
-            .map(|&k| Some(tr.sample(fps.time_of(k))))
+            .map(|&k| Some(snapped_tr.sample(fps.time_of(k))))
             .collect();
     }
     track
+}
+
+/// Whether the `CUBICSPLINE` rotation's 4-vector stays away from zero: `Err(k)` names the first
+/// segment `k → k + 1` along which it comes within about 1e-9 (relative to its size) of the
+/// zero vector, where its normalisation has no direction. Each segment is a cubic Bézier in
+/// 4-space (control points `p0`, `p0 + m0/3`, `p1 − m1/3`, `p1`); it is clear of zero when one
+/// direction has a positive dot product with every control point (the convex hull leaves zero
+/// out), else it is split in halves, down to 2⁻³² of the segment.
+fn check_cubic_norm(ch: &RotationChannel) -> Result<(), usize> {
+    let Some(tangents) = ch.tangents() else {
+        return Ok(());
+    };
+    let (times, values) = (ch.times(), ch.values());
+    for k in 0..values.len().saturating_sub(1) {
+        let dt = times[k + 1] - times[k];
+        let p0 = DVec4::from(values[k]);
+        let p1 = DVec4::from(values[k + 1]);
+        let m0 = dt * DVec4::from(tangents[k].1);
+        let m1 = dt * DVec4::from(tangents[k + 1].0);
+        let ctrl = [p0, p0 + m0 / 3.0, p1 - m1 / 3.0, p1];
+        if !clear_of_zero(ctrl, 0) {
+            return Err(k);
+        }
+    }
+    Ok(())
+}
+
+/// Whether the cubic Bézier with control points `c` stays clear of the zero 4-vector (see
+/// [`check_cubic_norm`]).
+fn clear_of_zero(c: [DVec4; 4], depth: u32) -> bool {
+    if c.iter().any(|p| !p.is_finite()) {
+        return false;
+    }
+    let separated = |d: DVec4| d.length_squared() > 0.0 && c.iter().all(|p| p.dot(d) > 0.0);
+    if [c[0], c[3], c[0] + c[3], c[1], c[2]]
+        .into_iter()
+        .any(separated)
+    {
+        return true;
+    }
+    if depth >= 32 {
+        return false;
+    }
+    // de Casteljau at 1/2.
+    let mid = |a: DVec4, b: DVec4| 0.5 * (a + b);
+    let (a, b, c2) = (mid(c[0], c[1]), mid(c[1], c[2]), mid(c[2], c[3]));
+    let (d, e) = (mid(a, b), mid(b, c2));
+    let m = mid(d, e);
+    clear_of_zero([c[0], a, d, m], depth + 1) && clear_of_zero([m, e, c2, c[3]], depth + 1)
+}
+
+/// A `CUBICSPLINE` channel's per-key angular velocities (the out-tangent's, the in-tangent's
+/// at the last key); the first key where in and out disagree (a corner) goes to `corner`.
+fn cubic_velocities(
+    ch: &RotationChannel,
+    mut corner: Option<&mut Option<usize>>,
+) -> Vec<Option<DVec3>> {
+    let Some(tangents) = ch.tangents() else {
+        return Vec::new();
+    };
+    let n = ch.values().len();
+    (0..n)
+        .map(|k| {
+            let v = ch.values()[k];
+            let (a, b) = tangents[k];
+            let out = tangent_velocity(v, b);
+            let inw = tangent_velocity(v, a);
+            let w = if k + 1 == n { inw } else { out };
+            if let Some(c) = corner.as_deref_mut()
+                && k > 0
+                && k + 1 < n
+                && c.is_none()
+            {
+                let scale = out.length().max(inw.length()).max(1.0);
+                if (out - inw).length() > 1e-6 * scale {
+                    *c = Some(k);
+                }
+            }
+            Some(w)
+        })
+        .collect()
 }
 
 /// The channel's keys at their snapped times.
@@ -306,6 +616,7 @@ fn keyed(
     mode: Mode,
     label: &str,
     warnings: &mut Vec<String>,
+    origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
 ) -> DocTrack {
     let times = snapped_times(ch.times_f32(), fps);
     let keys = times
@@ -316,32 +627,17 @@ fn keyed(
             rot: q.normalize(),
         })
         .collect();
-    let mut track = new_track(keys);
+    let stored = ch.times_f32().iter().copied().enumerate().collect();
+    let mut track = new_track(keys, origin(stored));
     if mode == Mode::Keys && ch.interpolation() == Interpolation::Step {
         warnings.push(format!(
             "{label}: a STEP sampler's keys are written as keys; interpolating them does not \
              hold each key as the sampler does (interp bakes the step)"
         ));
     }
-    if let Some(tangents) = ch.tangents() {
-        let n = ch.values().len();
+    if mode == Mode::Keys && ch.tangents().is_some() {
         let mut corner = None;
-        track.velocities = (0..n)
-            .map(|k| {
-                let v = ch.values()[k];
-                let (a, b) = tangents[k];
-                let out = tangent_velocity(v, b);
-                let inw = tangent_velocity(v, a);
-                let w = if k + 1 == n { inw } else { out };
-                if k > 0 && k + 1 < n && corner.is_none() {
-                    let scale = out.length().max(inw.length()).max(1.0);
-                    if (out - inw).length() > 1e-6 * scale {
-                        corner = Some(k);
-                    }
-                }
-                Some(w)
-            })
-            .collect();
+        track.velocities = cubic_velocities(ch, Some(&mut corner));
         if let Some(k) = corner {
             warnings.push(format!(
                 "{label}: CUBICSPLINE key {k}: the in- and out-tangents give different angular \
@@ -367,8 +663,11 @@ fn keyed(
 }
 
 /// Each float32 time on its frame when within two ulps of it ([`snap_key_time`]), unless that
-/// would not keep the times strictly increasing (then the time as stored).
-fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
+/// would not keep the times strictly increasing: of keys near one frame, the first takes it
+/// and the later ones keep their stored times, and when a later one is stored before the
+/// frame, the earlier ones keep theirs too (so keys 1 ulp apart just below a frame are both
+/// kept as stored, in order).
+pub fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
     let mut out: Vec<f64> = Vec::with_capacity(times.len());
     for &t in times {
         let s = snap_key_time(t, fps);
@@ -378,6 +677,16 @@ fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
             s
         };
         out.push(s);
+        // Undo earlier snaps that the stored time comes before (stored times increase).
+        let mut k = out.len() - 1;
+        while k > 0 && out[k - 1] >= out[k] {
+            let stored = f64::from(times[k - 1]);
+            if out[k - 1] == stored {
+                break; // cannot happen for strictly increasing stored times
+            }
+            out[k - 1] = stored;
+            k -= 1;
+        }
     }
     out
 }
@@ -422,7 +731,7 @@ mod tests {
     fn names_for_one_and_several_animations() {
         let fps = Fps::new(30, 1).unwrap();
         let one = clip("minimal_linear.gltf", None).unwrap();
-        let d = one.document(fps, Mode::Frames);
+        let d = one.document(fps, Mode::Frames).unwrap();
         assert_eq!(d.tracks[0].name.as_deref(), Some("node0"));
         assert_eq!(d.tracks[0].translations.len(), 2);
         let all = clip("samplers.glb", None).unwrap();
