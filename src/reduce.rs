@@ -1013,18 +1013,24 @@ pub fn optimal_window(greedy: &[usize]) -> usize {
 }
 
 /// Each frame's preferred estimate for the optimal method: the one from which a segment starting
-/// at the frame reaches farthest, the next key carrying its centred estimate, searched as
+/// at the frame reaches farthest (up to `window` frames), the next key carrying its centred
+/// estimate, searched as
 /// [`greedy_step`] searches (the centred estimate first; another only when it meets the
 /// tolerances one frame past the farthest so far). The last frame keeps its centred estimate.
-fn preferred_estimates(frames: &Frames, opts: &ReduceOptions) -> InputResult<()> {
+fn preferred_estimates(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputResult<()> {
     let n = frames.quats.len();
     for b in 0..n - 1 {
+        // The shortest path takes no segment longer than the window: reaching past it is
+        // reaching it (on held motion every estimate does, and the search ends there).
+        let end = (b + window).min(n - 1);
+        let reach =
+            |from: usize| farthest_by(end + 1, from, |x| frames.feasible_with(b, x, 0, opts));
         frames.choose(b, 0);
-        let mut best = (farthest(frames, b, b + 1, 0, opts)?, 0);
+        let mut best = (reach(b + 1)?, 0);
         for c in 1..frames.choices {
             frames.choose(b, c);
-            if best.0 < n - 1 && frames.feasible_with(b, best.0 + 1, 0, opts)? {
-                best = (farthest(frames, b, best.0 + 1, 0, opts)?, c);
+            if best.0 < end && frames.feasible_with(b, best.0 + 1, 0, opts)? {
+                best = (reach(best.0 + 1)?, c);
             }
         }
         frames.choose(b, best.1);
@@ -1038,7 +1044,7 @@ fn preferred_estimates(frames: &Frames, opts: &ReduceOptions) -> InputResult<()>
 /// tolerances, for segments of at most `window` frames.
 fn optimal_keys(frames: &Frames, window: usize, opts: &ReduceOptions) -> InputResult<Vec<usize>> {
     if frames.choices > 1 {
-        preferred_estimates(frames, opts)?;
+        preferred_estimates(frames, window, opts)?;
     }
     let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
     let mut speeds = SlerpSpeeds::new(0);
