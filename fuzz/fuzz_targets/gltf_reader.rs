@@ -42,7 +42,9 @@ fuzz_target!(|data: &[u8]| {
     };
     let fps = [Fps::DEFAULT, Fps::new(24, 1).unwrap(), Fps::new(1000, 1).unwrap()]
         [o[0] as usize % 3];
-    let mode = if o[0] & 4 == 0 { Mode::Frames } else { Mode::Keys };
-    let doc = clip.document(fps, mode);
+    let mode = [Mode::Frames, Mode::Keys, Mode::Sampled][(o[0] as usize / 4) % 3];
+    let Ok(doc) = clip.document(fps, mode) else {
+        return;
+    };
     common::bake_document(&doc, fps, Scheme::Slerp, 20_000.0);
 });

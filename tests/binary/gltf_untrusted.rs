@@ -307,41 +307,29 @@ fn a_channel_on_a_node_that_does_not_exist_is_an_error_not_a_panic() {
 }
 
 #[test]
-fn sparse_outputs_of_2_pow_62_or_1e11_elements_are_refused_unallocated() {
+fn sparse_accessors_of_2_pow_62_or_1e11_elements_are_refused_unallocated() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // A sparse output of 2^62 or 10^11 elements (no buffer view: zeros plus one value).
-    for count in [1u64 << 62, 100_000_000_000] {
-        refused(
-            &edited(d, &format!("sparse{count}.gltf"), |j| {
-                j["accessors"][1] = json!({
-                    "componentType": 5126, "count": count, "type": "VEC4",
-                    "sparse": {"count": 1,
-                               "indices": {"bufferView": 0, "componentType": 5125},
-                               "values": {"bufferView": 1}}
-                })
-            }),
-            &format!("accessors[1].count: {count} elements, expected 2 for 2 keys"),
-        );
-    }
-}
-
-#[test]
-fn sparse_inputs_of_2_pow_62_or_1e11_times_are_refused_unallocated() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    for count in [1u64 << 62, 100_000_000_000] {
-        refused(
-            &edited(d, &format!("input{count}.gltf"), |j| {
-                j["accessors"][0] = json!({
-                    "componentType": 5126, "count": count, "type": "SCALAR",
-                    "sparse": {"count": 1,
-                               "indices": {"bufferView": 0, "componentType": 5125},
-                               "values": {"bufferView": 0}}
-                })
-            }),
-            &format!("accessors[0].count: {count} times with no bufferView"),
-        );
+    // A sparse output (accessor 1) or input (accessor 0) of 2^62 or 10^11 elements with no
+    // buffer view: zeros plus one value.
+    let cases = [
+        (1, "VEC4", 1, "elements, expected 2 for 2 keys"),
+        (0, "SCALAR", 0, "times with no bufferView"),
+    ];
+    for (accessor, kind, values, expected) in cases {
+        for count in [1u64 << 62, 100_000_000_000] {
+            refused(
+                &edited(d, &format!("sparse{accessor}_{count}.gltf"), |j| {
+                    j["accessors"][accessor] = json!({
+                        "componentType": 5126, "count": count, "type": kind,
+                        "sparse": {"count": 1,
+                                   "indices": {"bufferView": 0, "componentType": 5125},
+                                   "values": {"bufferView": values}}
+                    })
+                }),
+                &format!("accessors[{accessor}].count: {count} {expected}"),
+            );
+        }
     }
 }
 

@@ -395,7 +395,18 @@ fn parse_head(text: &str, source: &str) -> InputResult<Head> {
     };
     let fps =
         rate_from_frame_time(value.s).map_err(|e| e.at(format!("{source}:{}", value.line)))?;
-    let frame_time: f64 = value.s.parse().expect("checked by rate_from_frame_time");
+    // The text the rate was read from: trimmed as `rate_from_frame_time` trims it (a vertical
+    // tab is Unicode white space but part of a token here; found by the bvh_reader fuzz
+    // target, it panicked). Never a panic.
+    let frame_time: f64 = value.s.trim().parse().map_err(|_| {
+        p.err(
+            Some(value),
+            format!(
+                "expected a frame time in seconds, found \"{}\"",
+                shorten(value.s)
+            ),
+        )
+    })?;
     let rest = p.toks.rest_of_line();
     if !rest.is_empty() {
         return Err(p.err(
@@ -1252,5 +1263,15 @@ Frame Time: 0.0333333
         let (clip, warnings) = parse_ok(&text);
         assert_eq!(clip.frame_count(), 3);
         assert_eq!(warnings.len(), 1);
+    }
+
+    /// Found by the `bvh_reader` fuzz target: a frame time with a vertical tab after it (part of
+    /// the token, trimmed by the rate's reader) panicked on a second parse.
+    #[test]
+    fn a_frame_time_followed_by_a_vertical_tab_is_read() {
+        let text = SMALL.replacen("Frame Time: 0.0333333", "Frame Time: 0.0333333\u{b}", 1);
+        assert!(text.contains('\u{b}'));
+        let (clip, _) = parse_ok(&text);
+        assert_eq!(clip.frame_time(), 0.0333333);
     }
 }
