@@ -410,3 +410,47 @@ fn plot_of_a_one_key_track_finishes() {
     }
     ok(args!("analyze", &src));
 }
+
+/// Found by the `gltf_reader` fuzz target: a 4 kB asset whose CUBICSPLINE key times run far
+/// out was baked at every frame for `analyze`, `plot` and `reduce` (47 s and 10 GB); such bakes
+/// are bounded in frames and refused at once.
+#[test]
+fn a_cubicspline_over_millions_of_frames_is_refused_before_baking() {
+    let dir = tempfile::tempdir().unwrap();
+    let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+    let cubic = Chan {
+        node: 0,
+        interpolation: "CUBICSPLINE",
+        // 200 000 s at 30 fps: 6 000 001 frames.
+        times: vec![0.0, 200_000.0],
+        values: vec![
+            zero,
+            DQuat::IDENTITY,
+            zero,
+            zero,
+            DQuat::from_rotation_z(1.0),
+            zero,
+        ],
+    };
+    let src = write(dir.path(), "far.gltf", &asset(&["n"], &[cubic]));
+    let runs: [&[&std::ffi::OsStr]; 2] = [
+        args!("analyze", &src),
+        args!("reduce", &src, "--tolerance", "1"),
+    ];
+    for a in runs {
+        let cmd = a[0].to_string_lossy();
+        let start = Instant::now();
+        let err = refused(a);
+        assert!(
+            start.elapsed() < Duration::from_secs(10),
+            "{cmd}: {:?}",
+            start.elapsed()
+        );
+        assert!(
+            err.contains(
+                "far.gltf: animations[0].channels[0]: CUBICSPLINE channels baked at 30 fps"
+            ) && err.contains("this one spans 6000001"),
+            "{cmd}: {err}"
+        );
+    }
+}

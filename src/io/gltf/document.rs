@@ -75,6 +75,12 @@ pub struct TrackSource {
     pub baked: bool,
 }
 
+/// The most frames [`GltfClip::document`] bakes for `CUBICSPLINE` channels in
+/// [`Mode::Frames`] (`analyze`, `plot`, `reduce`), over all of them: about 600 MB of keys. A
+/// 4 kB asset whose key times run to 10⁵ s took 47 s and 10 GB at 1000 fps (found by the
+/// `gltf_reader` fuzz target).
+pub const MAX_BAKED_FRAMES: u64 = 4_000_000;
+
 /// An asset with its chosen animations, read and checked.
 #[derive(Debug)]
 pub struct GltfClip {
@@ -320,6 +326,7 @@ impl GltfClip {
     pub fn document(&self, fps: Fps, mode: Mode) -> InputResult<Document> {
         let src = self.asset.source();
         let mut tracks = Vec::with_capacity(self.tracks.len());
+        let mut baked_frames = 0u64;
         // The reader's findings (channels ignored, rotations normalised) come first.
         let mut warnings = self.asset.warnings().to_vec();
         for anim in &self.animations {
@@ -359,7 +366,21 @@ impl GltfClip {
                         t.velocities = cubic_velocities(ch, None);
                         t
                     } else {
-                        baked(ch, translation, self.sampled_frames(i, fps), fps, origin)
+                        let (first, last) = self.sampled_frames(i, fps);
+                        let count = u64::try_from(last - first + 1).unwrap_or(0);
+                        baked_frames += count;
+                        if baked_frames > MAX_BAKED_FRAMES {
+                            return Err(input_err!(
+                                "{src}: animations[{}].channels[{}]: CUBICSPLINE channels \
+                                 baked at {fps} fps come to more than {MAX_BAKED_FRAMES} \
+                                 frames (this one spans {count}); analyze, plot and reduce \
+                                 evaluate them at every frame (interp streams them): choose \
+                                 a lower rate or fewer animations",
+                                anim.index(),
+                                ch.index(),
+                            ));
+                        }
+                        baked(ch, translation, (first, last), fps, origin)
                     }
                 }
                 _ => keyed(ch, translation, fps, mode, &label, &mut warnings, origin),
