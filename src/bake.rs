@@ -403,7 +403,7 @@ const SAMPLED_CHUNK: i64 = 4096;
 /// at those frames, taken as keys: every frame is its sample (after `--path`, so signs stay
 /// continuous), and the frames before and after hold the ends, at rest (see [`bake_over`]).
 ///
-/// The samples are never all in memory: the track is built in pieces of [`SAMPLED_CHUNK`]
+/// The samples are never all in memory: the track is built in pieces of 4096 (`SAMPLED_CHUNK`)
 /// keys, each with one more key on either side, so that every frame, its angular velocity and
 /// its position are those of the whole track's curve (the tangents of a key depend on its two
 /// neighbours only). Memory is bounded by the piece; time is linear in the frames.

@@ -9,11 +9,11 @@
 //! CUBICSPLINE).
 //!
 //! The asset is untrusted. The JSON is parsed once with every key checked unique, channels
-//! this module does not process are set aside ([`json`]); the `gltf` crate parses and
+//! this module does not process are set aside (`json.rs`); the `gltf` crate parses and
 //! validates the rest (every index and enum it checks), and what it leaves unchecked is checked
 //! here (channel targets); buffer URIs are resolved inside the asset's folder only, and
 //! accessors decoded with every byte range checked and every allocation bounded by the bytes
-//! that back it ([`accessor`]), so that a damaged or hostile file is an [`InputError`] naming
+//! that back it (`accessor.rs`), so that a damaged or hostile file is an [`InputError`] naming
 //! the file and the JSON path (`animations[0].channels[2]`, `accessors[4].count`), never a
 //! panic, a read outside the folder or an unbounded allocation. Writing ([`Asset::write`]) works on the JSON as a `serde_json::Value`, so
 //! whatever the `gltf` crate does not model (unknown extensions, `extras`) survives untouched.
