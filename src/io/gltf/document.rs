@@ -34,7 +34,9 @@
 //! - Keys are located in messages by what the file has: `animations[0].channels[2] key 3
 //!   (0.5 s)` ([`KeyOrigin::Gltf`]).
 
-use super::{Animation, Asset, Interpolation, RotationChannel, TranslationChannel, snap_key_time};
+use super::{
+    Animation, Asset, Channel, Interpolation, RotationChannel, TranslationChannel, snap_key_time,
+};
 use crate::clock::Fps;
 use crate::error::{InputResult, input_err, shorten};
 use crate::io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
@@ -301,21 +303,9 @@ impl GltfClip {
     /// key at or before it on the snapped key times, a `CUBICSPLINE` frame is Appendix C on the
     /// stored times; the translation channel likewise.
     pub fn sampler(&self, i: usize, fps: Fps) -> Sampler {
-        let ch = self.channel(i);
-        let mut rotation = ch.clone();
-        if ch.interpolation() == Interpolation::Step {
-            rotation.times = snapped_times(ch.times_f32(), fps);
-        }
-        let translation = self.translation(i).map(|tr| {
-            let mut tr = tr.clone();
-            if tr.interpolation() == Interpolation::Step {
-                tr.times = snapped_times(tr.times_f32(), fps);
-            }
-            tr
-        });
         Sampler {
-            rotation,
-            translation,
+            rotation: as_sampled(self.channel(i), fps),
+            translation: self.translation(i).map(|tr| as_sampled(tr, fps)),
         }
     }
 
@@ -489,14 +479,10 @@ fn held(
         keys,
         origin(frames.iter().map(|&(_, k)| (k, stored[k])).collect()),
     );
-    if let Some(tr) = translation {
-        let mut snapped_tr = tr.clone();
-        if tr.interpolation() == Interpolation::Step {
-            snapped_tr.times = snapped_times(tr.times_f32(), fps);
-        }
+    if let Some(tr) = translation.map(|tr| as_sampled(tr, fps)) {
         track.translations = frames
             .iter()
-            .map(|&(f, _)| Some(snapped_tr.sample(fps.time_of(f))))
+            .map(|&(f, _)| Some(tr.sample(fps.time_of(f))))
             .collect();
     }
     track
@@ -535,17 +521,24 @@ fn baked(
         })
         .collect();
     let mut track = new_track(keys, origin(at));
-    if let Some(tr) = translation {
-        let mut snapped_tr = tr.clone();
-        if tr.interpolation() == Interpolation::Step {
-            snapped_tr.times = snapped_times(tr.times_f32(), fps);
-        }
+    if let Some(tr) = translation.map(|tr| as_sampled(tr, fps)) {
         track.translations = frames
             .iter()
-            .map(|&k| Some(snapped_tr.sample(fps.time_of(k))))
+            .map(|&k| Some(tr.sample(fps.time_of(k))))
             .collect();
     }
     track
+}
+
+/// The channel as its sampler is evaluated at `fps`'s frames: a `STEP` channel on its snapped
+/// key times (a key within two float32 ulps of a frame holds from that frame), any other on its
+/// stored times.
+fn as_sampled<T: Copy>(ch: &Channel<T>, fps: Fps) -> Channel<T> {
+    let mut out = ch.clone();
+    if ch.interpolation() == Interpolation::Step {
+        out.times = snapped_times(ch.times_f32(), fps);
+    }
+    out
 }
 
 /// Whether the `CUBICSPLINE` rotation's 4-vector stays away from zero: `Err(k)` names the first
