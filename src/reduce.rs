@@ -48,6 +48,15 @@ use crate::tangent::{EndConditions, Ends, PathMode, apply_path};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
 
+/// A minaccel segment test solves at most this many times the grid steps its frames span (one
+/// refinement of the frame grid), plus [`SEGMENT_GRID_SLACK`] points; a segment whose start curve
+/// needs more is not feasible ([`Frames::segment_curve`]).
+pub const SEGMENT_GRID_FACTOR: usize = 2;
+
+/// Grid points a minaccel segment test may use beyond [`SEGMENT_GRID_FACTOR`] times its steps
+/// (the extra steps beside keys with their own velocities, and phantom points).
+pub const SEGMENT_GRID_SLACK: usize = 8;
+
 /// Longest segment (frames) the optimal method considers.
 pub const OPTIMAL_WINDOW: usize = 600;
 
@@ -298,6 +307,22 @@ impl<'a> Frames<'a> {
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
     /// builds it.
     fn curve(&self, keys: &[usize], opts: &CurveOptions) -> InputResult<Curve> {
+        self.curve_within(keys, opts, crate::curve::minaccel::MAX_GRID_POINTS)?
+            .ok_or_else(|| {
+                crate::error::input_err!(
+                    "internal error: a minaccel grid within its own cap was refused"
+                )
+            })
+    }
+
+    /// [`Frames::curve`], unless minaccel's grid would need more than `grid_limit` points
+    /// ([`Curve::new_within`]).
+    fn curve_within(
+        &self,
+        keys: &[usize],
+        opts: &CurveOptions,
+        grid_limit: usize,
+    ) -> InputResult<Option<Curve>> {
         let key_times = self.key_times.unwrap_or(self.times);
         let t: Vec<f64> = keys.iter().map(|&i| key_times[i]).collect();
         let q: Vec<DQuat> = keys.iter().map(|&i| self.quats[i]).collect();
@@ -311,7 +336,7 @@ impl<'a> Frames<'a> {
         if let Some((seq, e)) = self.euler.filter(|_| opts.path == PathMode::Euler) {
             track = track.with_euler_angles(seq, keys.iter().map(|&i| e[i]).collect())?;
         }
-        Curve::new(&track, opts)
+        Curve::new_within(&track, opts, grid_limit)
     }
 
     /// The curve [`Frames::feasible`] tests segment `a..b` on, as the whole curve will have it:
@@ -320,7 +345,16 @@ impl<'a> Frames<'a> {
     /// (as far past `b` as `a` is before it); the start's end condition only on the first frame,
     /// the end's only on the last (rest as a zero velocity there), and a loop's seam as a chord
     /// end (verification, on the whole curve, settles the seam).
-    fn segment_curve(&self, a: usize, b: usize, opts: &ReduceOptions) -> InputResult<Curve> {
+    ///
+    /// `None` for a minaccel segment whose grid would need more than one refinement of its
+    /// frames ([`SEGMENT_GRID_FACTOR`]): its start curve turns more than a quarter turn between
+    /// two frames, and the segment is taken as not feasible, unsolved.
+    fn segment_curve(
+        &self,
+        a: usize,
+        b: usize,
+        opts: &ReduceOptions,
+    ) -> InputResult<Option<Curve>> {
         let n = self.quats.len();
         let neighbours = self.estimates.is_none();
         let mut keys = Vec::with_capacity(4);
@@ -340,7 +374,11 @@ impl<'a> Frames<'a> {
             },
             ..opts.curve
         };
-        self.curve(&keys, &curve)
+        let key_times = self.key_times.unwrap_or(self.times);
+        let span = key_times[keys[keys.len() - 1]] - key_times[keys[0]];
+        let steps = (span * opts.curve.grid_rate.as_f64()).ceil();
+        let limit = (SEGMENT_GRID_FACTOR as f64 * steps).min(usize::MAX as f64) as usize;
+        self.curve_within(&keys, &curve, limit.saturating_add(SEGMENT_GRID_SLACK))
     }
 
     /// The worst frame strictly between keys `a` and `b` of `curve` and whether every frame
@@ -418,7 +456,9 @@ impl<'a> Frames<'a> {
         if b == a + 1 {
             return Ok(true);
         }
-        let curve = self.segment_curve(a, b, opts)?;
+        let Some(curve) = self.segment_curve(a, b, opts)? else {
+            return Ok(false);
+        };
         // The segment's index in that curve: after the key before `a`, if it has one.
         let start = self.key_times.map_or(self.times[a], |t| t[a]);
         let piece = curve.key_times().partition_point(|&t| t < start);

@@ -604,8 +604,19 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
 /// cubic spline, at worst ½), so at 40 keys it is below f64 resolution; a test checks the middle
 /// copy against its neighbours.
 pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
+    solve_within(keys, fps, MAX_GRID_POINTS)?
+        .ok_or_else(|| input_err!("internal error: a minaccel grid within its own cap was refused"))
+}
+
+/// [`solve`], unless the grid (refined as [`Problem::new`] refines it) would have more than
+/// `limit` points: then `None`, found before any Newton iteration. A cyclic track's limit is
+/// per copy of its loop. `reduce` tests a segment within a limit ([`crate::reduce`]): a start
+/// curve that needs a finer grid than the frames turns more than a quarter turn between two of
+/// them, and its solve can take thousands of points and the whole iteration budget.
+pub fn solve_within(keys: &Knots, fps: f64, limit: usize) -> InputResult<Option<Solution>> {
     if !keys.cyclic {
-        return Ok(Problem::new(keys, fps)?.solve());
+        let problem = Problem::new(keys, fps)?;
+        return Ok((problem.grid_len <= limit).then(|| problem.solve()));
     }
     let n = keys.quats.len();
     let segs = n - 1;
@@ -654,17 +665,21 @@ pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
             all.extend_from_slice(own);
         }
     }
-    let whole = Problem::new(&unrolled, fps)?.solve();
+    let whole = Problem::new(&unrolled, fps)?;
+    if whole.grid_len > limit.saturating_mul(copies) {
+        return Ok(None);
+    }
+    let whole = whole.solve();
     let (t0, t1) = (keys.times[0], keys.times[n - 1]);
     let lo = whole.times.partition_point(|&t| t < t0);
     let hi = whole.times.partition_point(|&t| t <= t1);
     let mut report = whole.report;
     report.points = hi - lo;
-    Ok(Solution {
+    Ok(Some(Solution {
         times: whole.times[lo..hi].to_vec(),
         points: whole.points[lo..hi].to_vec(),
         report,
-    })
+    }))
 }
 
 #[cfg(test)]

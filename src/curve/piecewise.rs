@@ -185,6 +185,18 @@ impl Curve {
     /// its grid for minaccel (which fails only for a grid larger than
     /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
     pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
+        Curve::new_within(track, opts, minaccel::MAX_GRID_POINTS)?.ok_or_else(|| {
+            InputError::new("internal error: a minaccel grid within its own cap was refused")
+        })
+    }
+
+    /// [`Curve::new`], unless the scheme is minaccel and its grid would have more than
+    /// `grid_limit` points ([`minaccel::solve_within`]): then `None`, before solving.
+    pub(crate) fn new_within(
+        track: &Track,
+        opts: &CurveOptions,
+        grid_limit: usize,
+    ) -> InputResult<Option<Curve>> {
         let given = [
             ("start", opts.ends.start.or(track.start_velocity())),
             ("end", opts.ends.end.or(track.end_velocity())),
@@ -274,11 +286,14 @@ impl Curve {
                 None,
             ),
             Scheme::MinAccel => {
-                let sol =
-                    minaccel::solve(&keys, opts.grid_rate.as_f64()).map_err(|e| match &name {
+                let sol = minaccel::solve_within(&keys, opts.grid_rate.as_f64(), grid_limit)
+                    .map_err(|e| match &name {
                         Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
                         None => e,
                     })?;
+                let Some(sol) = sol else {
+                    return Ok(None);
+                };
                 let pieces = Pieces::Grid {
                     times: sol.times,
                     points: sol.points,
@@ -295,7 +310,7 @@ impl Curve {
                 None,
             ),
         };
-        Ok(Curve {
+        Ok(Some(Curve {
             positions: track.translations().map(|p| {
                 let linear = opts.scheme == Scheme::Slerp;
                 crate::position::Positions::new(track.times(), p, linear, opts.ends.ends)
@@ -307,7 +322,7 @@ impl Curve {
             scheme: opts.scheme,
             pieces,
             report,
-        })
+        }))
     }
 
     /// The track's name.
