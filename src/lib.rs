@@ -51,6 +51,7 @@ pub mod error;
 #[cfg(feature = "io")]
 pub mod io;
 pub mod metrics;
+mod parallel;
 pub mod position;
 pub mod reduce;
 pub mod rotation;

@@ -15,11 +15,13 @@
 //! `--angles` (degrees by default).
 
 use crate::clock::Fps;
-use crate::curve::Curve;
 use crate::curve::Scheme;
 use crate::curve::minaccel::{Report, energy};
 use crate::curve::piecewise::Side;
+use crate::curve::{Curve, CurveOptions};
+use crate::error::InputResult;
 use crate::rotation::AngleUnit;
+use crate::track::Track;
 use glam::DQuat;
 use std::fmt::Write as _;
 
@@ -122,6 +124,26 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
         },
         solver: curve.solver_report().copied(),
     }
+}
+
+/// The figures of every track's curve under each of `schemes` (track by track, each track's
+/// schemes in order), measured as [`measure`] measures them, the tracks shared out among the
+/// machine's cores ([`crate::parallel`]); a curve that cannot be built is its error in that
+/// place. The same whatever the number of threads.
+pub fn measure_each(
+    tracks: &[Track],
+    schemes: &[CurveOptions],
+    fps: Fps,
+) -> Vec<InputResult<Metrics>> {
+    crate::parallel::map(tracks, |track| {
+        schemes
+            .iter()
+            .map(|opts| Curve::new(track, opts).map(|c| measure(&c, fps)))
+            .collect::<Vec<_>>()
+    })
+    .into_iter()
+    .flatten()
+    .collect()
 }
 
 /// Column names of the csv and json output, in order.

@@ -738,50 +738,13 @@ impl<'a> TrackFrames<'a> {
 /// in the tracks' order and the same whatever the number of threads; on errors, the first
 /// track's error.
 pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputResult<Vec<Reduced>> {
-    use std::sync::Mutex;
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(MAX_THREADS)
-        .min(tracks.len());
-    if threads <= 1 {
-        return tracks.iter().map(|t| reduce_frames(t, opts)).collect();
-    }
-    let next = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<InputResult<Reduced>>>> =
-        Mutex::new((0..tracks.len()).map(|_| None).collect());
-    std::thread::scope(|s| {
-        for _ in 0..threads {
-            s.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(t) = tracks.get(i) else {
-                        break;
-                    };
-                    let r = reduce_frames(t, opts);
-                    if let Ok(mut v) = results.lock() {
-                        v[i] = Some(r);
-                    }
-                }
-            });
-        }
-    });
-    results
-        .into_inner()
-        .unwrap_or_default()
+    crate::parallel::map(tracks, |t| reduce_frames(t, opts))
         .into_iter()
-        .map(|r| {
-            r.unwrap_or_else(|| {
-                Err(crate::error::input_err!(
-                    "internal error: a reduce thread did not finish"
-                ))
-            })
-        })
         .collect()
 }
 
 /// Most threads [`reduce_each`] uses.
-pub const MAX_THREADS: usize = 8;
+pub use crate::parallel::MAX_THREADS;
 
 /// Reduces several tracks to one set of key times (`--shared-keys`): the methods run on all
 /// tracks at once, a segment meeting the tolerances when it meets them on every track (each

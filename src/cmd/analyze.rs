@@ -4,9 +4,9 @@ use super::settings::read_curves;
 use crate::cli::{AnalyzeArgs, ReportFormat};
 use inbetween::io::output::Output;
 use inbetween::io::write::num::{NumFormat, NumWriter};
-use inbetween::metrics::{FIELDS, Metrics, measure, text_table};
+use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
-use inbetween::{Curve, CurveOptions, Error, Scheme};
+use inbetween::{CurveOptions, Error, Scheme};
 use std::io::{Read, Write};
 
 /// Runs `analyze`: the figures of every track under every chosen scheme.
@@ -17,28 +17,36 @@ pub fn run(
 ) -> Result<(), Error> {
     let input = read_curves(&args.input, &args.curve, Scheme::default(), stdin, warn)?;
     let unit = args.input.angles;
-    let mut rows = Vec::new();
-    for track in &input.tracks {
-        for &s in &args.scheme.0 {
-            let opts = CurveOptions {
-                scheme: s.into(),
-                ..input.opts
-            };
-            let curve = Curve::new(track, &opts).map_err(|e| e.at(&input.doc.source))?;
-            let m = measure(&curve, input.fps);
-            m.check_finite(unit)?;
-            if let Some(r) = m.solver
-                && !r.converged
-            {
-                warn(&format!(
-                    "track {}: minaccel did not converge in {} iterations; its figures are of the \
-                     best curve found",
-                    track.name().unwrap_or("-"),
-                    r.iterations
-                ));
-            }
-            rows.push(m);
+    let schemes: Vec<CurveOptions> = args
+        .scheme
+        .0
+        .iter()
+        .map(|&s| CurveOptions {
+            scheme: s.into(),
+            ..input.opts
+        })
+        .collect();
+    let measured = measure_each(&input.tracks, &schemes, input.fps);
+    let mut rows = Vec::with_capacity(measured.len());
+    for (m, track) in measured.into_iter().zip(
+        input
+            .tracks
+            .iter()
+            .flat_map(|t| std::iter::repeat_n(t, schemes.len())),
+    ) {
+        let m = m.map_err(|e| e.at(&input.doc.source))?;
+        m.check_finite(unit)?;
+        if let Some(r) = m.solver
+            && !r.converged
+        {
+            warn(&format!(
+                "track {}: minaccel did not converge in {} iterations; its figures are of the \
+                 best curve found",
+                track.name().unwrap_or("-"),
+                r.iterations
+            ));
         }
+        rows.push(m);
     }
     let by_extension = || {
         let ext = args
