@@ -52,13 +52,18 @@ fn omega(seq: EulerSeq, e: [f64; 3], de: [f64; 3]) -> DVec3 {
 /// `(A, W)`: the angle swept (rad) and the net rotation vector of the linear Euler motion from
 /// `e0` to `e1` (radians) in `seq`.
 pub fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
+    sweep_with(seq, e0, e1, PANELS)
+}
+
+/// [`sweep`] by composite Simpson on `panels` panels (even).
+fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3) {
     let de = (e1 - e0).to_array();
     let (mut a, mut w) = (0.0, DVec3::ZERO);
-    for j in 0..=PANELS {
-        let sigma = j as f64 / PANELS as f64;
+    for j in 0..=panels {
+        let sigma = j as f64 / panels as f64;
         let weight = match j {
             0 => 1.0,
-            _ if j == PANELS => 1.0,
+            _ if j == panels => 1.0,
             _ if j % 2 == 1 => 4.0,
             _ => 2.0,
         };
@@ -66,8 +71,46 @@ pub fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
         a += weight * o.length();
         w += o * weight;
     }
-    let h = 1.0 / (3.0 * PANELS as f64);
+    let h = 1.0 / (3.0 * panels as f64);
     (a * h, w * h)
+}
+
+/// Panels of the coarse rule [`chord`] tries first, for a short motion ([`SHORT_SWEEP`]); a
+/// motion of at most [`SHORTER_SWEEP`] takes [`FEWEST_PANELS`].
+pub const COARSE_PANELS: usize = 16;
+
+/// Panels of the coarse rule for a motion whose angle changes sum to at most [`SHORTER_SWEEP`]
+/// (Simpson's error bound `h⁴·max|f⁗|/180` is then below 1e-7 of the angle swept).
+pub const FEWEST_PANELS: usize = 4;
+
+/// See [`FEWEST_PANELS`] (rad).
+pub const SHORTER_SWEEP: f64 = 0.25;
+
+/// A motion whose angle changes sum to at most this (rad) is short: `‖ω‖ ≤ Σ|Δe_i|`, so it
+/// sweeps at most a quarter turn, and its integrands are smooth enough over `σ ∈ [0, 1]` that
+/// [`COARSE_PANELS`] panels give them to about 1e-7 of their size.
+pub const SHORT_SWEEP: f64 = std::f64::consts::FRAC_PI_2;
+
+/// How clear the coarse rule's choice must be to stand (relative to the angle swept, and in
+/// turns from a tie between two lengths): far beyond its error, so that it chooses as the
+/// [`PANELS`] rule would.
+const COARSE_MARGIN: f64 = 1e-3;
+
+/// The chord along `n` (the shortest rotation's axis, angle `phi`) that the sweep `(swept,
+/// net)` picks, and whether the choice is clear by `margin` (see [`chord`]).
+fn pick(n: DVec3, phi: f64, (swept, net): (f64, DVec3), margin: f64) -> (DVec3, bool) {
+    let tie = |x: f64| (x - x.floor() - 0.5).abs() > margin;
+    let along = n.dot(net);
+    let clear_sign = along.abs() > margin * swept;
+    if along >= 0.0 {
+        let x = (swept - phi) / TAU;
+        let k = x.round().max(0.0);
+        (n * (phi + TAU * k), clear_sign && tie(x))
+    } else {
+        let x = (swept + phi) / TAU;
+        let k = x.round().max(1.0);
+        (-n * (TAU * k - phi), clear_sign && tie(x))
+    }
 }
 
 /// The chord (a rotation vector, radians) from key rotation `q0` to `q1`, given as the Euler
@@ -84,31 +127,41 @@ pub fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
 /// assert!((c - DVec3::new(0.0, 0.0, -450f64.to_radians())).length() < 1e-12);
 /// # Ok::<(), inbetween::InputError>(())
 /// ```
+///
+/// A short motion ([`SHORT_SWEEP`]) between keys that differ is first integrated on
+/// [`COARSE_PANELS`] panels ([`FEWEST_PANELS`] when shorter still); where that choice is clear it is the [`PANELS`] rule's choice, and
+/// the chord is the same to the bit (the chord depends on the integrals only through the choice).
 pub fn chord(seq: EulerSeq, e0: DVec3, e1: DVec3, q0: DQuat, q1: DQuat) -> DVec3 {
-    let (swept, net) = sweep(seq, e0, e1);
     let mut d = q1 * q0.conjugate();
     if d.w < 0.0 {
         d = -d;
     }
     let v = DVec3::new(d.x, d.y, d.z);
-    let (n, phi) = if v.length() < NO_AXIS {
+    if v.length() < NO_AXIS {
+        // The identity has no axis: the net rotation's direction, from the full rule.
+        let (swept, net) = sweep(seq, e0, e1);
         let w = net.length();
         if w == 0.0 {
             return DVec3::ZERO;
         }
-        (net / w, 0.0)
-    } else {
-        let l = log(d);
-        let half = l.length();
-        (l / half, (2.0 * half).min(PI))
-    };
-    if n.dot(net) >= 0.0 {
-        let k = ((swept - phi) / TAU).round().max(0.0);
-        n * (phi + TAU * k)
-    } else {
-        let k = ((swept + phi) / TAU).round().max(1.0);
-        -n * (TAU * k - phi)
+        return pick(net / w, 0.0, (swept, net), 0.0).0;
     }
+    let l = log(d);
+    let half = l.length();
+    let (n, phi) = (l / half, (2.0 * half).min(PI));
+    let change = (e1 - e0).abs().element_sum();
+    if change <= SHORT_SWEEP {
+        let panels = if change <= SHORTER_SWEEP {
+            FEWEST_PANELS
+        } else {
+            COARSE_PANELS
+        };
+        let (c, clear) = pick(n, phi, sweep_with(seq, e0, e1, panels), COARSE_MARGIN);
+        if clear {
+            return c;
+        }
+    }
+    pick(n, phi, sweep(seq, e0, e1), 0.0).0
 }
 
 #[cfg(test)]
@@ -172,5 +225,47 @@ mod tests {
         assert!(q.dot(q1).abs() > 1.0 - 1e-15);
         let (swept, _) = sweep(zxy, e0, e1);
         assert!((c.length() - swept).abs() <= PI);
+    }
+
+    /// The coarse rule tried first for short motions chooses as the full rule: the chord is the
+    /// same to the bit, for every sequence, on short motions, near gimbal lock, and on motions
+    /// too long for the coarse rule.
+    #[test]
+    fn the_coarse_rule_gives_the_full_rules_chord() {
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut coarse = 0;
+        for seq in seqs() {
+            for case in 0..400 {
+                let e0 = DVec3::new(next() * 3.0, next() * 1.5, next() * 3.0);
+                let scale = [1e-6, 0.01, 0.05, 0.3, 0.5, 2.0, 9.0][case % 7];
+                let mut e1 = e0 + DVec3::new(next(), next(), next()) * scale;
+                if case % 5 == 0 {
+                    // Near gimbal lock: the middle angle at a quarter turn.
+                    e1.y = std::f64::consts::FRAC_PI_2 - 1e-9;
+                }
+                let (q0, q1) = (seq.to_quat(e0.to_array()), seq.to_quat(e1.to_array()));
+                let got = chord(seq, e0, e1, q0, q1);
+                let mut d = q1 * q0.conjugate();
+                if d.w < 0.0 {
+                    d = -d;
+                }
+                let l = log(d);
+                let half = l.length();
+                if half == 0.0 {
+                    continue;
+                }
+                let (n, phi) = (l / half, (2.0 * half).min(PI));
+                let full = pick(n, phi, sweep(seq, e0, e1), 0.0).0;
+                assert_eq!(got, full, "{} {e0} {e1}", seq.as_str());
+                coarse += usize::from((e1 - e0).abs().element_sum() <= SHORT_SWEEP);
+            }
+        }
+        assert!(coarse > 24 * 100, "{coarse}");
     }
 }
