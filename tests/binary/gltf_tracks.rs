@@ -454,3 +454,34 @@ fn a_cubicspline_over_millions_of_frames_is_refused_before_baking() {
         );
     }
 }
+
+/// A glTF bake whose new samplers would not fit a `.glb` (two LINEAR channels over 10⁶ s at
+/// 200 fps: 2·10⁸ frames, 7.2 GB of float32) is refused before any frame is baked, whichever the
+/// container, and nothing is written; before, every frame's rotation was held until the end.
+#[test]
+fn a_gltf_bake_larger_than_a_glb_can_hold_is_refused_before_baking() {
+    let dir = tempfile::tempdir().unwrap();
+    let json = asset(
+        &["a", "b"],
+        &[
+            linear(0, &[0.0, 1e6], &[0.0, 1.0]),
+            linear(1, &[0.0, 1e6], &[0.0, 2.0]),
+        ],
+    );
+    let input = write(dir.path(), "long.gltf", &json);
+    for out in ["out.glb", "out.gltf"] {
+        let out = dir.path().join(out);
+        let started = Instant::now();
+        let err = refused(args!("interp", &input, "--fps", "200", "-o", &out));
+        assert!(
+            started.elapsed() < Duration::from_secs(20),
+            "{:?}",
+            started.elapsed()
+        );
+        assert!(
+            err.contains("over the 4294967295 bytes a .glb can hold"),
+            "{err}"
+        );
+        assert!(!out.exists());
+    }
+}

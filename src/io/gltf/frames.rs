@@ -64,12 +64,35 @@ impl<W: Write> GltfFrames<W> {
     }
 }
 
+/// The most bytes of new samplers a glTF bake may add (`u32::MAX`, a `.glb`'s limit).
+pub const MAX_NEW_BYTES: u64 = u32::MAX as u64;
+
 /// Checks, before anything is written, that the frames of every chosen animation at `fps`
 /// have distinct float32 times. An animation whose span holds no frame (a pose: one key at
 /// 1/24 s, written at 30 fps) is written as it was, its samplers untouched; the warnings say
 /// which.
+///
+/// It also refuses, before any frame is baked, a bake whose new samplers would take more than
+/// [`MAX_NEW_BYTES`] (4 GiB, what a `.glb` can hold; a `.gltf`'s data URI is held to it too):
+/// a float32 time per frame and a float32 quaternion per frame and rotation channel.
 pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
     let src = clip.asset().source();
+    let mut new_bytes = 0u128;
+    for (a, anim) in clip.animations().iter().enumerate() {
+        let (first, last) = clip.frames(a, fps);
+        if first <= last {
+            let frames = (last - first) as u128 + 1;
+            new_bytes += frames * (4 + 16 * anim.rotations().len() as u128);
+        }
+    }
+    if new_bytes > MAX_NEW_BYTES as u128 {
+        return Err(input_err!(
+            "{src}: its animations at {fps} fps would take {new_bytes} bytes of new samplers \
+             (a float32 time a frame, a float32 quaternion a frame and rotation channel), over \
+             the {MAX_NEW_BYTES} bytes a .glb can hold: use a lower --fps or choose the \
+             --animation"
+        ));
+    }
     let mut warnings = Vec::new();
     for (a, anim) in clip.animations().iter().enumerate() {
         let (first, last) = clip.frames(a, fps);
@@ -135,7 +158,7 @@ impl<W: Write> FrameSink for GltfFrames<W> {
                 times: (first..=last).map(|k| self.fps.time_of(k)).collect(),
                 channels: Vec::new(),
             };
-            for (ta, c, f, qs) in &self.tracks {
+            for (ta, c, f, qs) in &mut self.tracks {
                 if *ta != a {
                     continue;
                 }
@@ -145,7 +168,8 @@ impl<W: Write> FrameSink for GltfFrames<W> {
                         qs.len()
                     )));
                 }
-                r.channels.push((*c, qs.clone()));
+                // Moved, not copied: the frames are the bulk of the memory.
+                r.channels.push((*c, std::mem::take(qs)));
             }
             if !r.channels.is_empty() {
                 resampled.push(r);
