@@ -128,7 +128,7 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
 
 /// The figures of every track's curve under each of `schemes` (track by track, each track's
 /// schemes in order), measured as [`measure`] measures them, the tracks shared out among the
-/// machine's cores ([`crate::parallel`]); a curve that cannot be built is its error in that
+/// machine's cores (at most [`crate::reduce::MAX_THREADS`] threads); a curve that cannot be built is its error in that
 /// place. The same whatever the number of threads.
 pub fn measure_each(
     tracks: &[Track],

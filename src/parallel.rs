@@ -2,7 +2,7 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-/// Most threads [`map`] starts.
+/// Most threads that independent work (tracks) is shared out among.
 pub const MAX_THREADS: usize = 8;
 
 /// `f` of every item, in the items' order: the items are taken in order as threads come free

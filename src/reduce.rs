@@ -50,7 +50,7 @@ use glam::{DQuat, DVec3};
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
 /// refinement of the frame grid), plus [`SEGMENT_GRID_SLACK`] points; a segment whose start curve
-/// needs more is not feasible ([`Frames::segment_curve`]).
+/// needs more is not feasible (docs/spec.md §4.7).
 pub const SEGMENT_GRID_FACTOR: usize = 2;
 
 /// Grid points a minaccel segment test may use beyond [`SEGMENT_GRID_FACTOR`] times its steps

@@ -84,10 +84,10 @@ fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3
 pub const PANELS_PER_QUARTER_RADIAN: usize = 4;
 
 /// How clear the coarse rule's sign must be: `|n·W|` above this fraction of the angle swept.
-const SIGN_MARGIN: f64 = 1e-3;
+pub const SIGN_MARGIN: f64 = 1e-3;
 
 /// How clear the coarse rule's length must be: the candidates' tie this many turns away.
-const TIE_MARGIN: f64 = 1e-2;
+pub const TIE_MARGIN: f64 = 1e-2;
 
 /// The chord along `n` (the shortest rotation's axis, angle `phi`) that the sweep `(swept,
 /// net)` picks, and whether the choice is clear by `margins` (sign, tie; see [`chord`]).
