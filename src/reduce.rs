@@ -307,12 +307,7 @@ impl<'a> Frames<'a> {
     /// The curve through the frames `keys` (with their velocities when asked), as `interp`
     /// builds it.
     fn curve(&self, keys: &[usize], opts: &CurveOptions) -> InputResult<Curve> {
-        self.curve_within(keys, opts, crate::curve::minaccel::MAX_GRID_POINTS)?
-            .ok_or_else(|| {
-                crate::error::input_err!(
-                    "internal error: a minaccel grid within its own cap was refused"
-                )
-            })
+        Curve::new(&self.track(keys, opts)?, opts)
     }
 
     /// [`Frames::curve`], unless minaccel's grid would need more than `grid_limit` points
@@ -323,6 +318,12 @@ impl<'a> Frames<'a> {
         opts: &CurveOptions,
         grid_limit: usize,
     ) -> InputResult<Option<Curve>> {
+        Curve::new_within(&self.track(keys, opts)?, opts, grid_limit)
+    }
+
+    /// The frames `keys` as a track's keys: their times (as written), rotations, and, as the
+    /// frames have them, velocities, translations and (for `--path euler`) Euler angles.
+    fn track(&self, keys: &[usize], opts: &CurveOptions) -> InputResult<Track> {
         let key_times = self.key_times.unwrap_or(self.times);
         let t: Vec<f64> = keys.iter().map(|&i| key_times[i]).collect();
         let q: Vec<DQuat> = keys.iter().map(|&i| self.quats[i]).collect();
@@ -336,7 +337,7 @@ impl<'a> Frames<'a> {
         if let Some((seq, e)) = self.euler.filter(|_| opts.path == PathMode::Euler) {
             track = track.with_euler_angles(seq, keys.iter().map(|&i| e[i]).collect())?;
         }
-        Curve::new_within(&track, opts, grid_limit)
+        Ok(track)
     }
 
     /// The curve [`Frames::feasible`] tests segment `a..b` on, as the whole curve will have it:

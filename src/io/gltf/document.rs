@@ -437,8 +437,7 @@ fn held(
     fps: Fps,
     origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
 ) -> DocTrack {
-    let mut snapped = ch.clone();
-    snapped.times = snapped_times(ch.times_f32(), fps);
+    let snapped = as_sampled(ch, fps);
     let n = snapped.times.len();
     let mut frames: Vec<(i64, usize)> = Vec::new();
     if first > last {
@@ -464,25 +463,36 @@ fn held(
             from = to + 1;
         }
     }
+    let stored = ch.times_f32();
+    let at = frames.iter().map(|&(_, k)| (k, stored[k])).collect();
+    let frames: Vec<i64> = frames.into_iter().map(|(f, _)| f).collect();
+    at_frames(&snapped, translation, &frames, fps, origin(at))
+}
+
+/// The track of `rot`'s values at the frames `frames` of `fps`, each key at its frame's time,
+/// with the translation channel's values there as its sampler gives them ([`as_sampled`]).
+fn at_frames(
+    rot: &RotationChannel,
+    translation: Option<&TranslationChannel>,
+    frames: &[i64],
+    fps: Fps,
+    origin: KeyOrigin,
+) -> DocTrack {
     let keys = frames
         .iter()
-        .map(|&(f, _)| {
+        .map(|&f| {
             let t = fps.time_of(f);
             Key {
                 when: KeyTime::Seconds(t),
-                rot: snapped.sample(t),
+                rot: rot.sample(t),
             }
         })
         .collect();
-    let stored = ch.times_f32();
-    let mut track = new_track(
-        keys,
-        origin(frames.iter().map(|&(_, k)| (k, stored[k])).collect()),
-    );
+    let mut track = new_track(keys, origin);
     if let Some(tr) = translation.map(|tr| as_sampled(tr, fps)) {
         track.translations = frames
             .iter()
-            .map(|&(f, _)| Some(tr.sample(fps.time_of(f))))
+            .map(|&f| Some(tr.sample(fps.time_of(f))))
             .collect();
     }
     track
@@ -499,16 +509,6 @@ fn baked(
     origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
 ) -> DocTrack {
     let frames: Vec<i64> = (first..=last).collect();
-    let keys = frames
-        .iter()
-        .map(|&k| {
-            let t = fps.time_of(k);
-            Key {
-                when: KeyTime::Seconds(t),
-                rot: ch.sample(t),
-            }
-        })
-        .collect();
     let times = ch.times();
     let stored = ch.times_f32();
     let at = frames
@@ -520,14 +520,7 @@ fn baked(
             (i, stored[i])
         })
         .collect();
-    let mut track = new_track(keys, origin(at));
-    if let Some(tr) = translation.map(|tr| as_sampled(tr, fps)) {
-        track.translations = frames
-            .iter()
-            .map(|&k| Some(tr.sample(fps.time_of(k))))
-            .collect();
-    }
-    track
+    at_frames(ch, translation, &frames, fps, origin(at))
 }
 
 /// The channel as its sampler is evaluated at `fps`'s frames: a `STEP` channel on its snapped
