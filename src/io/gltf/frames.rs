@@ -89,8 +89,8 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
         return Err(input_err!(
             "{src}: its animations at {fps} fps would take {new_bytes} bytes of new samplers \
              (a float32 time a frame, a float32 quaternion a frame and rotation channel), over \
-             the {MAX_NEW_BYTES} bytes a .glb can hold: use a lower --fps or choose the \
-             --animation"
+             the {MAX_NEW_BYTES} bytes a .glb can hold: use a lower frame rate or fewer \
+             animations"
         ));
     }
     let mut warnings = Vec::new();
