@@ -41,12 +41,14 @@
 //! until none misses. The result is therefore guaranteed, whatever the scheme, and checked
 //! before it is returned.
 
+use crate::curve::piecewise::{MAX_SPEED, segment_rotation};
 use crate::curve::{Curve, CurveOptions, Scheme};
 use crate::error::InputResult;
 use crate::rotation::quat::{log, rotation_angle_between};
-use crate::tangent::{EndConditions, Ends, PathMode, apply_path};
+use crate::tangent::{EndConditions, Ends, Knots, PathMode, apply_path};
 use crate::track::Track;
 use glam::{DQuat, DVec3};
+use std::cell::RefMut;
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
 /// refinement of the frame grid), plus [`SEGMENT_GRID_SLACK`] points; a segment whose start curve
@@ -229,6 +231,13 @@ struct Frames<'a> {
     /// The times the keys will be written at, per frame, when they differ from the frames'
     /// ([`TrackFrames::key_times`]).
     key_times: Option<&'a [f64]>,
+    /// Knots reused by [`Frames::probe`], where segment tests may be probed
+    /// ([`Frames::with_probe`]).
+    probe: Option<std::cell::RefCell<Knots>>,
+    /// Per frame, the last frame of the run of frames held exactly from it (the same rotation
+    /// to the bit, and position and Euler angles where they are tested), where there is a
+    /// probe ([`Frames::held`]).
+    held_until: Vec<usize>,
 }
 
 /// The spacing of evenly spaced frame times: every time within 1e-9 of a frame of the spacing
@@ -277,7 +286,123 @@ impl<'a> Frames<'a> {
             // Keys at other times than their frames' are evaluated directly at the frame times.
             spacing: even_spacing(times).filter(|_| track.key_times.is_none()),
             key_times: track.key_times,
+            probe: None,
+            held_until: Vec::new(),
         }
+        .with_probe(opts)
+    }
+
+    /// Whether segment `a..b` surely meets the tolerances because it holds one pose: its frames
+    /// are held exactly ([`Frames::held_until`]) and its keys' velocities are zero, so its curve
+    /// is that pose to round-off (a few ulps, against tolerances of at least [`HELD_TOLERANCE`]).
+    /// On held joints every segment test passes, each evaluating every frame; this decides them
+    /// without a curve.
+    fn held(&self, a: usize, b: usize, opts: &ReduceOptions) -> bool {
+        let n = self.quats.len();
+        let ends = opts.curve.ends;
+        let still = |v: Option<DVec3>| v == Some(DVec3::ZERO);
+        self.held_until.get(a).is_some_and(|&last| last >= b)
+            && still(ends.start.filter(|_| a == 0).or(self.velocity(a)))
+            && still(ends.end.filter(|_| b == n - 1).or(self.velocity(b)))
+    }
+
+    /// Segment tests are probed ([`Frames::probe`]) where the probe's knots are the
+    /// segment curve's and building that curve cannot fail: keys carry velocities, all within
+    /// the curve's speed limit (the ends' too), the scheme is a segment scheme, TCB is valid,
+    /// the keys sit at their frames' times, and the frames are a valid track, with their Euler
+    /// angles for `--path euler` (so every subset of them is).
+    fn with_probe(mut self, opts: &ReduceOptions) -> Frames<'a> {
+        let fine = |v: &DVec3| {
+            v.is_finite() && crate::rotation::magnitude::length(v.to_array()) <= MAX_SPEED
+        };
+        let c = &opts.curve;
+        let probes = self
+            .estimates
+            .as_ref()
+            .is_some_and(|e| e.iter().flatten().all(fine))
+            && [c.ends.start, c.ends.end].iter().flatten().all(fine)
+            && c.scheme != Scheme::MinAccel
+            && c.tcb.is_valid()
+            && self.key_times.is_none()
+            && self
+                .positions
+                .is_none_or(|p| p.iter().all(|x| x.is_finite()))
+            && Track::new(self.times.to_vec(), self.quats.to_vec()).is_ok_and(|t| {
+                match (c.path, self.euler) {
+                    (PathMode::Euler, Some((seq, e))) => {
+                        t.with_euler_angles(seq, e.to_vec()).is_ok()
+                    }
+                    (PathMode::Euler, None) => false,
+                    _ => true,
+                }
+            });
+        if !probes {
+            return self;
+        }
+        let (t, q) = (
+            [self.times[0], self.times[1]],
+            [self.quats[0], self.quats[1]],
+        );
+        let knots = Knots::pair(t, q, c.path, [DVec3::ZERO; 2], None);
+        self.probe = Some(std::cell::RefCell::new(knots));
+        let positions = self.positions.filter(|_| self.reduces_positions(opts));
+        let ample = |tol: f64, size: f64| tol >= HELD_TOLERANCE * size.max(1.0);
+        let tolerant = ample(self.threshold.angle, 1.0)
+            && positions.is_none_or(|p| {
+                let size = p.iter().map(|x| x.abs().max_element()).fold(0.0, f64::max);
+                opts.translation_tolerance
+                    .is_some_and(|tol| ample(tol, size))
+            });
+        if tolerant {
+            let euler = self.euler.filter(|_| c.path == PathMode::Euler);
+            let same = |i: usize, j: usize| {
+                let bits = |q: DQuat| q.to_array().map(f64::to_bits);
+                bits(self.quats[i]) == bits(self.quats[j])
+                    && positions.is_none_or(|p| p[i] == p[j])
+                    && euler.is_none_or(|(_, e)| e[i] == e[j])
+            };
+            let n = self.quats.len();
+            self.held_until = vec![n - 1; n];
+            for i in (0..n - 1).rev() {
+                if same(i, i + 1) {
+                    self.held_until[i] = self.held_until[i + 1];
+                } else {
+                    self.held_until[i] = i;
+                }
+            }
+        }
+        self
+    }
+
+    /// The knots of segment `a..b`'s curve as [`Frames::segment_curve`] would shape them, in
+    /// the reused probe knots, where there is a probe ([`Frames::with_probe`]): the two keys with
+    /// their velocities (the ends' velocities only at the first and last frame).
+    fn probe(&self, a: usize, b: usize, opts: &ReduceOptions) -> Option<RefMut<'_, Knots>> {
+        let (probe, va, vb) = (self.probe.as_ref()?, self.velocity(a)?, self.velocity(b)?);
+        let n = self.quats.len();
+        let ends = opts.curve.ends;
+        let start = ends.start.filter(|_| a == 0).unwrap_or(va);
+        let end = ends.end.filter(|_| b == n - 1).unwrap_or(vb);
+        let mut knots = probe.borrow_mut();
+        let (t, q) = (
+            [self.times[a], self.times[b]],
+            [self.quats[a], self.quats[b]],
+        );
+        let euler = self.euler.map(|(seq, e)| (seq, [e[a], e[b]]));
+        knots.set_pair(t, q, opts.curve.path, [start, end], euler);
+        Some(knots)
+    }
+
+    /// The curve of segment `a..b` on the probe's `knots` ([`Frames::probe`]): the curve
+    /// [`Frames::segment_curve`] builds, without its track.
+    fn probe_curve(&self, knots: &Knots, a: usize, b: usize, opts: &ReduceOptions) -> Curve {
+        let positions = self.positions.map(|p| {
+            let linear = opts.curve.scheme == Scheme::Slerp;
+            crate::position::Positions::new(&knots.times, &[p[a], p[b]], linear, Ends::Chord)
+        });
+        let euler = self.euler.filter(|_| opts.curve.path == PathMode::Euler);
+        let euler_start = euler.map(|(seq, e)| (seq, e[a].to_array()));
+        Curve::of_knots(knots.clone(), &opts.curve, positions, euler_start)
     }
 
     /// Whether the track's positions are reduced (it has them, and a tolerance for them).
@@ -454,18 +579,32 @@ impl<'a> Frames<'a> {
     /// with [`Frames::check`], to round-off: a frame within round-off of the tolerance may be
     /// judged differently, which verification settles.
     fn feasible(&self, a: usize, b: usize, opts: &ReduceOptions) -> InputResult<bool> {
-        if b == a + 1 {
+        if b == a + 1 || self.held(a, b, opts) {
             return Ok(true);
         }
-        let Some(curve) = self.segment_curve(a, b, opts)? else {
-            return Ok(false);
+        let hint = self.hint.get();
+        let curve = match self.probe(a, b, opts) {
+            // Most tests miss at the frame that missed last: that frame is evaluated on the
+            // probe's one segment (the curve's value to the last bit) before any curve is built.
+            Some(knots) => {
+                let c = &opts.curve;
+                let miss = |k: usize| {
+                    let q = segment_rotation(&knots, c.scheme, c.blend, self.times[k]);
+                    !self.threshold.within(opts, q, self.quats[k])
+                };
+                if hint > a && hint < b && miss(hint) {
+                    return Ok(false);
+                }
+                self.probe_curve(&knots, a, b, opts)
+            }
+            None => match self.segment_curve(a, b, opts)? {
+                Some(curve) => curve,
+                None => return Ok(false),
+            },
         };
         // The segment's index in that curve: after the key before `a`, if it has one.
         let start = self.key_times.map_or(self.times[a], |t| t[a]);
         let piece = curve.key_times().partition_point(|&t| t < start);
-        if near_antipode(&curve, piece).is_some() {
-            return Ok(false);
-        }
         let within = |k: usize, q: DQuat| {
             if !self.threshold.within(opts, q, self.quats[k]) {
                 return false;
@@ -478,32 +617,33 @@ impl<'a> Frames<'a> {
                 _ => true,
             }
         };
-        let hint = self.hint.get();
         if hint > a && hint < b && !within(hint, curve.rotation(self.times[hint])) {
             return Ok(false);
         }
-        if let Some(dt) = self.spacing {
-            let delta = self.times[b] - self.times[a];
-            let mut k = a + 1;
-            let all = curve.segment_points(piece, (dt / delta, dt / delta), b - a - 1, |q| {
-                let ok = k == hint || within(k, q);
-                k += 1;
-                ok
-            });
-            if let Some(all) = all {
-                if !all {
-                    self.hint.set(k - 1);
-                }
-                return Ok(all);
+        // The frames first: most segments tested miss a frame, and the antipode's search
+        // (hundreds of blend evaluations) is then not needed.
+        let missed = match self.spacing {
+            Some(dt) => {
+                let delta = self.times[b] - self.times[a];
+                let mut k = a + 1;
+                curve
+                    .segment_points(piece, (dt / delta, dt / delta), b - a - 1, |q| {
+                        let ok = k == hint || within(k, q);
+                        k += 1;
+                        ok
+                    })
+                    .map(|all| (!all).then(|| k - 1))
             }
+            None => None,
+        };
+        let missed = missed.unwrap_or_else(|| {
+            (a + 1..b).find(|&k| k != hint && !within(k, curve.rotation(self.times[k])))
+        });
+        if let Some(k) = missed {
+            self.hint.set(k);
+            return Ok(false);
         }
-        for k in a + 1..b {
-            if k != hint && !within(k, curve.rotation(self.times[k])) {
-                self.hint.set(k);
-                return Ok(false);
-            }
-        }
-        Ok(true)
+        Ok(near_antipode(&curve, piece).is_none())
     }
 
     /// [`Frames::feasible`] with frame `b` carrying estimate `c`.
@@ -531,6 +671,11 @@ impl<'a> Frames<'a> {
         }
     }
 }
+
+/// The smallest tolerance (rad, and relative to the largest coordinate for positions) at which
+/// held frames are taken as met without evaluating them ([`Frames::held`]): far above the
+/// round-off of a curve through keys that are one pose.
+const HELD_TOLERANCE: f64 = 1e-9;
 
 /// How near an antipode (`‖a + b‖` of a blend's two points, [`crate::curve::antipode_gap`])
 /// the blends of a segment with frames inside may come. Where they come nearer, the geodesic
@@ -1302,6 +1447,75 @@ mod tests {
             })
             .collect();
         (t, q)
+    }
+
+    /// The probe (one segment evaluated on reused knots, the curve then built from them) and
+    /// the held-pose shortcut decide every segment test as the segment's own curve does, on
+    /// motion with a held stretch, with positions, on each path and segment scheme.
+    #[test]
+    fn probed_and_held_segment_tests_decide_as_the_built_curve() {
+        let seq = crate::EulerSeq::parse("ZYX").unwrap();
+        let n = 90;
+        let t: Vec<f64> = (0..n).map(|i| i as f64 / 30.0).collect();
+        // Held from frame 30 to 60 (exactly: the same angles), moving elsewhere.
+        let e: Vec<DVec3> = t
+            .iter()
+            .map(|&t| {
+                let s = t.min(1.0) + (t - 2.0).max(0.0) * 0.5;
+                DVec3::new(2.1 * s, 0.5 * (3.0 * s).sin(), 0.3 * s * s)
+            })
+            .collect();
+        let q: Vec<DQuat> = e.iter().map(|e| seq.to_quat(e.to_array())).collect();
+        let p: Vec<DVec3> = e.iter().map(|e| *e * 10.0).collect();
+        let track = TrackFrames {
+            times: &t,
+            rotations: &q,
+            positions: Some(&p),
+            euler: Some((seq, &e)),
+            key_times: None,
+        };
+        let mut probed = 0;
+        for scheme in [
+            Scheme::Bezier,
+            Scheme::Hermite,
+            Scheme::Squad,
+            Scheme::Slerp,
+        ] {
+            for path in [PathMode::Shortest, PathMode::Euler] {
+                let opts = ReduceOptions {
+                    curve: CurveOptions {
+                        scheme,
+                        path,
+                        ..CurveOptions::default()
+                    },
+                    tolerance: 0.5f64.to_radians(),
+                    distance: None,
+                    translation_tolerance: Some(0.05),
+                    velocities: true,
+                    method: Method::Greedy,
+                };
+                let fast = Frames::new(&track, &opts);
+                let mut plain = Frames::new(&track, &opts);
+                assert!(fast.probe.is_some() && fast.held_until[30] == 60);
+                (plain.probe, plain.held_until) = (None, Vec::new());
+                for a in 0..n - 1 {
+                    for b in a + 1..(a + 40).min(n) {
+                        for c in [0, 1, 3] {
+                            for f in [&fast, &plain] {
+                                f.choose(b, c);
+                                f.choose(a, (a + c) % ESTIMATES);
+                            }
+                            let got = fast.feasible(a, b, &opts).unwrap();
+                            let want = plain.feasible(a, b, &opts).unwrap();
+                            assert_eq!(got, want, "{scheme} {path:?} {a}..{b} estimate {c}");
+                            probed += usize::from(got);
+                        }
+                    }
+                }
+            }
+        }
+        // Both outcomes occur.
+        assert!(probed > 1000 && probed < 8 * 3 * 89 * 39, "{probed}");
     }
 
     #[test]

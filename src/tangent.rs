@@ -190,14 +190,19 @@ fn kb_tangents(lm: DVec3, lp: DVec3, span: f64, tcb: Tcb) -> (DVec3, DVec3) {
 fn euler_chords(seq: crate::EulerSeq, angles: &[DVec3], quats: &mut [DQuat]) -> Vec<DVec3> {
     let mut chords = Vec::with_capacity(quats.len() - 1);
     for s in 0..quats.len() - 1 {
-        let c = crate::rotation::spin::chord(seq, angles[s], angles[s + 1], quats[s], quats[s + 1])
-            * 0.5;
-        if (crate::rotation::quat::exp(c) * quats[s]).dot(quats[s + 1]) < 0.0 {
-            quats[s + 1] = -quats[s + 1];
-        }
-        chords.push(c);
+        let (q, next) = (quats[s], &mut quats[s + 1]);
+        chords.push(euler_chord(seq, [angles[s], angles[s + 1]], q, next));
     }
     chords
+}
+
+/// One segment's chord of [`euler_chords`], from key `q` to key `next` (whose sign is set).
+fn euler_chord(seq: crate::EulerSeq, angles: [DVec3; 2], q: DQuat, next: &mut DQuat) -> DVec3 {
+    let c = crate::rotation::spin::chord(seq, angles[0], angles[1], q, *next) * 0.5;
+    if (crate::rotation::quat::exp(c) * q).dot(*next) < 0.0 {
+        *next = -*next;
+    }
+    c
 }
 
 /// `log(b a⁻¹)`: the half-angle step from `a` to `b` in the world frame.
@@ -323,6 +328,70 @@ impl Knots {
         }
     }
 
+    /// The knots [`Knots::shaped`] builds for two keys that carry their own velocities `omega`
+    /// (rad/s) and, for `--path euler`, their Euler angles, not looped, written into `self`
+    /// (whose buffers are kept): reduce tests millions of segments, and a track and a curve each
+    /// would be built for one frame's probe. The same values as `shaped`, to the last bit.
+    pub(crate) fn set_pair(
+        &mut self,
+        times: [f64; 2],
+        mut quats: [DQuat; 2],
+        path: PathMode,
+        omega: [DVec3; 2],
+        euler: Option<(crate::EulerSeq, [DVec3; 2])>,
+    ) {
+        apply_path(&mut quats, path);
+        let chord = match (path, euler) {
+            (PathMode::Euler, Some((seq, angles))) => {
+                let [q, next] = &mut quats;
+                Some(euler_chord(seq, angles, *q, next))
+            }
+            _ => None,
+        };
+        self.chords = chord.map(|c| {
+            let mut v = self.chords.take().unwrap_or_default();
+            v.clear();
+            v.push(c);
+            v
+        });
+        let w = omega.map(|o| o * 0.5);
+        fn set<T: Copy>(v: &mut Vec<T>, x: [T; 2]) {
+            v.clear();
+            v.extend_from_slice(&x);
+        }
+        set(&mut self.times, times);
+        set(&mut self.quats, quats);
+        set(&mut self.w, w);
+        set(&mut self.w_in, w);
+        set(&mut self.shaped, [false; 2]);
+        self.cyclic = false;
+        self.start_given = true;
+        self.end_given = true;
+    }
+
+    /// [`Knots::set_pair`] into new knots.
+    pub(crate) fn pair(
+        times: [f64; 2],
+        quats: [DQuat; 2],
+        path: PathMode,
+        omega: [DVec3; 2],
+        euler: Option<(crate::EulerSeq, [DVec3; 2])>,
+    ) -> Knots {
+        let mut k = Knots {
+            times: Vec::new(),
+            quats: Vec::new(),
+            w: Vec::new(),
+            w_in: Vec::new(),
+            shaped: Vec::new(),
+            cyclic: false,
+            start_given: true,
+            end_given: true,
+            chords: None,
+        };
+        k.set_pair(times, quats, path, omega, euler);
+        k
+    }
+
     /// Whether the chords are `--path euler`'s (of any length) rather than the logs.
     pub fn spins(&self) -> bool {
         self.chords.is_some()
@@ -405,6 +474,55 @@ impl Knots {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_pair_of_keys_with_velocities_is_shaped_as_a_track_of_them() {
+        let q = [DQuat::from_rotation_z(0.3), -DQuat::from_rotation_x(2.9)];
+        let omega = [DVec3::new(0.1, -2.0, 7.5), DVec3::new(-3.0, 0.25, 1e-3)];
+        let times = [0.125, 0.9];
+        let t = Track::new(times.to_vec(), q.to_vec())
+            .and_then(|t| t.with_key_velocities(omega.map(Some).to_vec()))
+            .expect("a valid track");
+        let seq = crate::EulerSeq::parse("ZXY").expect("a sequence");
+        let angles = [DVec3::new(0.3, -1.0, 2.0), DVec3::new(4.0, 0.5, -2.5)];
+        let spun = Track::new(
+            times.to_vec(),
+            angles.map(|e| seq.to_quat(e.to_array())).to_vec(),
+        )
+        .and_then(|t| t.with_key_velocities(omega.map(Some).to_vec()))
+        .and_then(|t| t.with_euler_angles(seq, angles.to_vec()))
+        .expect("a valid track");
+        let spun_q = [spun.rotations()[0], spun.rotations()[1]];
+        let none = [DVec3::ZERO; 2];
+        let mut scratch = Knots::pair(
+            [0.0, 1.0],
+            [DQuat::IDENTITY; 2],
+            PathMode::AsGiven,
+            none,
+            None,
+        );
+        for path in [PathMode::Shortest, PathMode::AsGiven, PathMode::Euler] {
+            for ends in [Ends::Chord, Ends::Rest] {
+                let ends = EndConditions {
+                    ends,
+                    ..Default::default()
+                };
+                let tcb = Tcb {
+                    tension: 0.5,
+                    ..Tcb::ZERO
+                };
+                let want = Knots::shaped(&t, path, ends, tcb);
+                scratch.set_pair(times, q, path, omega, None);
+                assert_eq!(scratch, want, "{path:?} {ends:?}");
+                assert_eq!(Knots::pair(times, q, path, omega, None), want);
+                // With Euler angles: their chords under `euler`, none otherwise.
+                let want = Knots::shaped(&spun, path, ends, tcb);
+                scratch.set_pair(times, spun_q, path, omega, Some((seq, angles)));
+                assert_eq!(scratch, want, "{path:?} {ends:?} with Euler angles");
+                assert_eq!(want.spins(), path == PathMode::Euler);
+            }
+        }
+    }
 
     /// A steady spin about z in 100° steps with tension −1 (weights a = b = 1): the composed
     /// terms exp(2L⁺)·exp(2L⁻) turn 400° in all, past the alias bound though ‖L⁻‖ + ‖L⁺‖ (100°

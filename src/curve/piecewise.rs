@@ -180,6 +180,58 @@ pub(crate) fn chord_omega(a: DQuat, b: DQuat, h: f64) -> DVec3 {
     log(b * a.conjugate()) * (2.0 / h)
 }
 
+/// `t` clamped to the breaks' span, and within [`TIME_TOL`] of a break that break (the nearer).
+fn snap(b: &[f64], t: f64) -> f64 {
+    let t = t.clamp(b[0], b[b.len() - 1]);
+    let i = b.partition_point(|&x| x < t);
+    let near = |j: usize| b.get(j).filter(|&&x| (x - t).abs() <= TIME_TOL);
+    match (i.checked_sub(1).and_then(near), near(i)) {
+        (Some(&a), Some(&c)) => {
+            if t - a < c - t {
+                a
+            } else {
+                c
+            }
+        }
+        (Some(&x), None) | (None, Some(&x)) => x,
+        (None, None) => t,
+    }
+}
+
+/// The piece of the breaks `b` (two or more) containing `t` on `side`, and `t`'s parameter `u`
+/// in it.
+fn piece(b: &[f64], t: f64, side: Side) -> (usize, f64) {
+    let n = b.len();
+    let i = match side {
+        Side::Right => b.partition_point(|&x| x <= t).saturating_sub(1),
+        Side::Left => b.partition_point(|&x| x < t).saturating_sub(1),
+    }
+    .min(n - 2);
+    (i, (t - b[i]) / (b[i + 1] - b[i]))
+}
+
+/// The rotation at `t` of the curve of `keys` (two or more) under a segment scheme (minaccel
+/// reads as bezier, as [`Segs::new`] builds it): [`Curve::rotation`]'s value, to the last bit,
+/// building only the one segment `t` falls in (reduce's probe of a segment, which would
+/// otherwise build a whole curve to evaluate one frame).
+pub(crate) fn segment_rotation(keys: &Knots, scheme: Scheme, blend: Blend, t: f64) -> DQuat {
+    fn at<S: Segment>(keys: &Knots, blend: Blend, (i, u): (usize, f64)) -> DQuat {
+        S::new(keys, i, blend).eval(u)
+    }
+    let b = &keys.times;
+    let t = snap(b, t);
+    if let Ok(g) = b.binary_search_by(|x| x.total_cmp(&t)) {
+        return keys.quats[g];
+    }
+    let p = piece(b, t, Side::Right);
+    match scheme {
+        Scheme::Slerp => at::<Slerp>(keys, blend, p),
+        Scheme::Hermite => at::<Hermite>(keys, blend, p),
+        Scheme::Squad => at::<Squad>(keys, blend, p),
+        Scheme::Bezier | Scheme::MinAccel => at::<Bezier>(keys, blend, p),
+    }
+}
+
 impl Curve {
     /// Builds the curve of `track` under `opts`: tangents for the segment schemes, the solve on
     /// its grid for minaccel (which fails only for a grid larger than
@@ -325,6 +377,30 @@ impl Curve {
         }))
     }
 
+    /// The curve [`Curve::new`] builds under a segment scheme from the track that `keys` were
+    /// shaped from, given those knots (reduce's probe knots, [`Knots::set_pair`]) and the
+    /// track's positions and first Euler angles: no track, and none of its checks (the caller
+    /// has made them).
+    pub(crate) fn of_knots(
+        keys: Knots,
+        opts: &CurveOptions,
+        positions: Option<crate::position::Positions>,
+        euler_start: Option<(crate::EulerSeq, [f64; 3])>,
+    ) -> Curve {
+        Curve {
+            name: None,
+            positions,
+            euler_start,
+            scheme: opts.scheme,
+            pieces: Pieces::Segments {
+                keys,
+                blend: opts.blend,
+                segs: OnceLock::new(),
+            },
+            report: None,
+        }
+    }
+
     /// The track's name.
     pub fn name(&self) -> Option<&str> {
         self.name.as_deref()
@@ -401,21 +477,7 @@ impl Curve {
 
     /// `t` clamped to the span and, within 1e-9 s of a break, moved onto it.
     fn snap(&self, t: f64) -> f64 {
-        let b = self.breaks();
-        let t = t.clamp(b[0], b[b.len() - 1]);
-        let i = b.partition_point(|&x| x < t);
-        let near = |j: usize| b.get(j).filter(|&&x| (x - t).abs() <= TIME_TOL);
-        match (i.checked_sub(1).and_then(near), near(i)) {
-            (Some(&a), Some(&c)) => {
-                if t - a < c - t {
-                    a
-                } else {
-                    c
-                }
-            }
-            (Some(&x), None) | (None, Some(&x)) => x,
-            (None, None) => t,
-        }
+        snap(self.breaks(), t)
     }
 
     /// The rotation at time `t` (s), a unit quaternion. Before the first key it is the first
@@ -459,14 +521,7 @@ impl Curve {
 
     /// The piece containing `t` on `side`, and `t`'s parameter `u` in it.
     fn piece(&self, t: f64, side: Side) -> (usize, f64) {
-        let b = self.breaks();
-        let n = b.len();
-        let i = match side {
-            Side::Right => b.partition_point(|&x| x <= t).saturating_sub(1),
-            Side::Left => b.partition_point(|&x| x < t).saturating_sub(1),
-        }
-        .min(n - 2);
-        (i, (t - b[i]) / (b[i + 1] - b[i]))
+        piece(self.breaks(), t, side)
     }
 
     /// Evaluates piece `i` at parameter `u` (continued past [0, 1] by its own formula).
@@ -663,6 +718,26 @@ mod tests {
             ..CurveOptions::default()
         };
         Curve::new(&sample_track(), &opts).unwrap()
+    }
+
+    #[test]
+    fn segment_rotation_is_the_curves_rotation_to_the_bit() {
+        for scheme in [
+            Scheme::Slerp,
+            Scheme::Hermite,
+            Scheme::Squad,
+            Scheme::Bezier,
+        ] {
+            let c = curve(scheme);
+            let (t0, t1) = c.span();
+            for j in 0..=200 {
+                // Keys, times within the snap tolerance of them, and between.
+                let t = t0 + (t1 - t0) * j as f64 / 200.0 + [0.0, 1e-10, -3e-10][j % 3];
+                let got = segment_rotation(c.knots(), scheme, c.blend(), t);
+                let bits = |q: DQuat| q.to_array().map(f64::to_bits);
+                assert_eq!(bits(got), bits(c.rotation(t)), "{scheme} at {t}");
+            }
+        }
     }
 
     #[test]

@@ -28,25 +28,38 @@ fn axis(letter: u8) -> DVec3 {
     }
 }
 
-/// The world-frame angular velocity of `e(σ)` at angles `e` moving at `de` per unit `σ`.
-///
-/// Intrinsic `ABC` is `R = R_A(a)·R_B(b)·R_C(c)`: `ω = a′·A + b′·R_A(a)·B + c′·R_A(a)·R_B(b)·C`.
-/// Extrinsic `abc` is `R = R_C(c)·R_B(b)·R_A(a)`: `ω = c′·C + b′·R_C(c)·B + a′·R_C(c)·R_B(b)·A`.
-fn omega(seq: EulerSeq, e: [f64; 3], de: [f64; 3]) -> DVec3 {
+/// A sequence's axes in product order (left to right), with the index of each one's angle:
+/// intrinsic `ABC` is `R = R_A(a)·R_B(b)·R_C(c)`, extrinsic `abc` is `R = R_C(c)·R_B(b)·R_A(a)`.
+fn factors(seq: EulerSeq) -> [(DVec3, usize); 3] {
     let l = seq.as_str().as_bytes();
-    let (u, intrinsic) = (
-        [axis(l[0]), axis(l[1]), axis(l[2])],
-        l[0].is_ascii_uppercase(),
-    );
-    // The factors in product order (left to right) with their angles and rates.
-    let order = if intrinsic { [0, 1, 2] } else { [2, 1, 0] };
+    let u = [axis(l[0]), axis(l[1]), axis(l[2])];
+    if l[0].is_ascii_uppercase() {
+        [(u[0], 0), (u[1], 1), (u[2], 2)]
+    } else {
+        [(u[2], 2), (u[1], 1), (u[0], 0)]
+    }
+}
+
+/// The world-frame angular velocity of `e(σ)` at angles `e` moving at `de` per unit `σ`, for
+/// the sequence's [`factors`]: `ω = a′·A + b′·R_A(a)·B + c′·R_A(a)·R_B(b)·C` (intrinsic; the
+/// extrinsic sequence in its product order).
+fn omega_of(factors: &[(DVec3, usize); 3], e: [f64; 3], de: [f64; 3]) -> DVec3 {
     let mut frame = DQuat::IDENTITY;
     let mut w = DVec3::ZERO;
-    for i in order {
-        w += frame * u[i] * de[i];
-        frame *= DQuat::from_axis_angle(u[i], e[i]);
+    for (k, &(u, i)) in factors.iter().enumerate() {
+        w += frame * u * de[i];
+        // The last factor turns no later axis.
+        if k < 2 {
+            frame *= DQuat::from_axis_angle(u, e[i]);
+        }
     }
     w
+}
+
+/// [`omega_of`] for `seq`.
+#[cfg(test)]
+fn omega(seq: EulerSeq, e: [f64; 3], de: [f64; 3]) -> DVec3 {
+    omega_of(&factors(seq), e, de)
 }
 
 /// `(A, W)`: the angle swept (rad) and the net rotation vector of the linear Euler motion from
@@ -58,6 +71,7 @@ pub fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
 /// [`sweep`] by composite Simpson on `panels` panels (even).
 fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3) {
     let de = (e1 - e0).to_array();
+    let factors = factors(seq);
     let (mut a, mut w) = (0.0, DVec3::ZERO);
     for j in 0..=panels {
         let sigma = j as f64 / panels as f64;
@@ -67,7 +81,7 @@ fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3
             _ if j % 2 == 1 => 4.0,
             _ => 2.0,
         };
-        let o = omega(seq, (e0 + (e1 - e0) * sigma).to_array(), de);
+        let o = omega_of(&factors, (e0 + (e1 - e0) * sigma).to_array(), de);
         a += weight * o.length();
         w += o * weight;
     }
@@ -77,11 +91,11 @@ fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3
 
 /// Panels per quarter radian of angle change (`Σ|Δe_i|`) of the coarse rule [`chord`] tries
 /// first. `‖ω‖ ≤ Σ|Δe_i|`, and the integrands' `k`-th derivatives in `σ` scale as
-/// `(Σ|Δe_i|)^(k+1)`, so at this density Simpson's error bound `h⁴·max|f⁗|/180` is about 1e-7
-/// of the angle swept whatever the motion's length (where `‖ω‖` has a kink, at a gimbal-locked
-/// stop, the swept angle's error is at most about `h²·(Σ|Δe_i|)²` = 0.004 rad, far inside
-/// [`TIE_MARGIN`]).
-pub const PANELS_PER_QUARTER_RADIAN: usize = 4;
+/// `(Σ|Δe_i|)^(k+1)`, so at this density Simpson's error bound `h⁴·max|f⁗|/180` is about 1.4e-6
+/// of the angle swept whatever the motion's length, far inside [`SIGN_MARGIN`] (where `‖ω‖` has
+/// a kink, at a gimbal-locked stop, the swept angle's error is at most about `h²·(Σ|Δe_i|)²` =
+/// 0.016 rad, a quarter of [`TIE_MARGIN`]'s 0.063 rad).
+pub const PANELS_PER_QUARTER_RADIAN: usize = 2;
 
 /// How clear the coarse rule's sign must be: `|n·W|` above this fraction of the angle swept.
 pub const SIGN_MARGIN: f64 = 1e-3;
