@@ -3,7 +3,7 @@
 //! each run stays short (a harness limit, not the tool's).
 
 use glam::{DQuat, DVec3};
-use inbetween::io::document::Document;
+use inbetween_io::document::Document;
 use inbetween::{BakeOptions, Curve, CurveOptions, FrameSink, Fps, Scheme, bake};
 use std::io;
 

@@ -7,7 +7,7 @@
 mod common;
 
 use inbetween::Scheme;
-use inbetween::io::{Format, ReadOptions, read_document};
+use inbetween_io::{Format, ReadOptions, read_document};
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

@@ -1,8 +1,8 @@
 //! The CSV reader on arbitrary bytes: it must return a document or an error, never panic.
 #![no_main]
 
-use inbetween::io::ReadOptions;
-use inbetween::io::read::csv;
+use inbetween_io::ReadOptions;
+use inbetween_io::read::csv;
 use inbetween::rotation::{AngleUnit, Repr};
 use libfuzzer_sys::fuzz_target;
 

@@ -8,8 +8,8 @@
 #[path = "asset_common.rs"]
 mod common;
 
-use inbetween::io::gltf::Asset;
-use inbetween::io::gltf::document::{GltfClip, Mode};
+use inbetween_io::gltf::Asset;
+use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween::{Fps, Scheme};
 use libfuzzer_sys::fuzz_target;
 

@@ -8,7 +8,7 @@
 
 use glam::{DQuat, DVec3};
 use inbetween::curve::minaccel::Problem;
-use inbetween::io::{Format, ReadOptions, read_document};
+use inbetween_io::{Format, ReadOptions, read_document};
 use inbetween::tangent::Knots;
 use inbetween::{
     BakeOptions, Blend, Curve, CurveOptions, EndConditions, Ends, FrameSink, Fps, PathMode,
@@ -69,6 +69,7 @@ fuzz_target!(|data: &[u8]| {
             end: vel(o[4]),
         },
         grid_rate: fps,
+        tcb: Default::default(),
     };
     let bake_opts = BakeOptions {
         velocity: o[2] & 8 != 0,

@@ -2,8 +2,8 @@
 //! and unit.
 #![no_main]
 
-use inbetween::io::ReadOptions;
-use inbetween::io::read::json;
+use inbetween_io::ReadOptions;
+use inbetween_io::read::json;
 use inbetween::rotation::QuatOrder;
 use libfuzzer_sys::fuzz_target;
 

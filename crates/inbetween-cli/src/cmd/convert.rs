@@ -1,0 +1,134 @@
+//! `inbetween convert`: keys in, the same keys out in another representation and/or format.
+
+use super::settings::{key_rate_warning, output_format, rates, read_input};
+use crate::cli::ConvertArgs;
+use inbetween::{Error, InputError};
+use inbetween_io::document::{Document, KeyTime};
+use inbetween_io::gltf::document::Mode;
+use inbetween_io::output::Output;
+use inbetween_io::write::write_keys;
+use inbetween_io::{Format, OutputFormat};
+use std::io::Read;
+
+/// `convert … --skeleton clip.bvh -o out.bvh`: the keys as the motion of the skeleton (of the
+/// input itself when it is BVH).
+fn write_bvh(args: &ConvertArgs, doc: &Document, fps: inbetween::Fps) -> Result<(), Error> {
+    let skeleton = match (&args.skeleton, &doc.skeleton) {
+        (Some(path), _) => {
+            let source = path.display().to_string();
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
+            std::sync::Arc::new(inbetween_io::bvh::parse(&text, &source)?.0)
+        }
+        (None, Some(own)) => own.clone(),
+        (None, None) => {
+            return Err(InputError::new(format!(
+                "{}: BVH output needs a skeleton: --skeleton clip.bvh (its hierarchy and channel \
+                 orders)",
+                doc.source
+            ))
+            .into());
+        }
+    };
+    let mut out = Output::open(args.output.output.as_deref())?;
+    inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps)?;
+    out.commit()?;
+    Ok(())
+}
+
+/// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
+/// `interp`, a track of one key is fine.
+pub fn run(
+    args: &ConvertArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<(), Error> {
+    let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
+    let (frame_fps, _) = rates(&doc, args.fps);
+    for track in &doc.tracks {
+        doc.track_times(track, frame_fps, 1)?;
+    }
+    // Frame numbers read at the default rate, unasked: the rate is written out (JSON "fps", or
+    // times converted from frames), so say which.
+    if args.fps.is_none()
+        && let Some(w) = key_rate_warning(&doc, frame_fps)
+    {
+        warn(&w.replace("at the output rate, ", "at the default rate, "));
+    }
+    let chosen = match (output_format(&args.output, in_format), in_format) {
+        // Keys of a BVH input default to JSON (tracks = joints, with translations).
+        (OutputFormat::Bvh, Format::Bvh)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
+        // --skeleton writes BVH unless another format is asked for.
+        (OutputFormat::Doc(_), _)
+            if args.skeleton.is_some()
+                && args.output.output_format.is_none()
+                && args.output.output.is_none() =>
+        {
+            OutputFormat::Bvh
+        }
+        // A glTF input's keys default to JSON (tracks = rotation channels).
+        (OutputFormat::Gltf(_), Format::Gltf)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
+        (f, _) => f,
+    };
+    if args.skeleton.is_some() && chosen != OutputFormat::Bvh {
+        return Err(InputError::new(
+            "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
+        )
+        .into());
+    }
+    let format = match chosen {
+        OutputFormat::Doc(f) => f,
+        OutputFormat::Bvh => return write_bvh(args, &doc, frame_fps),
+        OutputFormat::Gltf(_) => {
+            return Err(InputError::new(
+                "convert does not write glTF; resample a glTF asset's rotation channels into \
+                 glTF with interp",
+            )
+            .into());
+        }
+        OutputFormat::Npy => {
+            let what = match (&args.output.output_format, &args.output.output) {
+                (None, Some(path)) => format!("-o {}", path.display()),
+                _ => "--output-format npy".to_string(),
+            };
+            return Err(InputError::new(format!(
+                "{what}: convert writes keyframe documents (csv or json); npy is for interp's \
+                 frames"
+            ))
+            .into());
+        }
+    };
+    if format == Format::Csv
+        && doc
+            .tracks
+            .iter()
+            .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some())
+    {
+        warn("CSV has no place for start_velocity/end_velocity; they are not written");
+    }
+    let all_frames = doc
+        .tracks
+        .iter()
+        .flat_map(|t| &t.keys)
+        .all(|k| matches!(k.when, KeyTime::Frame(_)));
+    // A JSON document's rate (a CSV input never had one to lose).
+    if format == Format::Csv && in_format == Format::Json && all_frames && doc.fps.is_some() {
+        warn(&format!(
+            "CSV has no place for the rate: the frame numbers are written as they are, at \
+             {frame_fps} fps; read them back with --key-fps {frame_fps}"
+        ));
+    }
+    let style = super::settings::style(&args.input, &args.output);
+    let mut out = Output::open(args.output.output.as_deref())?;
+    write_keys(&mut out, &doc, format, style, frame_fps)?;
+    out.commit()?;
+    Ok(())
+}

@@ -1,0 +1,459 @@
+//! `inbetween interp`: keyframes in, every in-between frame out.
+
+use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
+use crate::cli::{InterpArgs, PathArg, SpanArg};
+use inbetween::bake::{Sampled, bake_sampled};
+use inbetween::error::num;
+use inbetween::{
+    BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
+};
+use inbetween_io::Format;
+use inbetween_io::OutputFormat;
+use inbetween_io::bvh::frames::BvhFrames;
+use inbetween_io::bvh::{self, resample};
+use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
+use inbetween_io::gltf::frames::{GltfFrames, check_grid};
+use inbetween_io::output::{Output, WriteBehind};
+use inbetween_io::write::{FrameWriter, NpyWriter};
+use std::io::Read;
+
+/// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
+///
+/// Everything the input can get wrong is found before the first byte is written: the tracks,
+/// the frame count (`--max-frames`), and every curve (minaccel's grid cap), so that only I/O can
+/// fail once output has started.
+pub fn run(
+    args: &InterpArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<(), Error> {
+    if let Some(done) = lean_bvh(args, warn) {
+        return done;
+    }
+    let input = read_curves_in(
+        Mode::Sampled,
+        &args.input,
+        &args.curve,
+        args.scheme.into(),
+        stdin,
+        warn,
+    )?;
+    let (doc, tracks, fps) = (&input.doc, &input.tracks, input.fps);
+    // A glTF input: each track's source (a hash of the unique track names). A STEP or
+    // CUBICSPLINE channel is its sampler's curve, sampled at every frame of its animation's
+    // span while it is written (never baked into memory): its span is those frames.
+    let gltf = input.gltf.as_deref();
+    let sources: Vec<Option<TrackSource>> = tracks
+        .iter()
+        .map(|t| {
+            gltf.zip(t.name())
+                .and_then(|(g, n)| g.source_of(n, Mode::Sampled))
+        })
+        .collect();
+    let sampled: Vec<Option<(i64, i64)>> = sources
+        .iter()
+        .map(|s| {
+            let s = s.as_ref().filter(|s| s.baked)?;
+            gltf.map(|g| g.sampled_frames(s.index, fps))
+        })
+        .collect();
+    let own_span = |i: usize| match sampled[i] {
+        Some((a, b)) => (fps.time_of(a), fps.time_of(b)),
+        None => tracks[i].span(),
+    };
+    // The span each track is written over: the clip (the union of the tracks' key ranges, ends
+    // held), or its own.
+    let clip = (0..tracks.len()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
+        (lo.min(own_span(i).0), hi.max(own_span(i).1))
+    });
+    let format = output_format(&args.output, input.format);
+    // A glTF input: each track's animation, whose span (every sampler's keys) the clip covers;
+    // glTF output writes each animation over its own span.
+    let clip = match gltf {
+        Some(g) => (0..g.animations().len())
+            .map(|a| g.span(a, fps))
+            .fold(clip, |(lo, hi), (a, b)| (lo.min(a), hi.max(b))),
+        None => clip,
+    };
+    let to_gltf = matches!(format, OutputFormat::Gltf(_));
+    let span = |i: usize| {
+        let animation = sources[i].as_ref().map(|s| s.animation);
+        match (args.span, animation.filter(|_| to_gltf)) {
+            (_, Some(a)) => gltf.map_or(clip, |g| g.span(a, fps)),
+            (SpanArg::Clip, None) => clip,
+            (SpanArg::Track, None) => own_span(i),
+        }
+    };
+    for (i, t) in tracks.iter().enumerate() {
+        near_misses(&doc.source, t.name(), own_span(i), span(i), fps, warn);
+    }
+    let rows: u64 = (0..tracks.len())
+        .map(|i| fps.frame_count(span(i).0, span(i).1))
+        .fold(0, u64::saturating_add);
+    if rows > args.max_frames {
+        return Err(InputError::new(format!(
+            "{}: interp would write {rows} frames at {fps} fps, more than --max-frames {}",
+            doc.source, args.max_frames
+        ))
+        .into());
+    }
+    // Input errors found while building a curve (minaccel's grid cap) name the file too.
+    // A glTF STEP or CUBICSPLINE channel is its sampler, written as the slerp curve through its
+    // samples at the frames, which reproduces them.
+    let baked = CurveOptions {
+        scheme: Scheme::Slerp,
+        ..input.opts
+    };
+    let curves = tracks
+        .iter()
+        .enumerate()
+        .map(|(i, t)| match (gltf, &sources[i], sampled[i]) {
+            (Some(g), Some(s), Some(frames)) => {
+                let sampler = g.sampler(s.index, fps);
+                let check = Sampled {
+                    name: t.name(),
+                    frames,
+                    sample: &|time| sampler.at(time),
+                };
+                check
+                    .check(fps, &baked)
+                    .map_err(|e| Error::Input(e.at(&doc.source)))?;
+                Ok(TrackCurve::Sampled(sampler, frames))
+            }
+            _ => Curve::new(t, &input.opts)
+                .map(TrackCurve::Curve)
+                .map_err(|e| Error::Input(e.at(&doc.source))),
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    let bake_opts = BakeOptions {
+        velocity: args.velocity,
+        // Two generating threads pay only when the output is cheap to write (npy); with text,
+        // formatting already uses the second core (measured: docs/performance.md).
+        parallel: format == OutputFormat::Npy,
+    };
+    let style = super::settings::style(&args.input, &args.output);
+    let track_column = doc.named_tracks || tracks.len() > 1;
+    let positions = tracks.iter().any(|t| t.translations().is_some());
+    if positions && format == OutputFormat::Npy {
+        return Err(InputError::new(format!(
+            "{}: the tracks have translations, which npy output does not carry; write csv or json",
+            doc.source
+        ))
+        .into());
+    }
+    let skeleton = match format {
+        OutputFormat::Bvh => {
+            let Some(skeleton) = doc.skeleton.clone() else {
+                return Err(InputError::new(format!(
+                    "{}: BVH output is written on a BVH input's skeleton; this input is not BVH \
+                     (write csv or json)",
+                    doc.source
+                ))
+                .into());
+            };
+            if args.span == SpanArg::Track {
+                return Err(InputError::new(
+                    "--span track: a BVH file has one frame range for every joint; use --span clip",
+                )
+                .into());
+            }
+            if args.velocity {
+                return Err(InputError::new(
+                    "--velocity: BVH has no place for angular velocities; write csv or json",
+                )
+                .into());
+            }
+            if args.input.tracks.is_some() {
+                return Err(InputError::new(
+                    "--tracks: a BVH file is written with every joint of its skeleton; select \
+                     tracks for csv or json output",
+                )
+                .into());
+            }
+            Some(skeleton)
+        }
+        _ => None,
+    };
+    let gltf_out = match format {
+        OutputFormat::Gltf(container) => {
+            let Some(clip) = input.gltf.clone() else {
+                return Err(InputError::new(format!(
+                    "{}: glTF output is written into a glTF input's asset; this input is not \
+                     glTF (write csv or json)",
+                    doc.source
+                ))
+                .into());
+            };
+            if args.span == SpanArg::Track {
+                return Err(InputError::new(
+                    "--span track: glTF output writes each animation over its own span; use \
+                     --span clip",
+                )
+                .into());
+            }
+            if args.velocity {
+                return Err(InputError::new(
+                    "--velocity: glTF has no place for angular velocities; write csv or json",
+                )
+                .into());
+            }
+            for w in check_grid(&clip, fps)? {
+                warn(&w);
+            }
+            let container = super::settings::gltf_container(&args.output, container, &clip);
+            Some((clip, container))
+        }
+        _ => None,
+    };
+    let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
+    let mut sink: Box<dyn Sink> = match format {
+        OutputFormat::Bvh => Box::new(BvhFrames::new(out, skeleton.expect("checked above"), fps)),
+        OutputFormat::Gltf(_) => {
+            let (clip, container) = gltf_out.expect("checked above");
+            let frames = GltfFrames::new(out, clip, fps, container);
+            // Written to a file: relative URIs are rewritten for its folder.
+            match args.output.folder() {
+                Some(dir) => Box::new(frames.in_folder(dir)),
+                None => Box::new(frames),
+            }
+        }
+        OutputFormat::Doc(format) => {
+            let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);
+            Box::new(if positions { w.with_positions() } else { w })
+        }
+        OutputFormat::Npy => Box::new(NpyWriter::new(
+            out,
+            style,
+            rows,
+            track_column,
+            args.velocity,
+        )),
+    };
+    for (i, (curve, track)) in curves.iter().zip(tracks).enumerate() {
+        match curve {
+            TrackCurve::Curve(curve) => {
+                bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), warn)?
+            }
+            TrackCurve::Sampled(sampler, frames) => {
+                let sampled = Sampled {
+                    name: track.name(),
+                    frames: *frames,
+                    sample: &|time| sampler.at(time),
+                };
+                bake_sampled(
+                    &sampled,
+                    &baked,
+                    fps,
+                    span(i),
+                    bake_opts,
+                    sink.as_mut(),
+                    warn,
+                )?
+            }
+        }
+    }
+    sink.finish()?;
+    sink.into_output()?.commit()?;
+    if args.verbose {
+        let reports = curves.iter().filter_map(|c| match c {
+            TrackCurve::Curve(c) => Some((c, c.solver_report()?)),
+            TrackCurve::Sampled(..) => None,
+        });
+        for (curve, r) in reports {
+            let name = inbetween::error::shorten(curve.name().unwrap_or("-"));
+            eprintln!(
+                "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
+                 projected gradient {:.3e} -> {:.3e} ({}converged)",
+                r.points,
+                r.iterations,
+                r.energy_start,
+                r.energy,
+                r.gradient_start,
+                r.gradient,
+                if r.converged { "" } else { "not " }
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Warns when an end of the written span `(lo, hi)` is a key (of the track `name` spanning
+/// `(t0, t1)`) that misses a frame: only there can a key miss one; inside the clip it is held.
+fn near_misses(
+    source: &str,
+    name: Option<&str>,
+    (t0, t1): (f64, f64),
+    (lo, hi): (f64, f64),
+    fps: inbetween::Fps,
+    warn: &mut dyn FnMut(&str),
+) {
+    let (before, after) = fps.near_misses(t0, t1);
+    let label = inbetween_io::document::track_label(source, name);
+    for (k, key, which, side) in [
+        (before.filter(|_| t0 == lo), t0, "first", "after"),
+        (after.filter(|_| t1 == hi), t1, "last", "before"),
+    ] {
+        if let Some(k) = k {
+            warn(&format!(
+                "{label}: the {which} key, at {} s, is {:.1e} s {side} frame {k} ({} s), which \
+                 is therefore not written; --snap-keys 0.001 moves keys that close onto the grid",
+                num(key),
+                (key - fps.time_of(k)).abs(),
+                num(fps.time_of(k))
+            ));
+        }
+    }
+}
+
+/// The lean path for a BVH file resampled as BVH (or CSV/JSON into a file): the file read in
+/// pieces into its motion values only ([`bvh::parse_reader`]), then one joint's track and curve
+/// at a time ([`bvh::resample`]); see docs/performance.md. `None` when it does not apply — an
+/// option it does not handle, or anything wrong with the input, which the general path then
+/// reads again and reports exactly as always (nothing has been written: BVH output is written
+/// after every joint is done, CSV/JSON only into a temporary `-o` file). Its warnings are held
+/// until it is done, so they are given once, in the general path's order.
+fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), Error>> {
+    let path = args
+        .input
+        .input
+        .as_deref()
+        .filter(|p| p.as_os_str() != "-")?;
+    let curve = &args.curve;
+    if args.input.input_format.or_else(|| Format::from_path(path)) != Some(Format::Bvh)
+        || args.input.animation.is_some()
+        || args.input.tracks.is_some()
+        || curve.snap_keys.is_some()
+        || curve.path == PathArg::Euler
+        || curve.start_velocity.is_some()
+        || curve.end_velocity.is_some()
+        || args.velocity
+        || args.verbose
+        || args.span != SpanArg::Clip
+    {
+        return None;
+    }
+    let format = output_format(&args.output, Format::Bvh);
+    let to_file =
+        args.output.output.as_deref().is_some_and(|p| {
+            p.as_os_str() != "-" && !p.starts_with("/dev") && !p.starts_with("/proc")
+        });
+    match format {
+        OutputFormat::Bvh => {}
+        OutputFormat::Doc(Format::Csv | Format::Json) if to_file => {}
+        _ => return None,
+    }
+    let file = std::fs::File::open(path).ok()?;
+    let size = file.metadata().ok().filter(|m| m.is_file())?.len();
+    if size > args.input.max_input_bytes {
+        return None;
+    }
+    let source = path.display().to_string();
+    let (clip, mut warnings) = bvh::parse_reader(file, &source, Some(size)).ok()?;
+    let joints = resample::track_joints(&clip);
+    let names: std::collections::HashSet<&str> =
+        joints.iter().map(|&j| clip.joints()[j].name()).collect();
+    if names.len() != joints.len() {
+        return None;
+    }
+    let fps = curve.fps.unwrap_or(clip.fps());
+    let span = resample::span(&clip).filter(|(a, b)| fps.in_range(*a) && fps.in_range(*b))?;
+    let rows = fps
+        .frame_count(span.0, span.1)
+        .saturating_mul(joints.len() as u64);
+    if joints.is_empty() || rows > args.max_frames {
+        return None;
+    }
+    for &j in &joints {
+        near_misses(
+            &source,
+            Some(clip.joints()[j].name()),
+            span,
+            span,
+            fps,
+            &mut |w: &str| warnings.push(w.to_string()),
+        );
+    }
+    let opts = resample::Options {
+        fps,
+        curve: curve_options(curve, args.scheme.into(), fps, args.input.angles),
+        tcb: tcb_flags(curve),
+        threads: 0,
+    };
+    let done = (|| -> Result<Option<()>, Error> {
+        match format {
+            OutputFormat::Bvh => {
+                let (frames, baked) = match resample::resample(&clip, &source, &opts) {
+                    Err(Error::Input(_)) => return Ok(None),
+                    r => r?,
+                };
+                warnings.extend(baked);
+                let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
+                frames.write(out, &clip)?.finish()?.commit()?;
+            }
+            OutputFormat::Doc(doc_format) => {
+                let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
+                let style = super::settings::style(&args.input, &args.output);
+                let w = FrameWriter::new(out, doc_format, style, fps, true, false);
+                let positions = joints
+                    .iter()
+                    .any(|&j| clip.joints()[j].position().is_some());
+                let mut w = if positions { w.with_positions() } else { w };
+                let mut add = |m: &str| warnings.push(m.to_string());
+                match resample::bake_tracks(&clip, &source, &opts, span, &mut w, &mut add) {
+                    Err(Error::Input(_)) => return Ok(None),
+                    r => r?,
+                }
+                w.finish()?;
+                w.into_inner().finish()?.commit()?;
+            }
+            _ => unreachable!("checked above"),
+        }
+        Ok(Some(()))
+    })();
+    match done {
+        Ok(None) => None,
+        Ok(Some(())) => {
+            for w in &warnings {
+                warn(w);
+            }
+            Some(Ok(()))
+        }
+        Err(e) => Some(Err(e)),
+    }
+}
+
+/// A track's curve as interp writes it: built from its keys, or a glTF sampler's curve sampled
+/// at its frames (`STEP`, `CUBICSPLINE`).
+enum TrackCurve {
+    Curve(Curve),
+    Sampled(Sampler, (i64, i64)),
+}
+
+/// A frame writer that hands back its output when done.
+trait Sink: FrameSink {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output>;
+}
+
+impl Sink for FrameWriter<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner().finish()
+    }
+}
+
+impl Sink for BvhFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
+    }
+}
+
+impl Sink for GltfFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
+    }
+}
+
+impl Sink for NpyWriter<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner().finish()
+    }
+}

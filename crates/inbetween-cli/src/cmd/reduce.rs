@@ -1,0 +1,325 @@
+//! `inbetween reduce`: dense frames in, the fewest keys out that `interp` turns back into them
+//! (the library's [`inbetween::reduce`]).
+
+use super::settings::{Curves, output_format, rates, read_curves};
+use crate::cli::{MethodArg, ReduceArgs, SchemeArg};
+use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
+use inbetween::{Error, EulerSeq, InputError, PathMode, Repr};
+use inbetween_io::OutputFormat;
+use inbetween_io::document::{DocTrack, Document, KeyOrigin};
+use inbetween_io::gltf::ContainerFormat;
+use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
+use inbetween_io::output::Output;
+use inbetween_io::write::write_keys;
+use inbetween_io::write::{EulerMode, Style};
+use std::io::Read;
+
+/// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
+pub fn run(
+    args: &ReduceArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<(), Error> {
+    if let Some(p) = args.output.precision {
+        return Err(InputError::new(format!(
+            "--precision {p}: reduce writes its keys with every digit, as its guarantee was \
+             checked on them; rounded keys can miss the tolerance"
+        ))
+        .into());
+    }
+    let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
+    let (doc, tracks) = (&input.doc, &input.tracks);
+    let format = match output_format(&args.output, input.format) {
+        OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
+        OutputFormat::Doc(f) => f,
+        // A BVH input's keys default to JSON (on standard output, or to an `-o` whose name does
+        // not say bvh: `-o keys`, `/dev/null`); npy and BVH are not keyframe documents.
+        OutputFormat::Bvh
+            if args.output.output_format.is_none()
+                && !args.output.output.as_deref().is_some_and(|p| {
+                    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("bvh"))
+                }) =>
+        {
+            inbetween_io::Format::Json
+        }
+        other => {
+            let name = match other {
+                OutputFormat::Npy => "npy",
+                _ => "bvh (it holds every frame)",
+            };
+            return Err(InputError::new(format!(
+                "reduce writes keys: csv, json, or glTF for a glTF input, not {name}"
+            ))
+            .into());
+        }
+    };
+    if tracks.iter().any(|t| t.translations().is_some()) && args.translation_tolerance.is_none() {
+        return Err(InputError::new(format!(
+            "{}: the tracks have translations: give their tolerance with --translation-tolerance \
+             (length units)",
+            doc.source
+        ))
+        .into());
+    }
+    let reduced = reduce_tracks(args, &input, 0.0, true, false)?;
+    // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
+    let out_doc = Document {
+        source: doc.source.clone(),
+        fps: doc.fps,
+        rotation: doc.rotation,
+        tracks: doc
+            .tracks
+            .iter()
+            .zip(&reduced)
+            .map(|(d, r)| DocTrack {
+                name: d.name.clone(),
+                keys: r.keys.iter().map(|&i| d.keys[i]).collect(),
+                start_velocity: None,
+                end_velocity: None,
+                origin: KeyOrigin::Frames,
+                euler: d
+                    .euler
+                    .as_ref()
+                    .map(|(seq, a)| (*seq, r.keys.iter().map(|&i| a[i]).collect())),
+                velocities: r
+                    .velocities
+                    .as_ref()
+                    .map(|w| w.iter().copied().map(Some).collect())
+                    .unwrap_or_default(),
+                tcb: Vec::new(),
+                translations: if d.translations.is_empty() {
+                    Vec::new()
+                } else {
+                    r.keys.iter().map(|&i| d.translations[i]).collect()
+                },
+            })
+            .collect(),
+        named_tracks: doc.named_tracks,
+        warnings: Vec::new(),
+        skeleton: None,
+    };
+    let (frame_fps, _) = rates(doc, args.curve.fps);
+    let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
+    let mut out = Output::open(args.output.output.as_deref())?;
+    write_keys(&mut out, &out_doc, format, style, frame_fps)?;
+    out.commit()?;
+    Ok(())
+}
+
+/// The written keys' style. With `--path euler` a key's turns are in its Euler angles, so the
+/// keys are written as the input gave them: its sequence (`--to` may only name it), each key's
+/// own triple ([`EulerMode::AsGiven`]).
+fn keys_style(
+    args: &ReduceArgs,
+    path: PathMode,
+    tracks: &[inbetween::Track],
+    source: &str,
+) -> Result<Style, Error> {
+    let mut style = super::settings::style(&args.input, &args.output);
+    if path != PathMode::Euler {
+        return Ok(style);
+    }
+    let mut seqs: Vec<EulerSeq> = Vec::new();
+    for seq in tracks
+        .iter()
+        .filter_map(|t| t.euler_angles().map(|(seq, _)| seq))
+    {
+        if !seqs.contains(&seq) {
+            seqs.push(seq);
+        }
+    }
+    let [seq] = seqs[..] else {
+        let names: Vec<String> = seqs.iter().map(|&s| Repr::Euler(s).to_string()).collect();
+        return Err(InputError::new(format!(
+            "{source}: --path euler writes the keys as the input's Euler angles, in one \
+             sequence, but the tracks have {}; reduce them apart or use --path shortest",
+            names.join(", ")
+        ))
+        .into());
+    };
+    match style.repr {
+        Repr::Quat => {}
+        Repr::Euler(s) if s == seq => {}
+        other => {
+            return Err(InputError::new(format!(
+                "--to {other}: with --path euler the keys keep their turns in their Euler angles, \
+                 so they are written as the input gave them ({})",
+                Repr::Euler(seq)
+            ))
+            .into());
+        }
+    }
+    style.repr = Repr::Euler(seq);
+    style.euler = EulerMode::AsGiven;
+    Ok(style)
+}
+
+/// The smallest tolerance `reduce` takes (rad, or D times this with `--distance D`): the
+/// curve's evaluation carries round-off of about 1e-15 rad, so a tolerance near it cannot be
+/// verified (every frame would end up a key and still miss).
+const MIN_TOLERANCE: f64 = 1e-9;
+
+/// How much a glTF output's tolerance is tightened (radians, or D times this with
+/// `--distance D`): the keys are stored as float32 (about 2.4e-7 rad at most).
+const FLOAT32_MARGIN: f64 = 1e-6;
+
+/// Every track reduced with the tolerance tightened by `margin` (in the tolerance's own unit),
+/// translations reduced too when `translations`, and for glTF output (`float32_times`) verified
+/// on the key times as written (float32) at the frame times, as a player evaluates them; `-v`
+/// reports each track.
+fn reduce_tracks(
+    args: &ReduceArgs,
+    input: &Curves,
+    margin: f64,
+    translations: bool,
+    float32_times: bool,
+) -> Result<Vec<Reduced>, Error> {
+    let (doc, tracks) = (&input.doc, &input.tracks);
+    let tolerance = match args.distance {
+        Some(_) => args.tolerance,
+        None => args.input.angles.to_rad(args.tolerance),
+    } - margin;
+    if tolerance <= 0.0 {
+        return Err(InputError::new(format!(
+            "--tolerance {}: too small for keys stored as float32; give more than {}",
+            args.tolerance,
+            match args.distance {
+                Some(_) => margin,
+                None => args.input.angles.from_rad(margin),
+            }
+        ))
+        .into());
+    }
+    let floor = MIN_TOLERANCE * args.distance.unwrap_or(1.0);
+    if tolerance < floor {
+        let (least, unit) = match args.distance {
+            Some(_) => (floor, "length units"),
+            None => (
+                args.input.angles.from_rad(floor),
+                args.input.angles.as_str(),
+            ),
+        };
+        return Err(InputError::new(format!(
+            "--tolerance {:e}: below what reduce can verify (rotations carry about 1e-15 rad of \
+             round-off); give at least {least:e} {unit}",
+            args.tolerance
+        ))
+        .into());
+    }
+    let opts = ReduceOptions {
+        curve: input.opts,
+        tolerance,
+        distance: args.distance,
+        translation_tolerance: args.translation_tolerance.filter(|_| translations),
+        velocities: !args.no_velocities,
+        method: match args.method {
+            MethodArg::Greedy => Method::Greedy,
+            MethodArg::Optimal => Method::Optimal,
+        },
+    };
+    let located = |e: InputError| e.at(&doc.source);
+    let written: Vec<Option<Vec<f64>>> = tracks
+        .iter()
+        .map(|t| float32_times.then(|| t.times().iter().map(|&x| f64::from(x as f32)).collect()))
+        .collect();
+    let frames: Vec<TrackFrames> = tracks
+        .iter()
+        .zip(&written)
+        .map(|(t, w)| TrackFrames {
+            positions: t.translations().filter(|_| translations),
+            key_times: w.as_deref(),
+            ..TrackFrames::of(t)
+        })
+        .collect();
+    if args.shared_keys
+        && let Some(first) = tracks.first()
+        && let Some(other) = tracks.iter().find(|t| t.times() != first.times())
+    {
+        let label = |t: &inbetween::Track| {
+            let times = t.times();
+            format!(
+                "track \"{}\" ({} frames, {} s to {} s)",
+                inbetween::error::shorten(t.name().unwrap_or("-")),
+                times.len(),
+                times[0],
+                times[times.len() - 1]
+            )
+        };
+        return Err(InputError::new(format!(
+            "{}: --shared-keys needs one grid of frame times, but {} and {} differ",
+            doc.source,
+            label(first),
+            label(other)
+        ))
+        .into());
+    }
+    let reduced: Vec<Reduced> = if args.shared_keys {
+        reduce_shared(&frames, &opts)
+    } else {
+        reduce_each(&frames, &opts)
+    }
+    .map_err(located)?;
+    if args.verbose {
+        for (t, r) in tracks.iter().zip(&reduced) {
+            let unit = |x: f64| match args.distance {
+                Some(_) => x,
+                None => args.input.angles.from_rad(x),
+            };
+            let unit_name = match args.distance {
+                Some(_) => "length units",
+                None => args.input.angles.as_str(),
+            };
+            let position = r
+                .max_position_error
+                .map_or(String::new(), |p| format!(", max position error {p:.3e}"));
+            eprintln!(
+                "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
+                 {:.3e} ({unit_name}){position}",
+                inbetween::error::shorten(t.name().unwrap_or("-")),
+                t.len(),
+                r.keys.len(),
+                100.0 * r.keys.len() as f64 / t.len() as f64,
+                unit(r.max_error),
+                unit(r.mean_error)
+            );
+        }
+    }
+    Ok(reduced)
+}
+
+/// `reduce anim.glb --scheme slerp -o small.glb`: each rotation channel repointed to a `LINEAR`
+/// sampler with its kept keys, which a glTF player interpolates by slerp, as verified; the rest
+/// of the asset (translation channels included) as read.
+fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Result<(), Error> {
+    let Some(clip) = &input.gltf else {
+        return Err(InputError::new(
+            "glTF output writes keys into the input asset: the input must be glTF (.gltf or .glb)",
+        )
+        .into());
+    };
+    if args.scheme != SchemeArg::Slerp {
+        return Err(InputError::new(
+            "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
+             play as reduced; use --scheme slerp, or write csv or json",
+        )
+        .into());
+    }
+    let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
+    let reduced = reduce_tracks(args, input, margin, false, true)?;
+    let keys: Vec<ChannelKeys> = input
+        .tracks
+        .iter()
+        .zip(&reduced)
+        .map(|(t, r)| ChannelKeys {
+            name: t.name().unwrap_or_default(),
+            times: r.keys.iter().map(|&i| t.times()[i]).collect(),
+            rotations: r.keys.iter().map(|&i| t.rotations()[i]).collect(),
+        })
+        .collect();
+    let container = super::settings::gltf_container(&args.output, container, clip);
+    let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
+    let mut out = Output::open(args.output.output.as_deref())?;
+    std::io::Write::write_all(&mut out, &bytes)?;
+    out.commit()?;
+    Ok(())
+}

@@ -1,0 +1,419 @@
+//! What the subcommands share: reading the input (every command through [`read_input`], so
+//! that the one precedence rule between a document's declarations and the flags,
+//! [`inbetween_io::settle`], applies to all of them), the rate rule (a document's `fps`, or
+//! `--key-fps` standing in for it, numbers its `frame` values; `--fps` sets the output rate,
+//! else the document's, else 30), and the curve options from the command line.
+
+use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
+use glam::DVec3;
+use inbetween::curve::piecewise::MAX_SPEED;
+use inbetween::error::num;
+use inbetween::rotation::{AngleUnit, Repr};
+use inbetween::{
+    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
+};
+use inbetween_io::document::{Document, KeyTime};
+use inbetween_io::gltf::document::{GltfClip, Mode};
+use inbetween_io::gltf::{Asset, ContainerFormat};
+use inbetween_io::write::Style;
+use inbetween_io::{Format, OutputFormat, ReadOptions};
+use std::io::Read;
+use std::sync::Arc;
+
+impl From<SchemeArg> for Scheme {
+    fn from(s: SchemeArg) -> Scheme {
+        match s {
+            SchemeArg::Hermite => Scheme::Hermite,
+            SchemeArg::Squad => Scheme::Squad,
+            SchemeArg::Bezier => Scheme::Bezier,
+            SchemeArg::Slerp => Scheme::Slerp,
+            SchemeArg::Minaccel => Scheme::MinAccel,
+        }
+    }
+}
+
+/// The rates of a document: `(frame_fps, output_fps)`. A document's `fps` (declared, or given
+/// by `--key-fps`, which stands in for a missing declaration) numbers its `frame` values; `--fps`
+/// sets the output rate. Each falls back to the other, then to 30.
+pub fn rates(doc: &Document, fps_arg: Option<Fps>) -> (Fps, Fps) {
+    let frame_fps = doc.fps.or(fps_arg).unwrap_or(Fps::DEFAULT);
+    let output_fps = fps_arg.or(doc.fps).unwrap_or(Fps::DEFAULT);
+    (frame_fps, output_fps)
+}
+
+/// The warning for frame numbers read at the output rate because nothing gives their rate (the
+/// document declares no `fps` and `--key-fps` is absent); `None` when no key is a frame number
+/// or the rate is known.
+pub fn key_rate_warning(doc: &Document, frame_fps: Fps) -> Option<String> {
+    let framed = doc
+        .tracks
+        .iter()
+        .any(|t| t.keys.iter().any(|k| matches!(k.when, KeyTime::Frame(_))));
+    (doc.fps.is_none() && framed).then(|| {
+        format!(
+            "{}: frame numbers are read at the output rate, {frame_fps} fps, as the document \
+             declares no rate; give the keys' rate with --key-fps RATE",
+            doc.source
+        )
+    })
+}
+
+/// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
+/// Warnings found while reading go to `warn`. A glTF input is read at `fps` (`--fps`, else 30:
+/// its keys snap to that rate's frames and, for [`Mode::Frames`], its `STEP` and `CUBICSPLINE`
+/// channels are baked at it), and its asset comes back for glTF output.
+pub fn read_input(
+    args: &InputArgs,
+    fps: Option<Fps>,
+    mode: Mode,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<(Document, Format, Option<Arc<GltfClip>>), InputError> {
+    let opts = ReadOptions {
+        from: args.from,
+        angles: args.angles,
+        input_angles: args.input_angles,
+        key_fps: args.key_fps,
+        quat_order: args.quat_order,
+        delimiter: args.delimiter,
+    };
+    let path = args.input.as_deref().filter(|p| p.as_os_str() != "-");
+    let (bytes, source) = match path {
+        Some(p) => (
+            inbetween_io::read_bytes_limited(p, args.max_input_bytes)?,
+            p.display().to_string(),
+        ),
+        None => (
+            inbetween_io::read_limited(stdin, args.max_input_bytes, "<stdin>")?,
+            "<stdin>".to_string(),
+        ),
+    };
+    let (doc, format, clip) = if inbetween_io::is_gltf(&bytes, path, args.input_format) {
+        let dir = path.map(inbetween_io::gltf_dir);
+        let asset =
+            Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
+        inbetween_io::output::protect_inputs(asset.referenced_files());
+        let clip = GltfClip::new(asset, args.animation.as_deref())?;
+        let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
+        (doc, Format::Gltf, Some(Arc::new(clip)))
+    } else {
+        if args.animation.is_some() {
+            return Err(InputError::new(format!(
+                "--animation: {source} is not glTF; only a glTF asset has animations to choose"
+            )));
+        }
+        let (doc, format) =
+            inbetween_io::parse_bytes(bytes, &source, path, args.input_format, &opts)?;
+        (doc, format, None)
+    };
+    for w in &doc.warnings {
+        warn(w);
+    }
+    let doc = match &args.tracks {
+        Some(patterns) => select_tracks(doc, patterns)?,
+        None => doc,
+    };
+    Ok((doc, format, clip))
+}
+
+/// `--tracks`: the document's tracks whose names match one of the comma-separated patterns, in
+/// document order. A pattern that matches nothing is an error listing the names there are.
+fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputError> {
+    let patterns: Vec<&str> = patterns
+        .split(',')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
+        .collect();
+    let name_of = |i: usize, t: &inbetween_io::document::DocTrack| {
+        t.name.clone().unwrap_or_else(|| format!("track{i}"))
+    };
+    let names: Vec<String> = doc
+        .tracks
+        .iter()
+        .enumerate()
+        .map(|(i, t)| name_of(i, t))
+        .collect();
+    for p in &patterns {
+        if !names.iter().any(|n| glob(p, n)) {
+            let shown: Vec<String> = names
+                .iter()
+                .take(20)
+                .map(|n| format!("\"{}\"", inbetween::error::shorten(n)))
+                .collect();
+            let more = if names.len() > 20 { ", …" } else { "" };
+            return Err(InputError::new(format!(
+                "--tracks: \"{}\" matches no track of {}; its tracks are {}{more}",
+                inbetween::error::shorten(p),
+                doc.source,
+                shown.join(", ")
+            )));
+        }
+    }
+    if patterns.is_empty() {
+        return Err(InputError::new("--tracks: expected at least one name"));
+    }
+    let keep: Vec<bool> = names
+        .iter()
+        .map(|n| patterns.iter().any(|p| glob(p, n)))
+        .collect();
+    let mut i = 0;
+    doc.tracks.retain(|_| {
+        i += 1;
+        keep[i - 1]
+    });
+    doc.named_tracks = true;
+    Ok(doc)
+}
+
+/// Whether `name` matches `pattern`: `*` any run of characters, `?` one character, anything else
+/// itself.
+fn glob(pattern: &str, name: &str) -> bool {
+    let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
+    // Classic two-pointer match with backtracking to the last `*`.
+    let (mut i, mut j) = (0, 0);
+    let mut star: Option<(usize, usize)> = None;
+    while j < n.len() {
+        if i < p.len() && (p[i] == '?' || p[i] == n[j]) {
+            i += 1;
+            j += 1;
+        } else if i < p.len() && p[i] == '*' {
+            star = Some((i, j));
+            i += 1;
+        } else if let Some((si, sj)) = star {
+            i = si + 1;
+            j = sj + 1;
+            star = Some((si, sj + 1));
+        } else {
+            return false;
+        }
+    }
+    p[i..].iter().all(|&c| c == '*')
+}
+
+/// The input of interp, analyze and plot, read and validated.
+pub struct Curves {
+    /// The document as read.
+    pub doc: Document,
+    /// Its format.
+    pub format: Format,
+    /// Its tracks, validated (frames at the document's rate).
+    pub tracks: Vec<Track>,
+    /// The output rate (and minaccel's grid rate).
+    pub fps: Fps,
+    /// The curve options of the command line (scheme: `scheme`).
+    pub opts: CurveOptions,
+    /// A glTF input's asset and chosen animations.
+    pub gltf: Option<Arc<GltfClip>>,
+}
+
+/// Reads the input and validates it into tracks, with the output rate and the curve options.
+pub fn read_curves(
+    input: &InputArgs,
+    curve: &CurveArgs,
+    scheme: Scheme,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Curves, InputError> {
+    read_curves_in(Mode::Frames, input, curve, scheme, stdin, warn)
+}
+
+/// [`read_curves`], a glTF input's tracks read for `mode` (interp: [`Mode::Sampled`]).
+pub fn read_curves_in(
+    mode: Mode,
+    input: &InputArgs,
+    curve: &CurveArgs,
+    scheme: Scheme,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Curves, InputError> {
+    let (doc, format, gltf) = read_input(input, curve.fps, mode, stdin, warn)?;
+    let (frame_fps, fps) = rates(&doc, curve.fps);
+    if let Some(w) = key_rate_warning(&doc, frame_fps) {
+        warn(&w);
+    }
+    let mut tracks = doc.tracks_shaped(frame_fps, tcb_flags(curve))?;
+    if let Some(eps) = curve.snap_keys {
+        for t in &mut tracks {
+            *t = snap_keys(t, fps, eps).map_err(|e| e.at(track_label(&doc.source, t)))?;
+        }
+    }
+    if curve.path == PathArg::Euler {
+        for (t, d) in tracks.iter().zip(&doc.tracks) {
+            if t.len() > 1 && t.euler_angles().is_none() {
+                let found = match (&d.euler, doc.rotation) {
+                    (Some(_), _) => "Euler angles beyond ±1e15 rad".to_string(),
+                    (None, Some(Repr::Euler(_))) => "keys in more than one representation".into(),
+                    (None, Some(r)) => format!("{r} keys"),
+                    (None, None) => "no keys".into(),
+                };
+                return Err(InputError::new(format!(
+                    "{}: --path euler needs keys given as Euler angles in one sequence \
+                     (--from euler:SEQ, or \"rotation\": \"euler:SEQ\" in JSON), found {found}",
+                    track_label(&doc.source, t)
+                )));
+            }
+        }
+    }
+    for t in &tracks {
+        let (t0, t1) = t.span();
+        for time in [t0, t1] {
+            if !fps.in_range(time) {
+                return Err(InputError::new(format!(
+                    "{}: time {} s is beyond the frame numbers --fps {fps} supports (2^53)",
+                    doc.source,
+                    num(time)
+                )));
+            }
+        }
+    }
+    // The end velocities of the command line are checked as the flags they are (the document's
+    // own are checked with the curve, located in the file).
+    let unit = input.angles;
+    for (flag, v) in [
+        ("--start-velocity", curve.start_velocity),
+        ("--end-velocity", curve.end_velocity),
+    ] {
+        let speed = v.map(|v| unit.to_rad(inbetween::rotation::magnitude::length(v)));
+        if let Some(speed) = speed.filter(|&s| s > MAX_SPEED) {
+            let limit = match unit {
+                AngleUnit::Rad => format!("{MAX_SPEED:e} rad/s"),
+                AngleUnit::Deg => format!("{} deg/s", num(unit.from_rad(MAX_SPEED))),
+            };
+            return Err(InputError::new(format!(
+                "{flag}: expected at most {limit}, found {} {}/s",
+                num(unit.from_rad(speed)),
+                unit.as_str()
+            )));
+        }
+    }
+    let opts = curve_options(curve, scheme, fps, input.angles);
+    Ok(Curves {
+        doc,
+        format,
+        tracks,
+        fps,
+        opts,
+        gltf,
+    })
+}
+
+/// The output format: `--output-format`, else the extension of `-o` (`.csv`, `.json`, `.npy`,
+/// any case), else the input's format.
+pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
+    let by_extension = || {
+        let path = args.output.as_deref()?;
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        OutputFormat::parse(&ext).ok()
+    };
+    args.output_format
+        .or_else(by_extension)
+        .unwrap_or(match input {
+            Format::Bvh => OutputFormat::Bvh,
+            // interp writes the input's container (convert writes JSON keys).
+            Format::Gltf => OutputFormat::Gltf(ContainerFormat::Glb),
+            f => OutputFormat::Doc(f),
+        })
+}
+
+/// The container of glTF output: the one `--output-format` or the `-o` name (`.gltf`, `.glb`)
+/// says, else the input asset's own (`container` is [`output_format`]'s, which falls back to GLB).
+pub fn gltf_container(
+    args: &OutputArgs,
+    container: ContainerFormat,
+    clip: &GltfClip,
+) -> ContainerFormat {
+    let named = args.output_format.is_some()
+        || args
+            .output
+            .as_deref()
+            .is_some_and(|p| ContainerFormat::from_path(p).is_some());
+    if named {
+        container
+    } else {
+        clip.asset().container()
+    }
+}
+
+/// `file` or `file: track "name"`, for messages about a whole track.
+pub fn track_label(source: &str, t: &Track) -> String {
+    inbetween_io::document::track_label(source, t.name())
+}
+
+/// The track with every key within `eps` frame periods of a frame moved onto it (`--snap-keys`).
+fn snap_keys(t: &Track, fps: Fps, eps: f64) -> Result<Track, InputError> {
+    let times: Vec<f64> = t.times().iter().map(|&x| fps.snap(x, eps)).collect();
+    if let Some(i) = (1..times.len()).find(|&i| times[i] <= times[i - 1]) {
+        return Err(InputError::new(format!(
+            "--snap-keys {eps}: keys at {} s and {} s would both move to frame {} ({} s); lower \
+             EPS or merge the keys",
+            num(t.times()[i - 1]),
+            num(t.times()[i]),
+            fps.nearest_frame(times[i]),
+            num(times[i])
+        )));
+    }
+    t.retimed(times).map_err(InputError::from)
+}
+
+/// The output style of the command line: `--to`, `--angles`, `--quat-order`, `--precision`,
+/// `--euler`.
+pub fn style(input: &InputArgs, output: &OutputArgs) -> Style {
+    Style {
+        repr: output.to,
+        angles: input.angles,
+        quat_order: input.quat_order,
+        num: output.num_format(),
+        euler: output.euler_mode(),
+    }
+}
+
+/// `--tension`, `--continuity`, `--bias`.
+pub fn tcb_flags(args: &CurveArgs) -> Tcb {
+    Tcb {
+        tension: args.tension,
+        continuity: args.continuity,
+        bias: args.bias,
+    }
+}
+
+/// The curve options of the command line; given velocities are in `unit` per second.
+pub fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit) -> CurveOptions {
+    let omega = |v: Option<[f64; 3]>| v.map(|a| DVec3::from_array(a.map(|x| unit.to_rad(x))));
+    CurveOptions {
+        scheme,
+        blend: match args.blend {
+            BlendArg::Cubic => Blend::Cubic,
+            BlendArg::Quadratic => Blend::Quadratic,
+        },
+        path: match args.path {
+            PathArg::Shortest => PathMode::Shortest,
+            PathArg::AsGiven => PathMode::AsGiven,
+            PathArg::Euler => PathMode::Euler,
+        },
+        ends: EndConditions {
+            ends: match args.ends {
+                EndsArg::Chord => Ends::Chord,
+                EndsArg::Rest => Ends::Rest,
+                EndsArg::Cyclic => Ends::Cyclic,
+            },
+            start: omega(args.start_velocity),
+            end: omega(args.end_velocity),
+        },
+        grid_rate: fps,
+        tcb: tcb_flags(args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::glob;
+
+    #[test]
+    fn globs() {
+        assert!(glob("Left*", "LeftArm") && glob("Left*", "Left"));
+        assert!(glob("*Arm", "LeftArm") && !glob("*Arm", "LeftArms"));
+        assert!(glob("L?ft*m", "LeftArm") && !glob("L?ft", "Lft"));
+        assert!(glob("*", "") && glob("a*b*c", "aXbYbZc") && !glob("a*b*c", "aXbY"));
+        assert!(glob("hip", "hip") && !glob("hip", "Hip"));
+    }
+}

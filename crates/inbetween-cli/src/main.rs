@@ -1,0 +1,73 @@
+//! The `inbetween` binary: parse arguments, run the library, map errors to exit codes
+//! (0 success, 2 bad usage or input, 1 anything else; a closed stdout is success).
+
+mod chart;
+mod cli;
+mod cmd;
+mod signals;
+mod warnings;
+
+use clap::Parser;
+use cli::{Cli, Command};
+use inbetween::Error;
+use std::process::ExitCode;
+
+/// clap's own message (help and version as clap prints them), with every value it echoes cut
+/// to 60 characters: a 100 kB `--fps` value is quoted once, shortened, never whole.
+fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion)
+        || e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    {
+        // Help goes where clap sends it; only an unwritable stdout is a failure.
+        return match e.print() {
+            Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
+            Err(_) => ExitCode::from(1),
+        };
+    }
+    eprint!("{}", cli::bounded(&e.render().to_string()));
+    ExitCode::from(2)
+}
+
+fn main() -> ExitCode {
+    signals::install();
+    let mut cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return usage_error(&e),
+    };
+    cli.command.normalise();
+    let mut stdin = std::io::stdin().lock();
+    let mut warnings = warnings::Warnings::default();
+    let mut warn = |msg: &str| {
+        if let Some(line) = warnings.note(msg) {
+            eprintln!("{line}");
+        }
+    };
+    let result = match &cli.command {
+        Command::Convert(args) => cmd::convert::run(args, &mut stdin, &mut warn),
+        Command::Interp(args) => cmd::interp::run(args, &mut stdin, &mut warn),
+        Command::Analyze(args) => cmd::analyze::run(args, &mut stdin, &mut warn),
+        Command::Plot(args) => cmd::plot::run(args, &mut stdin, &mut warn),
+        Command::Reduce(args) => cmd::reduce::run(args, &mut stdin, &mut warn),
+    };
+    for line in warnings.summary() {
+        eprintln!("{line}");
+    }
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            let io = match &e {
+                Error::Io(io) => Some(io),
+                Error::Input(_) => None,
+            };
+            if io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
+                return ExitCode::SUCCESS;
+            }
+            eprintln!("inbetween: error: {e}");
+            match e {
+                Error::Input(_) => ExitCode::from(2),
+                Error::Io(_) => ExitCode::from(1),
+            }
+        }
+    }
+}

@@ -1,0 +1,189 @@
+//! [`GltfFrames`]: baked frames written into the input asset as new `LINEAR` rotation samplers.
+//!
+//! Each track is a rotation channel of a [`GltfClip`] (by name). Every track of an animation is
+//! baked over the frames of that animation's span ([`GltfClip::frames`]); at
+//! [`FrameSink::finish`] each animation gets one time accessor and each channel a new sampler
+//! ([`Asset::write`](super::Asset::write) with [`Resampled`]). The asset is otherwise as read.
+
+use super::document::{GltfClip, Mode};
+use super::{ContainerFormat, Resampled};
+use glam::{DQuat, DVec3};
+use inbetween::bake::FrameSink;
+use inbetween::clock::Fps;
+use inbetween::error::InputResult;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Baked frames into a glTF asset (see the module documentation).
+pub struct GltfFrames<W: Write> {
+    out: Option<W>,
+    clip: Arc<GltfClip>,
+    fps: Fps,
+    format: ContainerFormat,
+    /// The folder the output goes to (relative URIs are rewritten for it).
+    out_dir: Option<PathBuf>,
+    /// Per track: `(animation, channel, first frame, rotations)`.
+    tracks: Vec<(usize, usize, Option<i64>, Vec<DQuat>)>,
+}
+
+fn internal(msg: String) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!("internal error: {msg}"),
+    )
+}
+
+impl<W: Write> GltfFrames<W> {
+    /// Frames of `clip`'s tracks at `fps`, to be written as `format` to `out`.
+    pub fn new(out: W, clip: Arc<GltfClip>, fps: Fps, format: ContainerFormat) -> GltfFrames<W> {
+        GltfFrames {
+            out: Some(out),
+            clip,
+            fps,
+            format,
+            out_dir: None,
+            tracks: Vec::new(),
+        }
+    }
+
+    /// The output goes into the folder `dir`, not beside the input: relative URIs (images,
+    /// external buffers) are rewritten to name the input's files from there
+    /// ([`Asset::to_bytes_in`](super::Asset::to_bytes_in)).
+    pub fn in_folder(mut self, dir: &Path) -> GltfFrames<W> {
+        self.out_dir = Some(dir.to_path_buf());
+        self
+    }
+
+    /// The destination, after [`FrameSink::finish`].
+    pub fn into_inner(mut self) -> io::Result<W> {
+        self.out
+            .take()
+            .ok_or_else(|| internal("glTF output taken twice".into()))
+    }
+}
+
+/// The most bytes of new samplers a glTF bake may add (`u32::MAX`, a `.glb`'s limit).
+pub const MAX_NEW_BYTES: u64 = u32::MAX as u64;
+
+/// Checks, before anything is written, that the frames of every chosen animation at `fps`
+/// have distinct float32 times. An animation whose span holds no frame (a pose: one key at
+/// 1/24 s, written at 30 fps) is written as it was, its samplers untouched; the warnings say
+/// which.
+///
+/// It also refuses, before any frame is baked, a bake whose new samplers would take more than
+/// [`MAX_NEW_BYTES`] (4 GiB, what a `.glb` can hold; a `.gltf`'s data URI is held to it too):
+/// a float32 time per frame and a float32 quaternion per frame and rotation channel.
+pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
+    let src = clip.asset().source();
+    let mut new_bytes = 0u128;
+    for (a, anim) in clip.animations().iter().enumerate() {
+        let (first, last) = clip.frames(a, fps);
+        if first <= last {
+            let frames = (last - first) as u128 + 1;
+            new_bytes += frames * (4 + 16 * anim.rotations().len() as u128);
+        }
+    }
+    if new_bytes > MAX_NEW_BYTES as u128 {
+        return Err(input_err!(
+            "{src}: its animations at {fps} fps would take {new_bytes} bytes of new samplers \
+             (a float32 time a frame, a float32 quaternion a frame and rotation channel), over \
+             the {MAX_NEW_BYTES} bytes a .glb can hold: use a lower frame rate or fewer \
+             animations"
+        ));
+    }
+    let mut warnings = Vec::new();
+    for (a, anim) in clip.animations().iter().enumerate() {
+        let (first, last) = clip.frames(a, fps);
+        let (lo, hi) = clip.span(a, fps);
+        if first > last {
+            warnings.push(format!(
+                "{src}: animation {}: its span [{}, {}] s holds no frame at {fps} fps; it is \
+                 written as it was",
+                anim.label(),
+                inbetween::error::num(lo),
+                inbetween::error::num(hi)
+            ));
+            continue;
+        }
+        let mut prev: Option<f32> = None;
+        for k in first..=last {
+            let t = fps.time_of(k) as f32;
+            if prev.is_some_and(|p| t <= p) {
+                return Err(input_err!(
+                    "{src}: animation {}: frames {} and {k} at {fps} fps have the same float32 \
+                     time; glTF times are float32: use a lower --fps",
+                    anim.label(),
+                    k - 1
+                ));
+            }
+            prev = Some(t);
+        }
+    }
+    Ok(warnings)
+}
+
+impl<W: Write> FrameSink for GltfFrames<W> {
+    fn begin_track(&mut self, name: Option<&str>) -> io::Result<()> {
+        let s = name
+            .and_then(|n| self.clip.source_of(n, Mode::Frames))
+            .ok_or_else(|| internal(format!("no glTF channel for track {name:?}")))?;
+        self.tracks.push((s.animation, s.channel, None, Vec::new()));
+        Ok(())
+    }
+
+    fn frame(&mut self, k: i64, _time: f64, q: DQuat, _omega: Option<DVec3>) -> io::Result<()> {
+        let t = self
+            .tracks
+            .last_mut()
+            .ok_or_else(|| internal("a frame before a track".into()))?;
+        let first = *t.2.get_or_insert(k);
+        if k - first != t.3.len() as i64 {
+            return Err(internal(format!("frame {k} out of order")));
+        }
+        t.3.push(q);
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        let mut resampled: Vec<Resampled> = Vec::new();
+        for (a, anim) in self.clip.animations().iter().enumerate() {
+            let (first, last) = self.clip.frames(a, self.fps);
+            if first > last {
+                continue; // no frame: the animation stays as it was (check_grid warned)
+            }
+            let mut r = Resampled {
+                animation: anim.index(),
+                times: (first..=last).map(|k| self.fps.time_of(k)).collect(),
+                channels: Vec::new(),
+            };
+            for (ta, c, f, qs) in &mut self.tracks {
+                if *ta != a {
+                    continue;
+                }
+                if *f != Some(first) || qs.len() != r.times.len() {
+                    return Err(internal(format!(
+                        "animation {a} channel {c}: frames {f:?}+{} for {first}..={last}",
+                        qs.len()
+                    )));
+                }
+                // Moved, not copied: the frames are the bulk of the memory.
+                r.channels.push((*c, std::mem::take(qs)));
+            }
+            if !r.channels.is_empty() {
+                resampled.push(r);
+            }
+        }
+        let bytes = self
+            .clip
+            .asset()
+            .to_bytes_in(&resampled, self.format, self.out_dir.as_deref())
+            .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, e.message().to_string()))?;
+        let out = self
+            .out
+            .as_mut()
+            .ok_or_else(|| internal("glTF output finished twice".into()))?;
+        out.write_all(&bytes)?;
+        out.flush()
+    }
+}

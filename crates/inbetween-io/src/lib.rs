@@ -1,0 +1,396 @@
+//! Wire formats: reading keyframe documents (CSV, JSON), writing keys and frames, and where the
+//! bytes go (stdout, or a file replaced atomically). Behind the `io` feature.
+//!
+//! - [`document`]: a keyframe document as read, and its validation into [`crate::Track`]s.
+//! - [`read`]: the CSV and JSON readers; [`parse_bytes`] and [`read_path`] choose between them.
+//! - [`mod@write`]: frame and key writers (CSV, JSON, npy), number formatting.
+//! - [`output`]: standard output or an atomically replaced file, and the write-behind thread.
+
+/// Builds an [`InputError`] with `format!` syntax.
+macro_rules! input_err {
+    ($($arg:tt)*) => { inbetween::error::InputError::new(format!($($arg)*)) };
+}
+
+pub mod bvh;
+pub mod document;
+pub mod gltf;
+pub mod names;
+pub mod output;
+pub mod read;
+pub mod write;
+
+use document::Document;
+use inbetween::clock::Fps;
+use inbetween::error::shorten;
+use inbetween::error::{InputError, InputResult};
+use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+#[allow(unused_imports)]
+use inbetween::{EulerSeq, FrameSink, Track};
+use std::io::Read;
+use std::path::Path;
+
+/// File format of a keyframe document or of the output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Format {
+    /// Comma-separated values with a header row.
+    Csv,
+    /// A JSON document.
+    Json,
+    /// A BVH motion-capture file (input; as output, [`OutputFormat::Bvh`]).
+    Bvh,
+    /// A glTF 2.0 asset, `.gltf` JSON or `.glb` binary (input; as output,
+    /// [`OutputFormat::Gltf`]): its animations' rotation channels ([`gltf::document`]).
+    Gltf,
+}
+
+impl Format {
+    /// `csv`, `json`, `bvh`, or `gltf`/`glb` (either container: it is recognised by its
+    /// bytes).
+    pub fn parse(s: &str) -> InputResult<Format> {
+        match s {
+            "csv" => Ok(Format::Csv),
+            "json" => Ok(Format::Json),
+            "bvh" => Ok(Format::Bvh),
+            "gltf" | "glb" => Ok(Format::Gltf),
+            _ => Err(input_err!(
+                "expected \"csv\", \"json\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+            )),
+        }
+    }
+
+    /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, case-insensitive).
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "csv" => Some(Format::Csv),
+            "json" => Some(Format::Json),
+            "bvh" => Some(Format::Bvh),
+            "gltf" | "glb" => Some(Format::Gltf),
+            _ => None,
+        }
+    }
+
+    /// Sniffs content: the first non-blank character `{` or `[` means JSON, anything else CSV.
+    pub fn sniff(text: &str) -> Format {
+        let t = text.strip_prefix('\u{feff}').unwrap_or(text).trim_start();
+        if t.starts_with('{') || t.starts_with('[') {
+            Format::Json
+        } else if t.starts_with("HIERARCHY") {
+            Format::Bvh
+        } else {
+            Format::Csv
+        }
+    }
+}
+
+/// Output format of a command: a document format, or NumPy `.npy` (interp's frames only).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// A keyframe-document format.
+    Doc(Format),
+    /// A NumPy `.npy` array of float64 rows.
+    Npy,
+    /// A BVH file on the input's skeleton (BVH input only).
+    Bvh,
+    /// The input glTF asset with resampled rotation channels (glTF input only), in this
+    /// container.
+    Gltf(gltf::ContainerFormat),
+}
+
+impl OutputFormat {
+    /// `csv`, `json`, `npy`, `bvh`, `gltf` or `glb`.
+    pub fn parse(s: &str) -> InputResult<OutputFormat> {
+        match s {
+            "npy" => Ok(OutputFormat::Npy),
+            "bvh" => Ok(OutputFormat::Bvh),
+            "gltf" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Gltf)),
+            "glb" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Glb)),
+            "csv" | "json" => Format::parse(s).map(OutputFormat::Doc),
+            _ => Err(input_err!(
+                "expected \"csv\", \"json\", \"npy\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+            )),
+        }
+    }
+}
+
+/// How to interpret input values the data does not describe itself: the command line's
+/// statements about the input, applied by the one precedence rule of [`settle`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ReadOptions {
+    /// `--from`: the representation when the data does not say (the Euler sequence of CSV
+    /// `e1,e2,e3` columns and of JSON `euler` keys); contradicting a JSON `rotation` is an error.
+    pub from: Option<Repr>,
+    /// `--angles`: the unit of undeclared input angles when `input_angles` is absent (it never
+    /// conflicts with a declaration).
+    pub angles: AngleUnit,
+    /// `--input-angles`: the unit of undeclared input angles; contradicting a JSON `angles` is an
+    /// error.
+    pub input_angles: Option<AngleUnit>,
+    /// `--key-fps`: the rate of `frame` numbers when the document declares none; contradicting a
+    /// JSON `fps` is an error.
+    pub key_fps: Option<Fps>,
+    /// `--quat-order`: component order of JSON quaternion arrays.
+    pub quat_order: QuatOrder,
+    /// `--delimiter`: the CSV field delimiter (`,`, `;` or tab); by default detected from the
+    /// header line ([`read::csv::detect_delimiter`]).
+    pub delimiter: Option<u8>,
+}
+
+impl ReadOptions {
+    /// The unit of input angles the document does not declare: `--input-angles`, else
+    /// `--angles`.
+    pub fn undeclared_angles(&self) -> AngleUnit {
+        self.input_angles.unwrap_or(self.angles)
+    }
+}
+
+/// The one precedence rule between a document's declaration and a flag (docs/spec.md §3,
+/// *Precedence*): a declaration describes the document's own values and wins; a flag describes
+/// only what the document leaves undeclared; a flag that contradicts a declaration is an input
+/// error naming both: `keys.json declares "rotation": "euler:ZYX" but --from says euler:XYZ`.
+///
+/// `field` is the document's field, `declared` its value as written (`"euler:ZYX"`, `30`),
+/// `flag` the option. Returns the value that applies, if any.
+pub fn settle<T: PartialEq + std::fmt::Display>(
+    source: &str,
+    field: &str,
+    declared: Option<(T, &str)>,
+    flag: &str,
+    given: Option<T>,
+) -> InputResult<Option<T>> {
+    match (declared, given) {
+        (Some((d, written)), Some(g)) if d != g => Err(input_err!(
+            "{source} declares \"{field}\": {} but {flag} says {g}",
+            shorten(written)
+        )),
+        (Some((d, _)), _) => Ok(Some(d)),
+        (None, g) => Ok(g),
+    }
+}
+
+/// Whether bytes are a glTF asset: the format as given, else `path`'s extension, else the
+/// bytes start with the GLB magic `glTF`.
+pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> bool {
+    format
+        .or_else(|| path.and_then(Format::from_path))
+        .map_or(bytes.starts_with(b"glTF"), |f| f == Format::Gltf)
+}
+
+/// Parses a document from raw bytes: the format as given, else from `path`'s extension, else
+/// sniffed. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
+/// snapped to `--key-fps`, else 30 fps, a `STEP` channel as its held values on those frames
+/// and a `CUBICSPLINE` one as its vertices ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
+/// UTF-8. `source` names the input in messages.
+pub fn parse_bytes(
+    bytes: Vec<u8>,
+    source: &str,
+    path: Option<&Path>,
+    format: Option<Format>,
+    opts: &ReadOptions,
+) -> InputResult<(Document, Format)> {
+    if is_gltf(&bytes, path, format) {
+        let dir = path.map(gltf_dir);
+        let asset = gltf::Asset::from_slice(&bytes, source, dir.as_deref())?;
+        let clip = gltf::document::GltfClip::new(asset, None)?;
+        let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
+        return Ok((
+            clip.document(fps, gltf::document::Mode::Frames)?,
+            Format::Gltf,
+        ));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        input_err!(
+            "{source}: expected UTF-8 text, found an invalid byte at offset {}",
+            e.utf8_error().valid_up_to()
+        )
+    })?;
+    let format = format
+        .or_else(|| path.and_then(Format::from_path))
+        .unwrap_or_else(|| Format::sniff(&text));
+    Ok((read_document(&text, source, format, opts)?, format))
+}
+
+/// The folder where the external buffers of the glTF file at `path` are: its parent.
+pub fn gltf_dir(path: &Path) -> std::path::PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => std::path::PathBuf::from("."),
+    }
+}
+
+/// The default limit on the size of an input: 1 GiB. A keyframe document larger than this is an
+/// input error rather than an unbounded allocation (reading `/dev/zero` stops here).
+pub const DEFAULT_MAX_INPUT_BYTES: u64 = 1 << 30;
+
+fn too_large(source: &str, limit: u64) -> InputError {
+    input_err!("{source}: input larger than {limit} bytes (--max-input-bytes)")
+}
+
+/// Reads all of `reader` (standard input, a pipe, a file), at most `limit` bytes: one byte more
+/// is an input error `<source>: input larger than <limit> bytes (--max-input-bytes)`, and
+/// reading stops there (it never reads more than `limit + 1` bytes).
+pub fn read_limited(reader: &mut dyn Read, limit: u64, source: &str) -> InputResult<Vec<u8>> {
+    read_limited_with_capacity(reader, limit, source, 0)
+}
+
+fn read_limited_with_capacity(
+    reader: &mut dyn Read,
+    limit: u64,
+    source: &str,
+    capacity: usize,
+) -> InputResult<Vec<u8>> {
+    let mut bytes = Vec::new();
+    bytes
+        .try_reserve_exact(capacity)
+        .map_err(|_| input_err!("{source}: cannot read: out of memory for {capacity} bytes"))?;
+    reader
+        .take(limit.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| input_err!("{source}: cannot read: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large(source, limit));
+    }
+    Ok(bytes)
+}
+
+/// Reads and parses a keyframe file of at most [`DEFAULT_MAX_INPUT_BYTES`] (see
+/// [`read_path_limited`]).
+pub fn read_path(
+    path: &Path,
+    format: Option<Format>,
+    opts: &ReadOptions,
+) -> InputResult<(Document, Format)> {
+    read_path_limited(path, format, opts, DEFAULT_MAX_INPUT_BYTES)
+}
+
+/// Reads and parses a keyframe file (see [`parse_bytes`]) of at most `limit` bytes, else the
+/// input error of [`read_limited`]. A regular file larger than `limit` is refused before it is
+/// read; anything else (a pipe, a device) is read up to `limit + 1` bytes.
+pub fn read_path_limited(
+    path: &Path,
+    format: Option<Format>,
+    opts: &ReadOptions,
+    limit: u64,
+) -> InputResult<(Document, Format)> {
+    let bytes = read_bytes_limited(path, limit)?;
+    parse_bytes(bytes, &path.display().to_string(), Some(path), format, opts)
+}
+
+/// The bytes of a file of at most `limit` bytes, else the input error of [`read_limited`]. A
+/// regular file larger than `limit` is refused before it is read; anything else (a pipe, a
+/// device) is read up to `limit + 1` bytes.
+pub fn read_bytes_limited(path: &Path, limit: u64) -> InputResult<Vec<u8>> {
+    let source = path.display().to_string();
+    let cannot = |e: std::io::Error| input_err!("{source}: cannot read: {e}");
+    let mut file = std::fs::File::open(path).map_err(cannot)?;
+    // The size of a regular file, to refuse it unread or to read it into one allocation.
+    let size = file
+        .metadata()
+        .ok()
+        .filter(|m| m.is_file())
+        .map(|m| m.len());
+    if size.is_some_and(|n| n > limit) {
+        return Err(too_large(&source, limit));
+    }
+    // One byte more than the size, so that a file that grew while being read is still caught
+    // without a second allocation.
+    let capacity = size.map_or(0, |n| usize::try_from(n.saturating_add(1)).unwrap_or(0));
+    read_limited_with_capacity(&mut file, limit, &source, capacity)
+}
+
+/// Parses a document in the given format.
+pub fn read_document(
+    text: &str,
+    source: &str,
+    format: Format,
+    opts: &ReadOptions,
+) -> InputResult<Document> {
+    match format {
+        Format::Csv => read::csv::read(text, source, opts),
+        Format::Json => read::json::read(text, source, opts),
+        Format::Bvh => {
+            let (clip, warnings) = bvh::parse(text, source)?;
+            Ok(bvh::document::document(clip, source, warnings))
+        }
+        Format::Gltf => {
+            let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
+            let clip = gltf::document::GltfClip::new(asset, None)?;
+            let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
+            clip.document(fps, gltf::document::Mode::Frames)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn settle_is_the_one_precedence_rule() {
+        let zyx = Repr::parse("euler:ZYX").unwrap();
+        let xyz = Repr::parse("euler:XYZ").unwrap();
+        let settled = |declared: Option<Repr>, given: Option<Repr>| {
+            settle(
+                "k.json",
+                "rotation",
+                declared.map(|r| (r, "\"euler:ZYX\"")),
+                "--from",
+                given,
+            )
+        };
+        // Declared alone, given alone, neither, both agreeing.
+        assert_eq!(settled(Some(zyx), None).unwrap(), Some(zyx));
+        assert_eq!(settled(None, Some(xyz)).unwrap(), Some(xyz));
+        assert_eq!(settled(None, None).unwrap(), None);
+        assert_eq!(settled(Some(zyx), Some(zyx)).unwrap(), Some(zyx));
+        // Contradicting: an error naming both.
+        assert_eq!(
+            settled(Some(zyx), Some(xyz)).unwrap_err().message(),
+            "k.json declares \"rotation\": \"euler:ZYX\" but --from says euler:XYZ"
+        );
+        let fps = settle(
+            "k.json",
+            "fps",
+            Some((Fps::parse("24").unwrap(), "24")),
+            "--key-fps",
+            Some(Fps::parse("30000/1001").unwrap()),
+        );
+        assert_eq!(
+            fps.unwrap_err().message(),
+            "k.json declares \"fps\": 24 but --key-fps says 30000/1001"
+        );
+    }
+
+    #[test]
+    fn gltf_is_read_from_bytes_before_the_utf8_check() {
+        let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+            .join("fixtures/gltf/samplers.glb");
+        let opts = ReadOptions::default();
+        let (doc, format) = read_path(&path, None, &opts).unwrap();
+        assert_eq!(format, Format::Gltf);
+        assert_eq!(doc.tracks[0].name.as_deref(), Some("Mixed/step"));
+        // Sniffed from the GLB magic, without a name.
+        let bytes = std::fs::read(&path).unwrap();
+        let (sniffed, format) = parse_bytes(bytes, "<stdin>", None, None, &opts).unwrap();
+        assert_eq!(
+            (sniffed.tracks.len(), format),
+            (doc.tracks.len(), Format::Gltf)
+        );
+        assert_eq!(Format::parse("glb").unwrap(), Format::Gltf);
+        assert_eq!(
+            OutputFormat::parse("glb").unwrap(),
+            OutputFormat::Gltf(gltf::ContainerFormat::Glb)
+        );
+    }
+
+    #[test]
+    fn input_angles_win_over_angles_for_undeclared_input() {
+        let mut o = ReadOptions {
+            angles: AngleUnit::Rad,
+            ..ReadOptions::default()
+        };
+        assert_eq!(o.undeclared_angles(), AngleUnit::Rad);
+        o.input_angles = Some(AngleUnit::Deg);
+        assert_eq!(o.undeclared_angles(), AngleUnit::Deg);
+    }
+}

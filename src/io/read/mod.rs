@@ -1,6 +1,0 @@
-//! Readers of keyframe documents: one module per format, each turning text into a
-//! [`Document`](crate::io::document::Document) with every key converted to a unit quaternion and
-//! its source location kept for messages.
-
-pub mod csv;
-pub mod json;
