@@ -4,6 +4,7 @@
 mod chart;
 mod cli;
 mod cmd;
+mod output;
 mod signals;
 mod warnings;
 

@@ -1,10 +1,12 @@
-//! Wire formats: reading keyframe documents (CSV, JSON), writing keys and frames, and where the
-//! bytes go (stdout, or a file replaced atomically). Behind the `io` feature.
+//! Wire formats: reading keyframe documents (CSV, JSON, BVH, glTF) and writing keys and frames
+//! to any `std::io::Write`. The `inbetween-io` crate, on the maths of `inbetween`; where the bytes
+//! go (standard output, a file replaced atomically) is the command line's.
 //!
 //! - [`document`]: a keyframe document as read, and its validation into [`crate::Track`]s.
 //! - [`read`]: the CSV and JSON readers; [`parse_bytes`] and [`read_path`] choose between them.
 //! - [`mod@write`]: frame and key writers (CSV, JSON, npy), number formatting.
-//! - [`output`]: standard output or an atomically replaced file, and the write-behind thread.
+
+#![warn(missing_docs, unreachable_pub)]
 
 /// Builds an [`InputError`] with `format!` syntax.
 macro_rules! input_err {
@@ -15,7 +17,6 @@ pub mod bvh;
 pub mod document;
 pub mod gltf;
 pub mod names;
-pub mod output;
 pub mod read;
 pub mod write;
 

@@ -40,7 +40,7 @@
 //! and out), with `chart` `chart` (SVG). The command line (`cli`, on by default) is the
 //! binary's own and not part of this API.
 
-#![warn(missing_docs)]
+#![warn(missing_docs, unreachable_pub)]
 
 pub mod bake;
 pub mod clock;

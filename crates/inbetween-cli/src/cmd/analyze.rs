@@ -2,10 +2,10 @@
 
 use super::settings::read_curves;
 use crate::cli::{AnalyzeArgs, ReportFormat};
+use crate::output::Output;
 use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
-use inbetween_io::output::Output;
 use inbetween_io::write::num::{NumFormat, NumWriter};
 use std::io::{Read, Write};
 

@@ -2,10 +2,10 @@
 
 use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
+use crate::output::Output;
 use inbetween::{Error, InputError};
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::Mode;
-use inbetween_io::output::Output;
 use inbetween_io::write::write_keys;
 use inbetween_io::{Format, OutputFormat};
 use std::io::Read;

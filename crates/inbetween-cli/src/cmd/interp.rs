@@ -2,6 +2,7 @@
 
 use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
 use crate::cli::{InterpArgs, PathArg, SpanArg};
+use crate::output::{Output, WriteBehind};
 use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
 use inbetween::{
@@ -13,7 +14,6 @@ use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid};
-use inbetween_io::output::{Output, WriteBehind};
 use inbetween_io::write::{FrameWriter, NpyWriter};
 use std::io::Read;
 

@@ -3,9 +3,9 @@
 use super::settings::read_curves;
 use crate::chart::{What, svg};
 use crate::cli::{PlotArgs, WhatArg};
+use crate::output::Output;
 use inbetween::error::shorten;
 use inbetween::{Error, InputError, Scheme};
-use inbetween_io::output::Output;
 use std::io::{Read, Write};
 
 /// Runs `plot`: one track's chart, schemes side by side.

@@ -3,13 +3,13 @@
 
 use super::settings::{Curves, output_format, rates, read_curves};
 use crate::cli::{MethodArg, ReduceArgs, SchemeArg};
+use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{Error, EulerSeq, InputError, PathMode, Repr};
 use inbetween_io::OutputFormat;
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
 use inbetween_io::gltf::ContainerFormat;
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
-use inbetween_io::output::Output;
 use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
 use std::io::Read;

@@ -92,7 +92,7 @@ pub fn read_input(
         let dir = path.map(inbetween_io::gltf_dir);
         let asset =
             Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
-        inbetween_io::output::protect_inputs(asset.referenced_files());
+        crate::output::protect_inputs(asset.referenced_files());
         let clip = GltfClip::new(asset, args.animation.as_deref())?;
         let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
         (doc, Format::Gltf, Some(Arc::new(clip)))

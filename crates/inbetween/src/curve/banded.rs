@@ -8,14 +8,14 @@
 /// A symmetric `n × n` matrix with half-bandwidth `b`, lower band stored row by row:
 /// `data[i·(b+1) + (b − (i − j))] = A[i][j]` for `i − b ≤ j ≤ i`.
 #[derive(Debug, Clone)]
-pub struct Banded {
+pub(crate) struct Banded {
     n: usize,
     b: usize,
     data: Vec<f64>,
 }
 
 impl Banded {
-    pub fn zeros(n: usize, b: usize) -> Self {
+    pub(crate) fn zeros(n: usize, b: usize) -> Self {
         Banded {
             n,
             b,
@@ -24,7 +24,7 @@ impl Banded {
     }
 
     /// Sets every entry to zero, keeping the allocation.
-    pub fn clear(&mut self) {
+    pub(crate) fn clear(&mut self) {
         self.data.fill(0.0);
     }
 
@@ -36,12 +36,12 @@ impl Banded {
 
     /// `A[i][j] += x` for `j ≤ i` (the lower triangle; the matrix is symmetric).
     #[inline]
-    pub fn add(&mut self, i: usize, j: usize, x: f64) {
+    pub(crate) fn add(&mut self, i: usize, j: usize, x: f64) {
         let k = self.at(i, j);
         self.data[k] += x;
     }
 
-    pub fn get(&self, i: usize, j: usize) -> f64 {
+    pub(crate) fn get(&self, i: usize, j: usize) -> f64 {
         let (i, j) = if j > i { (j, i) } else { (i, j) };
         if i - j > self.b {
             0.0
@@ -52,7 +52,7 @@ impl Banded {
 
     /// Factorises in place into `L` (lower, same band). Returns false if the matrix is not
     /// positive definite (a pivot ≤ 0 or not finite).
-    pub fn cholesky(&mut self) -> bool {
+    pub(crate) fn cholesky(&mut self) -> bool {
         let (n, b) = (self.n, self.b);
         for i in 0..n {
             let j0 = i.saturating_sub(b);
@@ -78,7 +78,7 @@ impl Banded {
     }
 
     /// Solves `L Lᵀ x = rhs` in place, after [`Banded::cholesky`].
-    pub fn solve(&self, x: &mut [f64]) {
+    pub(crate) fn solve(&self, x: &mut [f64]) {
         let (n, b) = (self.n, self.b);
         for i in 0..n {
             let k0 = i.saturating_sub(b);

@@ -14,7 +14,7 @@ use wide::f64x4;
 
 /// Four quaternions as lanes: `[w, x, y, z]` each an `f64x4`.
 #[derive(Debug, Clone, Copy)]
-pub struct Quat4 {
+pub(crate) struct Quat4 {
     pub w: f64x4,
     pub x: f64x4,
     pub y: f64x4,
@@ -23,7 +23,7 @@ pub struct Quat4 {
 
 impl Quat4 {
     #[inline]
-    pub fn from_quats(q: &[DQuat; 4]) -> Quat4 {
+    pub(crate) fn from_quats(q: &[DQuat; 4]) -> Quat4 {
         Quat4 {
             w: f64x4::new([q[0].w, q[1].w, q[2].w, q[3].w]),
             x: f64x4::new([q[0].x, q[1].x, q[2].x, q[3].x]),
@@ -33,7 +33,7 @@ impl Quat4 {
     }
 
     #[inline]
-    pub fn to_quats(self) -> [DQuat; 4] {
+    pub(crate) fn to_quats(self) -> [DQuat; 4] {
         let (w, x, y, z) = (
             self.w.to_array(),
             self.x.to_array(),
@@ -46,7 +46,7 @@ impl Quat4 {
 
 /// Hands out frames computed four at a time: `next` refills the block when it is used up.
 #[derive(Debug, Clone)]
-pub struct Block4 {
+pub(crate) struct Block4 {
     buf: [DQuat; 4],
     pos: usize,
 }
@@ -62,7 +62,7 @@ impl Default for Block4 {
 
 impl Block4 {
     #[inline]
-    pub fn next(&mut self, refill: impl FnOnce() -> [DQuat; 4]) -> DQuat {
+    pub(crate) fn next(&mut self, refill: impl FnOnce() -> [DQuat; 4]) -> DQuat {
         if self.pos == 4 {
             self.buf = refill();
             self.pos = 0;
@@ -74,20 +74,20 @@ impl Block4 {
 
 /// The next four points of an arc's forward differences, as lanes.
 #[inline]
-pub fn steps4(steps: &mut super::arc::ArcSteps) -> Quat4 {
+pub(crate) fn steps4(steps: &mut super::arc::ArcSteps) -> Quat4 {
     let q: [DQuat; 4] = std::array::from_fn(|_| steps.next_point());
     Quat4::from_quats(&q)
 }
 
 /// `f(u₀ + (j + i)·δ)` for lanes `i = 0..4`, with `u` from the frame index (never accumulated).
 #[inline]
-pub fn params4(u0: f64, du: f64, j: f64, f: impl Fn(f64) -> f64) -> f64x4 {
+pub(crate) fn params4(u0: f64, du: f64, j: f64, f: impl Fn(f64) -> f64) -> f64x4 {
     f64x4::new(std::array::from_fn(|i| f(u0 + (j + i as f64) * du)))
 }
 
 /// `geodesic(a[i], b[i], f[i])` for the four lanes.
 #[inline]
-pub fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
+pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
     let d = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
     let (pw, px, py, pz) = (b.w - d * a.w, b.x - d * a.x, b.y - d * a.y, b.z - d * a.z);
     let s = (pw * pw + px * px + py * py + pz * pz).sqrt();

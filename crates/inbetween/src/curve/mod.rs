@@ -260,12 +260,12 @@ pub(crate) mod test_support {
     use crate::track::Track;
     use glam::DVec3;
 
-    pub fn keys(times: &[f64], quats: &[DQuat], ends: EndConditions) -> Knots {
+    pub(crate) fn keys(times: &[f64], quats: &[DQuat], ends: EndConditions) -> Knots {
         let track = Track::new(times.to_vec(), quats.to_vec()).expect("a valid track");
         Knots::new(&track, PathMode::Shortest, ends)
     }
 
-    pub fn sample_track() -> Track {
+    pub(crate) fn sample_track() -> Track {
         let q = [
             DQuat::IDENTITY,
             DQuat::from_axis_angle(DVec3::new(0.0, 0.6, 0.8), 1.1),
@@ -275,7 +275,7 @@ pub(crate) mod test_support {
         Track::new(vec![0.0, 0.5, 1.25, 2.0], q.to_vec()).expect("a valid track")
     }
 
-    pub fn sample_keys() -> Knots {
+    pub(crate) fn sample_keys() -> Knots {
         Knots::new(
             &sample_track(),
             PathMode::Shortest,
@@ -284,7 +284,7 @@ pub(crate) mod test_support {
     }
 
     /// Keys hit, forward differences agree with direct evaluation, unit norm.
-    pub fn check_segment<S: Segment>(k: &Knots, blend: Blend) {
+    pub(crate) fn check_segment<S: Segment>(k: &Knots, blend: Blend) {
         for s in 0..k.segments() {
             let seg = S::new(k, s, blend);
             assert!(
@@ -307,7 +307,7 @@ pub(crate) mod test_support {
     }
 
     /// `dQ/du` at `u` by central differences (one-sided at the ends).
-    pub fn deriv<S: Segment>(seg: &S, u: f64) -> DQuat {
+    pub(crate) fn deriv<S: Segment>(seg: &S, u: f64) -> DQuat {
         let h = 1e-6;
         if u <= 0.0 {
             (seg.eval(u + h) * 4.0 - seg.eval(u + 2.0 * h) - seg.eval(u) * 3.0) / (2.0 * h)

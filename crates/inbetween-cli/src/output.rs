@@ -18,6 +18,11 @@
 //! remove them with [`remove_temp_files`] before the process ends.
 
 use inbetween::error::Error;
+
+/// Builds an [`inbetween::InputError`] with `format!` syntax.
+macro_rules! input_err {
+    ($($arg:tt)*) => { inbetween::error::InputError::new(format!($($arg)*)) };
+}
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -65,7 +70,7 @@ static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
 static PROTECTED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 
 /// Marks `files` (canonical paths, such as
-/// [`Asset::referenced_files`](crate::gltf::Asset::referenced_files)) as files the input
+/// [`Asset::referenced_files`](inbetween_io::gltf::Asset::referenced_files)) as files the input
 /// reads: [`Output::open`] then refuses them as a destination (an input error), so that `-o`
 /// naming an asset's own `.bin` does not destroy the input.
 pub fn protect_inputs(files: &[PathBuf]) {
