@@ -712,6 +712,14 @@ mod tests {
     use super::*;
     use crate::curve::test_support::{sample_keys, sample_track};
 
+    /// The schemes whose pieces are the keys' segments.
+    const SEGMENT_SCHEMES: [Scheme; 4] = [
+        Scheme::Slerp,
+        Scheme::Hermite,
+        Scheme::Squad,
+        Scheme::Bezier,
+    ];
+
     fn curve(scheme: Scheme) -> Curve {
         let opts = CurveOptions {
             scheme,
@@ -722,12 +730,7 @@ mod tests {
 
     #[test]
     fn segment_rotation_is_the_curves_rotation_to_the_bit() {
-        for scheme in [
-            Scheme::Slerp,
-            Scheme::Hermite,
-            Scheme::Squad,
-            Scheme::Bezier,
-        ] {
+        for scheme in SEGMENT_SCHEMES {
             let c = curve(scheme);
             let (t0, t1) = c.span();
             for j in 0..=200 {
@@ -743,12 +746,7 @@ mod tests {
     #[test]
     fn segment_points_are_the_rotations_at_their_times() {
         let k = sample_keys();
-        for scheme in [
-            Scheme::Slerp,
-            Scheme::Hermite,
-            Scheme::Squad,
-            Scheme::Bezier,
-        ] {
+        for scheme in SEGMENT_SCHEMES {
             let c = curve(scheme);
             for s in 0..k.segments() {
                 let (u0, du) = (0.03, 0.0937);
