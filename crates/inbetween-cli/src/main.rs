@@ -59,16 +59,39 @@ fn main() -> ExitCode {
         Err(e) => {
             let io = match &e {
                 Error::Io(io) => Some(io),
-                Error::Input(_) => None,
+                Error::Input(_) | Error::Internal(_) => None,
             };
             if io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
                 return ExitCode::SUCCESS;
             }
             eprintln!("inbetween: error: {e}");
-            match e {
-                Error::Input(_) => ExitCode::from(2),
-                Error::Io(_) => ExitCode::from(1),
-            }
+            ExitCode::from(exit_status(&e))
         }
+    }
+}
+
+/// The exit status of an error, by its kind: 2 for bad input or options, 1 for an I/O error or an
+/// internal one (a check of the library's own result that failed: a bug).
+fn exit_status(e: &Error) -> u8 {
+    match e {
+        Error::Input(_) => 2,
+        Error::Io(_) | Error::Internal(_) => 1,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exit_statuses_follow_the_error_kinds() {
+        let input = Error::Input(inbetween::InputError::new("bad"));
+        let internal = Error::Internal("internal error: reduce's keys miss a frame".into());
+        let io = Error::Io(std::io::Error::other("disk full"));
+        assert_eq!(
+            [&input, &internal, &io].map(exit_status),
+            [2, 1, 1],
+            "input, internal, I/O"
+        );
     }
 }

@@ -61,6 +61,9 @@ pub enum Error {
     Input(InputError),
     /// An I/O error.
     Io(io::Error),
+    /// A check the library makes of its own result failed: a bug (the binary exits 1). Its
+    /// message starts `internal error:`.
+    Internal(String),
 }
 
 impl fmt::Display for Error {
@@ -68,6 +71,7 @@ impl fmt::Display for Error {
         match self {
             Error::Input(e) => e.fmt(f),
             Error::Io(e) => e.fmt(f),
+            Error::Internal(m) => f.write_str(m),
         }
     }
 }
@@ -77,6 +81,7 @@ impl std::error::Error for Error {
         match self {
             Error::Input(e) => Some(e),
             Error::Io(e) => Some(e),
+            Error::Internal(_) => None,
         }
     }
 }

@@ -258,7 +258,10 @@ fn reduce_tracks(
     } else {
         reduce_each(&frames, &opts)
     }
-    .map_err(located)?;
+    .map_err(|e| match e {
+        Error::Input(e) => Error::Input(located(e)),
+        other => other,
+    })?;
     if args.verbose {
         for (t, r) in tracks.iter().zip(&reduced) {
             let unit = |x: f64| match args.distance {

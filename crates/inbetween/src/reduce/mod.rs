@@ -43,7 +43,7 @@
 
 use crate::curve::piecewise::{MAX_SPEED, segment_rotation};
 use crate::curve::{Curve, CurveOptions, Scheme};
-use crate::error::InputResult;
+use crate::error::{Error, InputResult};
 use crate::rotation::quat::{log, rotation_angle_between};
 use crate::tangent::{EndConditions, Ends, Knots, PathMode, apply_path};
 use crate::track::Track;
@@ -134,7 +134,7 @@ pub fn reduce(
     quats: &[DQuat],
     positions: Option<&[DVec3]>,
     opts: &ReduceOptions,
-) -> InputResult<Reduced> {
+) -> Result<Reduced, Error> {
     let frames = TrackFrames {
         times,
         rotations: quats,
@@ -146,7 +146,7 @@ pub fn reduce(
 }
 
 /// Reduces one track's frames (see the module documentation).
-pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> InputResult<Reduced> {
+pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> Result<Reduced, Error> {
     let n = track.rotations.len();
     let frames = Frames::new(track, opts);
     if n < 2 {
@@ -217,13 +217,12 @@ fn reduced(
     keys: Vec<usize>,
     errors: Errors,
     opts: &ReduceOptions,
-) -> InputResult<Reduced> {
+) -> Result<Reduced, Error> {
     if errors.max > opts.tolerance * (1.0 + 1e-12) {
-        return Err(crate::error::input_err!(
+        return Err(Error::Internal(format!(
             "internal error: reduce's keys miss a frame by {:e} (tolerance {:e})",
-            errors.max,
-            opts.tolerance
-        ));
+            errors.max, opts.tolerance
+        )));
     }
     Ok(Reduced {
         velocities: frames.key_velocities(&keys),
@@ -272,7 +271,10 @@ impl<'a> TrackFrames<'a> {
 /// (at most [`MAX_THREADS`] threads, tracks taken in order as threads come free). The result is
 /// in the tracks' order and the same whatever the number of threads; on errors, the first
 /// track's error.
-pub fn reduce_each(tracks: &[TrackFrames<'_>], opts: &ReduceOptions) -> InputResult<Vec<Reduced>> {
+pub fn reduce_each(
+    tracks: &[TrackFrames<'_>],
+    opts: &ReduceOptions,
+) -> Result<Vec<Reduced>, Error> {
     crate::parallel::map(tracks, |t| reduce_frames(t, opts))
         .into_iter()
         .collect()

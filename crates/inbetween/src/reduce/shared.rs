@@ -11,14 +11,15 @@ use super::*;
 pub fn reduce_shared(
     tracks: &[TrackFrames<'_>],
     opts: &ReduceOptions,
-) -> InputResult<Vec<Reduced>> {
+) -> Result<Vec<Reduced>, Error> {
     let Some(times) = tracks.first().map(|t| t.times) else {
         return Ok(Vec::new());
     };
     if tracks.iter().any(|t| t.times != times) {
         return Err(crate::error::input_err!(
             "--shared-keys: the tracks have different frame times; shared keys need one grid"
-        ));
+        )
+        .into());
     }
     let n = times.len();
     let frames: Vec<Frames> = tracks.iter().map(|t| Frames::new(t, opts)).collect();
