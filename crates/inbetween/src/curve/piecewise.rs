@@ -180,6 +180,12 @@ pub(crate) fn chord_omega(a: DQuat, b: DQuat, h: f64) -> DVec3 {
     log(b * a.conjugate()) * (2.0 / h)
 }
 
+/// The position curve of a curve under `opts` through translations `p` at key `times`: linear
+/// for slerp, else cubic, with the end rule of `opts`.
+fn positions(times: &[f64], p: &[DVec3], opts: &CurveOptions) -> crate::position::Positions {
+    crate::position::Positions::new(times, p, opts.scheme == Scheme::Slerp, opts.ends.ends)
+}
+
 /// `t` clamped to the breaks' span, and within [`TIME_TOL`] of a break that break (the nearer).
 fn snap(b: &[f64], t: f64) -> f64 {
     let t = t.clamp(b[0], b[b.len() - 1]);
@@ -363,10 +369,9 @@ impl Curve {
             ),
         };
         Ok(Some(Curve {
-            positions: track.translations().map(|p| {
-                let linear = opts.scheme == Scheme::Slerp;
-                crate::position::Positions::new(track.times(), p, linear, opts.ends.ends)
-            }),
+            positions: track
+                .translations()
+                .map(|p| positions(track.times(), p, opts)),
             name,
             euler_start: track
                 .euler_angles()
@@ -379,17 +384,17 @@ impl Curve {
 
     /// The curve [`Curve::new`] builds under a segment scheme from the track that `keys` were
     /// shaped from, given those knots (reduce's probe knots, [`Knots::set_pair`]) and the
-    /// track's positions and first Euler angles: no track, and none of its checks (the caller
+    /// track's translations and first Euler angles: no track, and none of its checks (the caller
     /// has made them).
     pub(crate) fn of_knots(
         keys: Knots,
         opts: &CurveOptions,
-        positions: Option<crate::position::Positions>,
+        translations: Option<&[DVec3]>,
         euler_start: Option<(crate::EulerSeq, [f64; 3])>,
     ) -> Curve {
         Curve {
             name: None,
-            positions,
+            positions: translations.map(|p| positions(&keys.times, p, opts)),
             euler_start,
             scheme: opts.scheme,
             pieces: Pieces::Segments {

@@ -107,12 +107,19 @@ impl<'a> Frames<'a> {
     /// On held joints every segment test passes, each evaluating every frame; this decides them
     /// without a curve.
     pub(super) fn held(&self, a: usize, b: usize, opts: &ReduceOptions) -> bool {
-        let n = self.quats.len();
-        let ends = opts.curve.ends;
-        let still = |v: Option<DVec3>| v == Some(DVec3::ZERO);
         self.held_until.get(a).is_some_and(|&last| last >= b)
-            && still(ends.start.filter(|_| a == 0).or(self.velocity(a)))
-            && still(ends.end.filter(|_| b == n - 1).or(self.velocity(b)))
+            && self.pair_velocities(a, b, opts) == [Some(DVec3::ZERO); 2]
+    }
+
+    /// The velocities keys `a` and `b` carry in segment `a..b`'s curve when keys carry them, as
+    /// [`Frames::segment_curve`] gives them: the ends' given velocities at the first and last
+    /// frame, else each key's own.
+    fn pair_velocities(&self, a: usize, b: usize, opts: &ReduceOptions) -> [Option<DVec3>; 2] {
+        let (n, ends) = (self.quats.len(), opts.curve.ends);
+        [
+            ends.start.filter(|_| a == 0).or(self.velocity(a)),
+            ends.end.filter(|_| b == n - 1).or(self.velocity(b)),
+        ]
     }
 
     /// Segment tests are probed ([`Frames::probe`]) where the probe's knots are the
@@ -192,11 +199,10 @@ impl<'a> Frames<'a> {
         b: usize,
         opts: &ReduceOptions,
     ) -> Option<RefMut<'_, Knots>> {
-        let (probe, va, vb) = (self.probe.as_ref()?, self.velocity(a)?, self.velocity(b)?);
-        let n = self.quats.len();
-        let ends = opts.curve.ends;
-        let start = ends.start.filter(|_| a == 0).unwrap_or(va);
-        let end = ends.end.filter(|_| b == n - 1).unwrap_or(vb);
+        let probe = self.probe.as_ref()?;
+        let [Some(start), Some(end)] = self.pair_velocities(a, b, opts) else {
+            return None;
+        };
         let mut knots = probe.borrow_mut();
         let (t, q) = (
             [self.times[a], self.times[b]],
@@ -216,13 +222,21 @@ impl<'a> Frames<'a> {
         b: usize,
         opts: &ReduceOptions,
     ) -> Curve {
-        let positions = self.positions.map(|p| {
-            let linear = opts.curve.scheme == Scheme::Slerp;
-            crate::position::Positions::new(&knots.times, &[p[a], p[b]], linear, Ends::Chord)
-        });
+        // The segment's own ends are chords (its end velocities are in the knots).
+        let ends = EndConditions {
+            ends: Ends::Chord,
+            ..opts.curve.ends
+        };
+        let segment = CurveOptions { ends, ..opts.curve };
+        let positions = self.positions.map(|p| [p[a], p[b]]);
         let euler = self.euler.filter(|_| opts.curve.path == PathMode::Euler);
         let euler_start = euler.map(|(seq, e)| (seq, e[a].to_array()));
-        Curve::of_knots(knots.clone(), &opts.curve, positions, euler_start)
+        Curve::of_knots(
+            knots.clone(),
+            &segment,
+            positions.as_ref().map(|p| &p[..]),
+            euler_start,
+        )
     }
 
     /// Whether the track's positions are reduced (it has them, and a tolerance for them).
