@@ -171,7 +171,7 @@ impl<W: Write> FrameSink for BvhFrames<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bvh::read::tests::{least_of_three, many_joints};
+    use crate::bvh::read::tests::{least_of_runs, many_joints};
     use crate::bvh::{document::document, parse};
 
     /// Every track's frames into the sink, as `bake` hands them: begin, two frames, end.
@@ -193,7 +193,7 @@ mod tests {
         let time = |n: usize| {
             let clip = Arc::new(parse(&many_joints(n, 300), "many.bvh").unwrap().0);
             let doc = document((*clip).clone(), "many.bvh", Vec::new());
-            least_of_three(|| {
+            least_of_runs(|| {
                 let mut sink = BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
                 feed(&mut sink, &doc);
                 assert!(sink.into_inner().unwrap().len() > 12 * n);

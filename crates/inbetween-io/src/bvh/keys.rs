@@ -125,7 +125,7 @@ pub fn write_keys<W: Write>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bvh::read::tests::{least_of_three, many_joints};
+    use crate::bvh::read::tests::{least_of_runs, many_joints};
     use crate::bvh::{document::document, parse};
 
     /// Matching 4n joints to their tracks takes about 4 times as long as matching n, not 16
@@ -137,7 +137,7 @@ mod tests {
             let (clip, _) = parse(&many_joints(n, 300), "many.bvh").unwrap();
             let fps = clip.fps();
             let doc = document(clip.clone(), "many.bvh", Vec::new());
-            least_of_three(|| {
+            least_of_runs(|| {
                 let mut out = Vec::new();
                 write_keys(&mut out, &doc, &clip, fps).unwrap();
                 assert!(out.len() > 12 * n);
