@@ -4,8 +4,8 @@
 use clap::{Args, Parser, Subcommand};
 use inbetween::Fps;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+use inbetween_io::num::{MAX_PRECISION, NumFormat};
 use inbetween_io::write::EulerMode;
-use inbetween_io::write::num::{MAX_PRECISION, NumFormat};
 use inbetween_io::{Format, OutputFormat};
 use std::path::PathBuf;
 

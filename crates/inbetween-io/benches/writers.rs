@@ -10,7 +10,7 @@ use glam::DQuat;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 use inbetween::{BakeOptions, Curve, CurveOptions, FrameSink, bake};
 use inbetween_io::Format;
-use inbetween_io::write::num::NumFormat;
+use inbetween_io::num::NumFormat;
 use inbetween_io::write::{FrameWriter, NpyWriter, Style};
 use std::hint::black_box;
 use std::io;

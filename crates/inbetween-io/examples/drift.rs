@@ -6,7 +6,7 @@
 //! subtraction) and the paper's (`s = 2(1 − cos h)`, `d₀ = C(δ) − C(0)`), at 10² … 10⁶ steps.
 
 use glam::DQuat;
-use inbetween::curve::arc::Arc;
+use inbetween::rotation::arc::Arc;
 
 fn main() {
     let a = DQuat::from_rotation_x(0.2);

@@ -5,7 +5,7 @@ use glam::{DQuat, DVec3};
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 use inbetween::{BakeOptions, Curve, CurveOptions, Fps, FrameSink, Track, bake};
 use inbetween_io::Format;
-use inbetween_io::write::num::NumFormat;
+use inbetween_io::num::NumFormat;
 use inbetween_io::write::{FrameWriter, Style};
 use std::time::Instant;
 

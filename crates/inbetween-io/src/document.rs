@@ -5,10 +5,10 @@
 //! line or key, and the field.
 
 use glam::{DQuat, DVec3};
+use inbetween::Tcb;
 use inbetween::clock::Fps;
 use inbetween::error::InputResult;
 use inbetween::rotation::Repr;
-use inbetween::tangent::Tcb;
 use inbetween::track::{Track, TrackError, check_times};
 use std::fmt;
 
@@ -261,7 +261,7 @@ pub struct Document {
     /// Non-fatal findings, already located (e.g. a quaternion norm off 1).
     pub warnings: Vec<String>,
     /// The skeleton of a BVH input: what BVH output is written against.
-    pub skeleton: Option<std::sync::Arc<crate::bvh::Clip>>,
+    pub skeleton: Option<std::sync::Arc<crate::clip::Clip>>,
 }
 
 impl Document {

@@ -4,7 +4,9 @@
 //!
 //! - [`document`]: a keyframe document as read, and its validation into [`crate::Track`]s.
 //! - [`read`]: the CSV and JSON readers; [`parse_bytes`] and [`read_path`] choose between them.
-//! - [`mod@write`]: frame and key writers (CSV, JSON, npy), number formatting.
+//! - [`mod@write`]: frame and key writers (CSV, JSON, npy); [`num`]: their number formatting.
+//! - [`bvh`] and [`clip`]: BVH files and the skeleton-and-motion clip they hold; [`gltf`]: glTF
+//!   2.0 assets.
 
 #![warn(missing_docs, unreachable_pub)]
 
@@ -14,9 +16,11 @@ macro_rules! input_err {
 }
 
 pub mod bvh;
+pub mod clip;
 pub mod document;
 pub mod gltf;
 pub mod names;
+pub mod num;
 pub mod read;
 pub mod write;
 

@@ -48,12 +48,6 @@ impl InputError {
     }
 }
 
-impl From<crate::track::TrackError> for InputError {
-    fn from(e: crate::track::TrackError) -> InputError {
-        InputError(e.to_string())
-    }
-}
-
 /// An error of the library: the user's input, or I/O (reading, writing, a worker thread).
 #[derive(Debug)]
 pub enum Error {
@@ -95,12 +89,6 @@ impl From<InputError> for Error {
 impl From<io::Error> for Error {
     fn from(e: io::Error) -> Error {
         Error::Io(e)
-    }
-}
-
-impl From<crate::track::TrackError> for Error {
-    fn from(e: crate::track::TrackError) -> Error {
-        Error::Input(e.into())
     }
 }
 

@@ -59,5 +59,5 @@ pub use clock::Fps;
 pub use curve::{Blend, Curve, CurveOptions, Scheme};
 pub use error::{Error, InputError};
 pub use rotation::{AngleUnit, EulerSeq, Repr};
-pub use tangent::{EndConditions, Ends, PathMode, Tcb};
-pub use track::{Track, TrackError};
+pub use tangent::{EndConditions, Ends, PathMode};
+pub use track::{Tcb, Track, TrackError};

@@ -13,7 +13,7 @@
 //!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
 
 use crate::rotation::quat::log;
-use crate::track::Track;
+use crate::track::{Tcb, Track};
 use glam::{DQuat, DVec3};
 
 /// How signs of consecutive keys are treated (docs/spec.md §4.3).
@@ -56,54 +56,6 @@ pub enum Ends {
     /// across the seam from the keys on both sides (time-aware), as at an interior key, so the
     /// loop has no velocity jump. No end velocity applies.
     Cyclic,
-}
-
-/// Kochanek–Bartels tension, continuity and bias of a key (each in `[−1, 1]`; all zero gives
-/// the ordinary tangent). See [`Knots`] for how they shape the tangents on S³.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Tcb {
-    /// Tension `t`: 1 stops at the key, −1 doubles the tangent.
-    pub tension: f64,
-    /// Continuity `c`: non-zero makes the incoming and outgoing tangents differ (a corner).
-    pub continuity: f64,
-    /// Bias `b`: positive leans the tangent towards the incoming chord, negative the outgoing.
-    pub bias: f64,
-}
-
-impl Tcb {
-    /// All zero: the ordinary tangent.
-    pub const ZERO: Tcb = Tcb {
-        tension: 0.0,
-        continuity: 0.0,
-        bias: 0.0,
-    };
-
-    /// Whether all three are zero.
-    pub fn is_zero(&self) -> bool {
-        *self == Tcb::ZERO
-    }
-
-    /// Whether all three are finite and within `[−1, 1]`.
-    pub fn is_valid(&self) -> bool {
-        [self.tension, self.continuity, self.bias]
-            .iter()
-            .all(|x| x.is_finite() && x.abs() <= 1.0)
-    }
-
-    /// Kochanek & Bartels' weights `((a_in, b_in), (a_out, b_out))` of the incoming chord `L⁻`
-    /// and the outgoing chord `L⁺` in the tangent arriving at the key (their source derivative)
-    /// and the one leaving it (their destination derivative):
-    /// `a_in = (1−t)(1+b)(1−c)/2`, `b_in = (1−t)(1−b)(1+c)/2`, `a_out = (1−t)(1+b)(1+c)/2`,
-    /// `b_out = (1−t)(1−b)(1−c)/2` (all ½ for zero). So `c = −1` makes each segment leave and
-    /// arrive along its own chord (box corners), as in VTK, Gamebryo and 3ds Max.
-    pub fn weights(&self) -> ((f64, f64), (f64, f64)) {
-        let (t, c, b) = (self.tension, self.continuity, self.bias);
-        let k = (1.0 - t) * 0.5;
-        (
-            (k * (1.0 + b) * (1.0 - c), k * (1.0 - b) * (1.0 + c)),
-            (k * (1.0 + b) * (1.0 + c), k * (1.0 - b) * (1.0 - c)),
-        )
-    }
 }
 
 /// End conditions of a track: the default rule and optional given angular velocities (rad/s,
@@ -409,13 +361,13 @@ impl Knots {
     pub fn chord_length(&self, s: usize) -> f64 {
         match &self.chords {
             Some(c) => c[s].length(),
-            None => crate::curve::s3_angle(self.quats[s], self.quats[s + 1]),
+            None => crate::rotation::arc::s3_angle(self.quats[s], self.quats[s + 1]),
         }
     }
 
     /// The great arc of segment `s`'s chord from `q_s` to `q_{s+1}` (slerp; squad's outer arc).
-    pub fn chord_arc(&self, s: usize) -> crate::curve::arc::Arc {
-        use crate::curve::arc::Arc;
+    pub fn chord_arc(&self, s: usize) -> crate::rotation::arc::Arc {
+        use crate::rotation::arc::Arc;
         match &self.chords {
             Some(c) => Arc::leaving(
                 self.quats[s],

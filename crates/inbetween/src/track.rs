@@ -5,8 +5,8 @@
 //! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
 //! documents ([`check_times`]), so a file and a program are held to one contract.
 
+use crate::error::{Error, InputError};
 use crate::rotation::EulerSeq;
-use crate::tangent::Tcb;
 use glam::{DQuat, DVec3};
 use std::fmt;
 
@@ -516,6 +516,66 @@ impl Track {
     /// The given angular velocity at the last key, rad/s, world frame.
     pub fn end_velocity(&self) -> Option<DVec3> {
         self.end_velocity
+    }
+}
+
+/// Kochanek–Bartels tension, continuity and bias of a key (each in `[−1, 1]`; all zero gives
+/// the ordinary tangent). See [`Knots`](crate::tangent::Knots) for how they shape the tangents on S³.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Tcb {
+    /// Tension `t`: 1 stops at the key, −1 doubles the tangent.
+    pub tension: f64,
+    /// Continuity `c`: non-zero makes the incoming and outgoing tangents differ (a corner).
+    pub continuity: f64,
+    /// Bias `b`: positive leans the tangent towards the incoming chord, negative the outgoing.
+    pub bias: f64,
+}
+
+impl Tcb {
+    /// All zero: the ordinary tangent.
+    pub const ZERO: Tcb = Tcb {
+        tension: 0.0,
+        continuity: 0.0,
+        bias: 0.0,
+    };
+
+    /// Whether all three are zero.
+    pub fn is_zero(&self) -> bool {
+        *self == Tcb::ZERO
+    }
+
+    /// Whether all three are finite and within `[−1, 1]`.
+    pub fn is_valid(&self) -> bool {
+        [self.tension, self.continuity, self.bias]
+            .iter()
+            .all(|x| x.is_finite() && x.abs() <= 1.0)
+    }
+
+    /// Kochanek & Bartels' weights `((a_in, b_in), (a_out, b_out))` of the incoming chord `L⁻`
+    /// and the outgoing chord `L⁺` in the tangent arriving at the key (their source derivative)
+    /// and the one leaving it (their destination derivative):
+    /// `a_in = (1−t)(1+b)(1−c)/2`, `b_in = (1−t)(1−b)(1+c)/2`, `a_out = (1−t)(1+b)(1+c)/2`,
+    /// `b_out = (1−t)(1−b)(1−c)/2` (all ½ for zero). So `c = −1` makes each segment leave and
+    /// arrive along its own chord (box corners), as in VTK, Gamebryo and 3ds Max.
+    pub fn weights(&self) -> ((f64, f64), (f64, f64)) {
+        let (t, c, b) = (self.tension, self.continuity, self.bias);
+        let k = (1.0 - t) * 0.5;
+        (
+            (k * (1.0 + b) * (1.0 - c), k * (1.0 - b) * (1.0 + c)),
+            (k * (1.0 + b) * (1.0 + c), k * (1.0 - b) * (1.0 - c)),
+        )
+    }
+}
+
+impl From<TrackError> for InputError {
+    fn from(e: TrackError) -> InputError {
+        InputError::new(e.to_string())
+    }
+}
+
+impl From<TrackError> for Error {
+    fn from(e: TrackError) -> Error {
+        Error::Input(e.into())
     }
 }
 

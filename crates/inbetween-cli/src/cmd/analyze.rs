@@ -6,7 +6,7 @@ use crate::output::Output;
 use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
-use inbetween_io::write::num::{NumFormat, NumWriter};
+use inbetween_io::num::{NumFormat, NumWriter};
 use std::io::{Read, Write};
 
 /// Runs `analyze`: the figures of every track under every chosen scheme.

@@ -19,7 +19,7 @@
 //! value: it fails with an [`io::Error`] of kind `InvalidData` (`internal error: …`) instead.
 
 use super::rate::frame_time_text;
-use crate::write::num::NumWriter;
+use crate::num::NumWriter;
 use inbetween::clock::Fps;
 use std::io::{self, Write};
 

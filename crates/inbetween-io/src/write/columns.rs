@@ -1,7 +1,7 @@
 //! One rotation's values in the representation of a [`Style`]: CSV cells or a JSON array.
 
 use super::Style;
-use super::num::NumWriter;
+use crate::num::NumWriter;
 use glam::DQuat;
 use inbetween::rotation::{MAX_WIDTH, Repr};
 

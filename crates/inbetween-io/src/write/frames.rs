@@ -1,12 +1,12 @@
 //! [`FrameWriter`]: frames as CSV rows or JSON objects, one per line.
 
 use super::columns::RotationFormatter;
-use super::num::NumWriter;
 use super::worker::{Worker, worker_gone};
 use super::{
     Bad, Style, csv_field, internal_error, is_rotation, json_head, json_string, velocity_fault,
 };
 use crate::Format;
+use crate::num::NumWriter;
 use glam::{DQuat, DVec3};
 use inbetween::bake::FrameSink;
 use inbetween::clock::Fps;
@@ -481,7 +481,7 @@ impl<W: Write> FrameSink for FrameWriter<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::write::num::NumFormat;
+    use crate::num::NumFormat;
     use inbetween::rotation::Repr;
     use inbetween::rotation::{EulerSeq, QuatOrder};
 

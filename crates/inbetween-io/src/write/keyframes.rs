@@ -1,12 +1,12 @@
 //! [`write_keys`]: a document's keys in the input shape, so that `convert`'s output reads back.
 
 use super::columns::RotationFormatter;
-use super::num::NumWriter;
 use super::{
     Bad, EulerMode, Style, csv_field, internal_error, is_rotation, json_head, json_string,
 };
 use crate::Format;
 use crate::document::{DocTrack, Document, KeyTime};
+use crate::num::NumWriter;
 use inbetween::clock::Fps;
 use inbetween::rotation::Repr;
 use std::io::{self, Write};
@@ -272,7 +272,7 @@ pub fn write_keys<W: Write>(
 mod tests {
     use super::*;
     use crate::document::{DocTrack, Key, KeyOrigin};
-    use crate::write::num::NumFormat;
+    use crate::num::NumFormat;
     use glam::{DQuat, DVec3};
     use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 

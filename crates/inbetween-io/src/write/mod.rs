@@ -19,7 +19,6 @@
 //! - `worker`: the order-preserving formatting thread behind [`FrameWriter`].
 //! - [`keyframes`]: [`write_keys`], a document's keys for `convert`.
 //! - [`npy`]: [`NpyWriter`], frames as a NumPy array.
-//! - [`num`]: shortest round-trip and fixed-precision number formatting.
 //!
 //! Last line of defence (docs/spec.md, *Exit codes*): output never holds NaN, infinity or a zero
 //! quaternion. Every writer checks each value it writes (one `is_finite` per value, one norm
@@ -31,17 +30,16 @@ pub mod columns;
 pub mod frames;
 pub mod keyframes;
 pub mod npy;
-pub mod num;
 mod worker;
 
 pub use frames::FrameWriter;
 pub use keyframes::write_keys;
 pub use npy::NpyWriter;
 
+use crate::num::NumFormat;
 use glam::DQuat;
 use inbetween::clock::Fps;
 use inbetween::rotation::{AngleUnit, MAX_WIDTH, QuatOrder, Repr};
-use num::NumFormat;
 use std::io;
 
 /// How rotations and numbers are written.

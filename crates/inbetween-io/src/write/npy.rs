@@ -181,7 +181,7 @@ impl<W: Write> FrameSink for NpyWriter<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::write::num::NumFormat;
+    use crate::num::NumFormat;
     use inbetween::rotation::{AngleUnit, QuatOrder};
 
     fn writer(velocity: bool) -> NpyWriter<Vec<u8>> {

@@ -17,9 +17,9 @@
 //! - Continuity: C¹ at keys, C^∞ inside.
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
-use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
+use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Knots;
 use glam::DQuat;

@@ -74,7 +74,7 @@ impl Block4 {
 
 /// The next four points of an arc's forward differences, as lanes.
 #[inline]
-pub(crate) fn steps4(steps: &mut super::arc::ArcSteps) -> Quat4 {
+pub(crate) fn steps4(steps: &mut crate::rotation::arc::ArcSteps) -> Quat4 {
     let q: [DQuat; 4] = std::array::from_fn(|_| steps.next_point());
     Quat4::from_quats(&q)
 }

@@ -21,9 +21,9 @@
 //!   chord, `L − u·w_iΔ − (1 − u)·w_{i+1}Δ` (the 1-D difference `C₂ − C₁`), so a spin keeps its
 //!   turns even where the two arcs are a full turn apart (frames computed one at a time).
 
-use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
+use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::{exp, geodesic, log_near};
 use crate::tangent::Knots;
 use glam::{DQuat, DVec3};

@@ -117,7 +117,7 @@ fn base_steps(keys: &Knots, fps: f64) -> Vec<usize> {
 
 /// S³ angle between unit quaternions.
 fn s3_angle(a: DQuat, b: DQuat) -> f64 {
-    super::s3_angle(a, b)
+    crate::rotation::arc::s3_angle(a, b)
 }
 
 impl Problem {

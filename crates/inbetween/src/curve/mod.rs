@@ -3,7 +3,7 @@
 //! A segment joins keys `s` and `s+1` over the local parameter `u = (t − t_s)/Δ_s ∈ [0, 1]`. It
 //! can be evaluated directly at any `u` ([`Segment::eval`], for tests and off-grid samples) and
 //! can generate its in-betweens at equally spaced `u` ([`Segment::frames`]), where the fixed great
-//! arcs of the segment advance by forward differences ([`arc`]) and only the blends are evaluated
+//! arcs of the segment advance by forward differences ([`crate::rotation::arc`]) and only the blends are evaluated
 //! per frame.
 //!
 //! Every blend is the geodesic of S³ between its two points, never hemisphere-flipped, so the
@@ -13,7 +13,6 @@
 //! [`Curve`] ([`piecewise`]) is a whole track's curve under any scheme, minaccel included, as a
 //! function of time; [`CurveOptions`] are what shapes it.
 
-pub mod arc;
 pub(crate) mod banded;
 pub mod bezier;
 pub(crate) mod blend4;
@@ -26,7 +25,8 @@ pub mod squad;
 pub use piecewise::Curve;
 
 use crate::clock::Fps;
-use crate::tangent::{EndConditions, Knots, PathMode, Tcb};
+use crate::tangent::{EndConditions, Knots, PathMode};
+use crate::track::Tcb;
 use glam::DQuat;
 use std::fmt;
 
@@ -201,11 +201,6 @@ impl Blend {
             }
         }
     }
-}
-
-/// Angle between two unit quaternions as points of S³ (not as rotations).
-pub fn s3_angle(a: DQuat, b: DQuat) -> f64 {
-    (a - b).length().atan2((a + b).length()) * 2.0
 }
 
 /// Where the blends of `seg` come closest to antipodal: the smallest `‖a + b‖` over `u ∈ [0, 1]`

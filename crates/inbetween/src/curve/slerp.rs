@@ -8,8 +8,8 @@
 //! - Cost: one forward-difference step per frame (4 multiply-adds per component).
 //! - Use it for constant-speed moves and as the baseline the smooth schemes are compared to.
 
-use super::arc::{Arc, ArcSteps};
 use super::{Blend, Segment};
+use crate::rotation::arc::{Arc, ArcSteps};
 use crate::tangent::Knots;
 use glam::DQuat;
 

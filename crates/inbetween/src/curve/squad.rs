@@ -22,9 +22,9 @@
 //!   about a turn per segment, or a reversal next to a much shorter segment) the tangent is lost
 //!   and the curve is not C¹ there; the tool says so on stderr.
 
-use super::arc::{Arc, ArcSteps};
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
+use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::{exp, geodesic};
 use crate::tangent::{Knots, step};
 use glam::{DQuat, DVec3};
@@ -163,7 +163,7 @@ impl Segment for Squad {
         Squad {
             outer,
             inner,
-            gap: super::s3_angle(q0, a) + outer.span() + inner.span(),
+            gap: crate::rotation::arc::s3_angle(q0, a) + outer.span() + inner.span(),
             aliased: xa.length().max(xb.length()) >= std::f64::consts::PI,
         }
     }

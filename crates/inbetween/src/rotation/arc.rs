@@ -172,6 +172,11 @@ impl Iterator for ArcSteps {
     }
 }
 
+/// Angle between two unit quaternions as points of S³ (not as rotations).
+pub fn s3_angle(a: DQuat, b: DQuat) -> f64 {
+    (a - b).length().atan2((a + b).length()) * 2.0
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,291 @@
+#!/usr/bin/env python3
+"""Checks of the workspace's layout that cargo does not make (docs/architecture.md):
+
+1. no source file holds more than 600 lines of code (blank lines, comments and `#[cfg(test)]`
+   modules aside);
+2. no dependency cycle between the top-level modules of a library crate (`crate::a` used in
+   module `b` is the edge b -> a; test code aside);
+3. no flag name (`--word`) in a string literal of a library crate's code (tests aside): flag
+   names are the command line's words, added by the binary as context.
+
+Written apart from the Rust code it checks: a small tokenizer of Rust's comments, strings and
+braces. `--self-test` runs it on small inputs whose answers are known.
+Exit status 1 and one line per finding when a check fails.
+"""
+import re
+import sys
+from pathlib import Path
+
+MAX_CODE_LINES = 600
+LIBRARY_CRATES = ["crates/inbetween", "crates/inbetween-io"]
+ALL_CRATES = LIBRARY_CRATES + ["crates/inbetween-cli"]
+FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]*")
+
+
+def tokens(src):
+    """Splits Rust source into (kind, text, line) with kind 'code', 'comment' or 'string'."""
+    out = []
+    i, n, line = 0, len(src), 1
+    code_start = 0
+
+    def flush_code(end):
+        if end > code_start:
+            out.append(("code", src[code_start:end], line_at(code_start)))
+
+    line_starts = [0] + [m.end() for m in re.finditer("\n", src)]
+
+    def line_at(pos):
+        lo, hi = 0, len(line_starts) - 1
+        while lo < hi:
+            mid = (lo + hi + 1) // 2
+            if line_starts[mid] <= pos:
+                lo = mid
+            else:
+                hi = mid - 1
+        return lo + 1
+
+    while i < n:
+        c = src[i]
+        if src.startswith("//", i):
+            flush_code(i)
+            j = src.find("\n", i)
+            j = n if j < 0 else j
+            out.append(("comment", src[i:j], line_at(i)))
+            i = code_start = j
+        elif src.startswith("/*", i):
+            flush_code(i)
+            depth, j = 1, i + 2
+            while j < n and depth:
+                if src.startswith("/*", j):
+                    depth, j = depth + 1, j + 2
+                elif src.startswith("*/", j):
+                    depth, j = depth - 1, j + 2
+                else:
+                    j += 1
+            out.append(("comment", src[i:j], line_at(i)))
+            i = code_start = j
+        elif (m := re.match(r'b?r(#*)"', src[i:])) and (i == 0 or not (src[i - 1].isalnum() or src[i - 1] == "_")):
+            flush_code(i)
+            close = '"' + m.group(1)
+            j = src.find(close, i + m.end())
+            j = n if j < 0 else j + len(close)
+            out.append(("string", src[i:j], line_at(i)))
+            i = code_start = j
+        elif c == '"':
+            flush_code(i)
+            j = i + 1
+            while j < n and src[j] != '"':
+                j += 2 if src[j] == "\\" else 1
+            out.append(("string", src[i : j + 1], line_at(i)))
+            i = code_start = j + 1
+        elif c == "'":
+            # A char literal ('a', '\n', '\u{1F600}') or a lifetime ('a).
+            m = re.match(r"'(\\u\{[0-9a-fA-F]+\}|\\.|[^\\'])'", src[i:])
+            if m:
+                flush_code(i)
+                out.append(("string", m.group(0), line_at(i)))
+                i = code_start = i + m.end()
+            else:
+                i += 1
+        else:
+            i += 1
+    flush_code(n)
+    return out
+
+
+def strip_tests(toks):
+    """The tokens without `#[cfg(test)]` items (a module or function and its braces)."""
+    out = []
+    skipping, depth, armed = False, 0, False
+    for kind, text, line in toks:
+        if kind != "code":
+            if not skipping:
+                out.append((kind, text, line))
+            continue
+        kept = []
+        i = 0
+        while i < len(text):
+            if not skipping:
+                m = re.compile(r"#\[cfg\(test\)\]").search(text, i)
+                if not m:
+                    kept.append(text[i:])
+                    break
+                kept.append(text[i : m.start()])
+                skipping, armed, depth, i = True, False, 0, m.end()
+            else:
+                ch = text[i]
+                if ch == "{":
+                    depth, armed = depth + 1, True
+                elif ch == "}":
+                    depth -= 1
+                    if armed and depth == 0:
+                        skipping = False
+                elif ch == ";" and not armed and depth == 0:
+                    skipping = False  # `#[cfg(test)] mod tests;` or a `use`
+                i += 1
+        if kept:
+            out.append((kind, "".join(kept), line))
+    return out
+
+
+def code_lines(toks):
+    """The number of lines that hold code (or a string) once comments are gone."""
+    lines = set()
+    for kind, text, line in toks:
+        if kind == "comment":
+            continue
+        for k, part in enumerate(text.split("\n")):
+            if part.strip():
+                lines.add(line + k)
+    return len(lines)
+
+
+def is_test_file(path):
+    return path.name == "tests.rs" or "tests" in path.parts or "benches" in path.parts
+
+
+def source_files(crate):
+    return sorted(p for p in (Path(crate) / "src").rglob("*.rs") if not is_test_file(p))
+
+
+def top_module(src_dir, path):
+    rel = path.relative_to(src_dir)
+    if rel.parts in (("lib.rs",), ("main.rs",)):
+        return None
+    return rel.parts[0].removesuffix(".rs")
+
+
+def used_modules(code, here_is_top_file):
+    """Top-level modules named by `crate::x` (and `super::x` in a top-level module's own file)."""
+    found = set()
+    for m in re.finditer(r"\bcrate::(\{)?", code):
+        if m.group(1):
+            depth, j, item = 1, m.end(), ""
+            while j < len(code) and depth:
+                ch = code[j]
+                if ch == "{":
+                    depth += 1
+                elif ch == "}":
+                    depth -= 1
+                if depth == 1 and ch == ",":
+                    found.add(item.strip().split("::")[0])
+                    item = ""
+                elif depth >= 1 and not (depth == 1 and ch in "{"):
+                    item += ch if depth == 1 else ""
+                j += 1
+            found.add(item.strip().split("::")[0])
+        else:
+            w = re.match(r"[A-Za-z_]\w*", code[m.end() :])
+            if w:
+                found.add(w.group(0))
+    if here_is_top_file:
+        for m in re.finditer(r"\bsuper::([A-Za-z_]\w*)", code):
+            found.add(m.group(1))
+    found.discard("")
+    return found
+
+
+def module_graph(crate):
+    src = Path(crate) / "src"
+    tops = {top_module(src, p) for p in source_files(crate)} - {None}
+    edges = {t: set() for t in tops}
+    for p in source_files(crate):
+        me = top_module(src, p)
+        if me is None:
+            continue
+        toks = strip_tests(tokens(p.read_text()))
+        code = " ".join(t for k, t, _ in toks if k == "code")
+        top_file = len(p.relative_to(src).parts) == 1
+        for other in used_modules(code, top_file):
+            if other in tops and other != me:
+                edges[me].add(other)
+    return edges
+
+
+def cycles(edges):
+    """The strongly connected components with more than one module (Tarjan)."""
+    index, low, stack, on, out = {}, {}, [], set(), []
+    counter = [0]
+
+    def visit(v):
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v)
+        on.add(v)
+        for w in sorted(edges[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in sorted(edges):
+        if v not in index:
+            visit(v)
+    return out
+
+
+def flag_names(path):
+    found = []
+    for kind, text, line in strip_tests(tokens(path.read_text())):
+        if kind == "string":
+            for m in FLAG.finditer(text):
+                found.append((line, m.group(0)))
+    return found
+
+
+def check():
+    problems = []
+    for crate in ALL_CRATES:
+        for p in source_files(crate):
+            n = code_lines(strip_tests(tokens(p.read_text())))
+            if n > MAX_CODE_LINES:
+                problems.append(f"{p}: {n} lines of code (at most {MAX_CODE_LINES})")
+    for crate in LIBRARY_CRATES:
+        for comp in cycles(module_graph(crate)):
+            problems.append(f"{crate}: dependency cycle between modules {', '.join(comp)}")
+        for p in source_files(crate):
+            for line, flag in flag_names(p):
+                problems.append(f"{p}:{line}: flag name {flag} in a library message")
+    for p in problems:
+        print(p)
+    return 1 if problems else 0
+
+
+def self_test():
+    src = '''// a comment with "--flag"
+fn a() -> &'static str { "--key-fps" }
+/* block /* nested */ --x */
+const C: char = '{';
+const R: &str = r#"raw "--from" "#;
+#[cfg(test)]
+mod tests {
+    fn t() { let _ = "--in-tests"; { } }
+}
+fn b() {}
+'''
+    toks = strip_tests(tokens(src))
+    strings = [t for k, t, _ in toks if k == "string"]
+    assert strings == ['"--key-fps"', "'{'", 'r#"raw "--from" "#'], strings
+    assert code_lines(toks) == 4, code_lines(toks)
+    assert used_modules("use crate::{a::X, b, c::{d, e}}; crate::f::g();", False) == {"a", "b", "c", "f"}
+    assert used_modules("use super::x::Y;", True) == {"x"}
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+    assert cycles({"a": {"b"}, "b": set()}) == []
+    assert [m.group(0) for m in FLAG.finditer('"--fps 30, a-b--c, ---"')] == ["--fps"]
+    print("layout.py self-test: ok")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(self_test() if sys.argv[1:] == ["--self-test"] else check())
