@@ -4,6 +4,7 @@
 mod chart;
 mod cli;
 mod cmd;
+mod flags;
 mod output;
 mod signals;
 mod warnings;
@@ -64,7 +65,7 @@ fn main() -> ExitCode {
             if io.is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe) {
                 return ExitCode::SUCCESS;
             }
-            eprintln!("inbetween: error: {e}");
+            eprintln!("inbetween: error: {}", flags::error_text(&e));
             ExitCode::from(exit_status(&e))
         }
     }
@@ -93,5 +94,23 @@ mod tests {
             [2, 1, 1],
             "input, internal, I/O"
         );
+    }
+
+    /// An internal error provoked through the library: BVH frames told of a track that is not
+    /// the skeleton's next joint refuse it as the writer's own bug (not data in the wrong place),
+    /// and the binary exits 1 on it, not 2.
+    #[test]
+    fn an_internal_error_of_the_library_exits_1() {
+        use inbetween::bake::FrameSink;
+        use std::sync::Arc;
+        let text = "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 1 Zrotation\n}\n\
+                    ROOT b\n{\nOFFSET 0 0 0\nCHANNELS 1 Zrotation\n}\n\
+                    MOTION\nFrames: 1\nFrame Time: 0.04\n10 20\n";
+        let clip = Arc::new(inbetween_io::bvh::parse(text, "a.bvh").unwrap().0);
+        let mut sink =
+            inbetween_io::bvh::frames::BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
+        let e: Error = sink.begin_track(Some("b")).unwrap_err().into();
+        assert!(e.to_string().starts_with("internal error: track 0"), "{e}");
+        assert_eq!(exit_status(&e), 1);
     }
 }

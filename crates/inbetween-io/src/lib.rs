@@ -27,7 +27,8 @@ pub mod write;
 use document::Document;
 use inbetween::clock::Fps;
 use inbetween::error::shorten;
-use inbetween::error::{InputError, InputResult};
+use inbetween::error::{InputError, InputResult, Setting};
+use inbetween::message;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 #[allow(unused_imports)]
 use inbetween::{EulerSeq, FrameSink, Track};
@@ -152,22 +153,24 @@ impl ReadOptions {
 /// The one precedence rule between a document's declaration and a flag (docs/spec.md §3,
 /// *Precedence*): a declaration describes the document's own values and wins; a flag describes
 /// only what the document leaves undeclared; a flag that contradicts a declaration is an input
-/// error naming both: `keys.json declares "rotation": "euler:ZYX" but --from says euler:XYZ`.
+/// error naming both: `keys.json declares "rotation": "euler:ZYX" but rotation
+/// representation says euler:XYZ` (on the command line, `… but --from says euler:XYZ`).
 ///
 /// `field` is the document's field, `declared` its value as written (`"euler:ZYX"`, `30`),
-/// `flag` the option. Returns the value that applies, if any.
+/// `setting` the option given. Returns the value that applies, if any.
 pub fn settle<T: PartialEq + std::fmt::Display>(
     source: &str,
     field: &str,
     declared: Option<(T, &str)>,
-    flag: &str,
+    setting: Setting,
     given: Option<T>,
 ) -> InputResult<Option<T>> {
     match (declared, given) {
-        (Some((d, written)), Some(g)) if d != g => Err(input_err!(
-            "{source} declares \"{field}\": {} but {flag} says {g}",
-            shorten(written)
-        )),
+        (Some((d, written)), Some(g)) if d != g => Err(InputError::new(message![
+            format!("{source} declares \"{field}\": {} but ", shorten(written)),
+            setting,
+            format!(" says {g}")
+        ])),
         (Some((d, _)), _) => Ok(Some(d)),
         (None, g) => Ok(g),
     }
@@ -228,11 +231,16 @@ pub fn gltf_dir(path: &Path) -> std::path::PathBuf {
 pub const DEFAULT_MAX_INPUT_BYTES: u64 = 1 << 30;
 
 fn too_large(source: &str, limit: u64) -> InputError {
-    input_err!("{source}: input larger than {limit} bytes (--max-input-bytes)")
+    InputError::new(message![
+        format!("{source}: input larger than {limit} bytes ("),
+        Setting::MaxInputBytes,
+        ")"
+    ])
 }
 
 /// Reads all of `reader` (standard input, a pipe, a file), at most `limit` bytes: one byte more
-/// is an input error `<source>: input larger than <limit> bytes (--max-input-bytes)`, and
+/// is an input error `<source>: input larger than <limit> bytes (input size limit)` (the
+/// binary shows the setting as `--max-input-bytes`), and
 /// reading stops there (it never reads more than `limit + 1` bytes).
 pub fn read_limited(reader: &mut dyn Read, limit: u64, source: &str) -> InputResult<Vec<u8>> {
     read_limited_with_capacity(reader, limit, source, 0)
@@ -339,7 +347,7 @@ mod tests {
                 "k.json",
                 "rotation",
                 declared.map(|r| (r, "\"euler:ZYX\"")),
-                "--from",
+                Setting::Rotation,
                 given,
             )
         };
@@ -351,18 +359,18 @@ mod tests {
         // Contradicting: an error naming both.
         assert_eq!(
             settled(Some(zyx), Some(xyz)).unwrap_err().message(),
-            "k.json declares \"rotation\": \"euler:ZYX\" but --from says euler:XYZ"
+            "k.json declares \"rotation\": \"euler:ZYX\" but rotation representation says euler:XYZ"
         );
         let fps = settle(
             "k.json",
             "fps",
             Some((Fps::parse("24").unwrap(), "24")),
-            "--key-fps",
+            Setting::KeyRate,
             Some(Fps::parse("30000/1001").unwrap()),
         );
         assert_eq!(
             fps.unwrap_err().message(),
-            "k.json declares \"fps\": 24 but --key-fps says 30000/1001"
+            "k.json declares \"fps\": 24 but key rate says 30000/1001"
         );
     }
 

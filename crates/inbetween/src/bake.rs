@@ -40,6 +40,8 @@ use crate::curve::piecewise::{Side, segment_omega, step_in};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Curve, Scheme, Segment, antipode_gap};
+use crate::error::{Message, Setting};
+use crate::message;
 use crate::rotation::quat::geodesic;
 use glam::{DQuat, DVec3};
 use std::io;
@@ -104,7 +106,7 @@ pub fn bake(
     fps: Fps,
     opts: BakeOptions,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     bake_over(curve, fps, curve.span(), opts, sink, warn)
 }
@@ -118,7 +120,7 @@ pub fn bake_over(
     (lo, hi): (f64, f64),
     opts: BakeOptions,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     if curve.has_positions() {
         let mut with = WithPositions { sink, curve };
@@ -160,7 +162,7 @@ fn frames_over(
     (lo, hi): (f64, f64),
     opts: BakeOptions,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     sink.begin_track(curve.name())?;
     if let Some((seq, angles)) = curve.euler_start() {
@@ -199,7 +201,7 @@ fn grid_frames(
     fps: Fps,
     velocity: bool,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     if let Some(r) = curve.solver_report()
         && !r.converged
@@ -207,13 +209,13 @@ fn grid_frames(
         let name = curve.name().map_or(String::new(), |n| {
             format!("track \"{}\": ", crate::error::shorten(n))
         });
-        warn(&format!(
+        warn(&Message::from(format!(
             "{name}minaccel did not converge in {} iterations (projected gradient {:.1e}, {:.1e} \
              of its start); the frames are the best curve found",
             r.iterations,
             r.gradient,
             r.gradient / r.gradient_start
-        ));
+        )));
     }
     let (times, pts) = (curve.breaks(), curve.grid_points());
     let last = fps.frames_between(times[0], times[times.len() - 1]).1;
@@ -255,7 +257,7 @@ fn segment_frames<S: Segment>(
     fps: Fps,
     velocity: bool,
     p: PieceFrames,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
     emit: &mut dyn FnMut(Frame) -> io::Result<()>,
 ) -> io::Result<()> {
     let keys = curve.knots();
@@ -271,18 +273,22 @@ fn segment_frames<S: Segment>(
         })
     };
     if let Some(note) = seg.limitation() {
-        warn(&format!("{}segment {s} ({t0} s to {t1} s): {note}", name()));
+        warn(&message![format!("{}segment {s} ({t0} s to {t1} s): ", name())].append(note));
     }
     if let Some((gap, u)) = antipode_gap(&seg)
         && gap < ANTIPODE_TOL
     {
-        warn(&format!(
-            "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
-             {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
-             use --scheme minaccel",
-            name(),
-            curve.scheme().name()
-        ));
+        warn(&message![
+            format!(
+                "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
+                 {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
+                 use ",
+                name(),
+                curve.scheme().name()
+            ),
+            Setting::Scheme,
+            " minaccel"
+        ]);
     }
     let delta = t1 - t0;
     let h = step_in(keys, s);
@@ -323,7 +329,7 @@ fn track_frames<S: Segment>(
     fps: Fps,
     opts: BakeOptions,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     let velocity = opts.velocity;
     let plans: Vec<PieceFrames> = fps.pieces(&curve.knots().times).collect();
@@ -350,7 +356,7 @@ fn track_frames<S: Segment>(
         }
     }
     std::thread::scope(|scope| {
-        let (tx, rx) = std::sync::mpsc::sync_channel::<(Vec<Frame>, Vec<String>)>(1);
+        let (tx, rx) = std::sync::mpsc::sync_channel::<(Vec<Frame>, Vec<Message>)>(1);
         let (plans, chunks) = (&plans, &chunks);
         scope.spawn(move || {
             for c in chunks.iter().skip(1).step_by(2) {
@@ -362,7 +368,7 @@ fn track_frames<S: Segment>(
                         fps,
                         velocity,
                         p,
-                        &mut |m| notes.push(m.to_string()),
+                        &mut |m| notes.push(m.clone()),
                         &mut |f| {
                             frames.push(f);
                             Ok(())
@@ -498,7 +504,7 @@ pub fn bake_sampled(
     (lo, hi): (f64, f64),
     bake_opts: BakeOptions,
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> io::Result<()> {
     let (first, last) = track.frames;
     let internal = |e: crate::InputError| {

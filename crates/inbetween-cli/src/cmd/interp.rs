@@ -232,7 +232,9 @@ pub fn run(
     for (i, (curve, track)) in curves.iter().zip(tracks).enumerate() {
         match curve {
             TrackCurve::Curve(curve) => {
-                bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), warn)?
+                bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), &mut |m| {
+                    warn(&crate::flags::say(m))
+                })?
             }
             TrackCurve::Sampled(sampler, frames) => {
                 let sampled = Sampled {
@@ -247,7 +249,7 @@ pub fn run(
                     span(i),
                     bake_opts,
                     sink.as_mut(),
-                    warn,
+                    &mut |m| warn(&crate::flags::say(m)),
                 )?
             }
         }
@@ -386,7 +388,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
                     Err(Error::Input(_)) => return Ok(None),
                     r => r?,
                 };
-                warnings.extend(baked);
+                warnings.extend(baked.iter().map(crate::flags::say));
                 let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
                 frames.write(out, &clip)?.finish()?.commit()?;
             }
@@ -398,7 +400,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
                     .iter()
                     .any(|&j| clip.joints()[j].position().is_some());
                 let mut w = if positions { w.with_positions() } else { w };
-                let mut add = |m: &str| warnings.push(m.to_string());
+                let mut add = |m: &inbetween::error::Message| warnings.push(crate::flags::say(m));
                 match resample::bake_tracks(&clip, &source, &opts, span, &mut w, &mut add) {
                     Err(Error::Input(_)) => return Ok(None),
                     r => r?,

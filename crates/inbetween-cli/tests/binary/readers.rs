@@ -20,7 +20,7 @@ fn reading_stops_one_byte_past_the_limit() {
     let err = read_limited(&mut zeros, 1000, "<stdin>").unwrap_err();
     assert_eq!(
         err.message(),
-        "<stdin>: input larger than 1000 bytes (--max-input-bytes)"
+        "<stdin>: input larger than 1000 bytes (input size limit)"
     );
     // It read exactly limit + 1 bytes from the reader.
     let mut counted = Counting(std::io::repeat(b'0'), 0);
@@ -61,7 +61,7 @@ fn files_and_devices_are_read_up_to_the_limit() {
                 &opts,
                 1 << 20
             )),
-            "/dev/zero: input larger than 1048576 bytes (--max-input-bytes)"
+            "/dev/zero: input larger than 1048576 bytes (input size limit)"
         );
     }
     let dir = tempfile::tempdir().unwrap();
@@ -74,7 +74,7 @@ fn files_and_devices_are_read_up_to_the_limit() {
     assert_eq!(
         err(read_path_limited(&path, None, &opts, n - 1)),
         format!(
-            "{}: input larger than {} bytes (--max-input-bytes)",
+            "{}: input larger than {} bytes (input size limit)",
             path.display(),
             n - 1
         )

@@ -205,9 +205,13 @@ pub fn bake_frames(t: &Track, s: &Settings) -> (Vec<Frame>, Vec<String>) {
         velocity: s.velocity,
         parallel: s.parallel,
     };
-    bake(&curve, s.fps, opts, &mut sink, &mut |w: &str| {
-        warnings.push(w.to_string())
-    })
+    bake(
+        &curve,
+        s.fps,
+        opts,
+        &mut sink,
+        &mut |w: &inbetween::error::Message| warnings.push(w.to_string()),
+    )
     .unwrap();
     (sink.frames, warnings)
 }

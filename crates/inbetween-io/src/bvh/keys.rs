@@ -3,7 +3,8 @@
 
 use super::Clip;
 use crate::document::{Document, KeyTime};
-use inbetween::error::InputResult;
+use inbetween::error::{InputError, InputResult, Setting};
+use inbetween::message;
 use inbetween::rotation::unwrap::EulerUnwrap;
 use std::collections::HashMap;
 use std::io::Write;
@@ -21,11 +22,12 @@ pub fn write_keys<W: Write>(
     fps: inbetween::clock::Fps,
 ) -> InputResult<()> {
     let layout = || {
-        input_err!(
-            "{}: --skeleton writes keys that are frames of one grid (every track keyed at the same \
-             consecutive frame numbers); resample other keys with interp onto a BVH input",
-            doc.source
-        )
+        InputError::new(message![
+            format!("{}: ", doc.source),
+            Setting::Skeleton,
+            " writes keys that are frames of one grid (every track keyed at the same consecutive \
+             frame numbers); resample other keys with interp onto a BVH input"
+        ])
     };
     let first = doc.tracks.first().ok_or_else(layout)?;
     let n = first.keys.len();

@@ -59,6 +59,7 @@
 
 pub mod document;
 pub mod frames;
+mod hierarchy;
 pub mod keys;
 pub mod rate;
 pub mod read;
@@ -69,7 +70,6 @@ pub use read::{parse, parse_reader};
 pub use write::{BvhWriter, write};
 
 pub use crate::clip::{Channel, Clip, Joint};
-
 
 #[cfg(test)]
 mod tests {

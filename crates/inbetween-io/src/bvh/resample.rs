@@ -44,7 +44,7 @@ use inbetween::Tcb;
 use inbetween::bake::{BakeOptions, FrameSink, bake_over};
 use inbetween::clock::Fps;
 use inbetween::curve::{Curve, CurveOptions};
-use inbetween::error::{Error, InputResult};
+use inbetween::error::{Error, InputResult, Message};
 use inbetween::rotation::EulerSeq;
 use inbetween::rotation::unwrap::EulerUnwrap;
 use inbetween::track::Track;
@@ -229,7 +229,7 @@ pub fn resample(
     clip: &Clip,
     source: &str,
     opts: &Options,
-) -> Result<(Resampled, Vec<String>), Error> {
+) -> Result<(Resampled, Vec<Message>), Error> {
     let joints = track_joints(clip);
     let Some(span) = span(clip).filter(|_| !joints.is_empty()) else {
         return Err(
@@ -242,7 +242,7 @@ pub fn resample(
         n => n,
     }
     .clamp(1, joints.len());
-    type Done = Result<(Vec<f64>, Vec<String>), Error>;
+    type Done = Result<(Vec<f64>, Vec<Message>), Error>;
     let results: Vec<Mutex<Option<Done>>> = joints.iter().map(|_| Mutex::new(None)).collect();
     let next = AtomicUsize::new(0);
     let failed = AtomicBool::new(false);
@@ -255,9 +255,14 @@ pub fn resample(
             velocity: false,
             parallel: false,
         };
-        bake_over(&curve, opts.fps, span, bake, &mut sink, &mut |w: &str| {
-            warnings.push(w.to_string())
-        })?;
+        bake_over(
+            &curve,
+            opts.fps,
+            span,
+            bake,
+            &mut sink,
+            &mut |w: &Message| warnings.push(w.clone()),
+        )?;
         if sink.values.len() != frames * sink.width {
             return Err(Error::Io(io::Error::new(
                 io::ErrorKind::InvalidData,
@@ -326,7 +331,7 @@ pub fn bake_tracks(
     opts: &Options,
     span: (f64, f64),
     sink: &mut dyn FrameSink,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn FnMut(&Message),
 ) -> Result<(), Error> {
     let bake = BakeOptions {
         velocity: false,

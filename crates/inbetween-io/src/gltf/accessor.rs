@@ -14,6 +14,8 @@
 
 use base64::Engine;
 use gltf::accessor::{DataType, Dimensions};
+use inbetween::error::{Message, Setting};
+use inbetween::message;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
 
@@ -39,7 +41,7 @@ pub(super) struct Loaded {
 /// The bytes of every buffer of `doc`, each exactly its declared `byteLength` long. Errors are
 /// messages located by JSON path (`buffers[1].uri: …`), without the file name (the caller adds
 /// it).
-pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Loaded, String> {
+pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Loaded, Message> {
     let mut buffers = Vec::new();
     let mut files = Vec::new();
     for buffer in doc.buffers() {
@@ -51,20 +53,22 @@ pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Lo
                     return Err(format!(
                         "buffers[{i}]: has no uri, but only buffers[0] may refer to the GLB BIN \
                          chunk (glTF 2.0 §4.4.3.3)"
-                    ));
+                    )
+                    .into());
                 }
                 let Some(b) = src.blob else {
                     return Err(
-                        "buffers[0]: has no uri, so it refers to the GLB BIN chunk, but the file \
-                         has none"
-                            .to_string(),
+                        "buffers[0]: has no uri, so it refers to the GLB BIN chunk, but \
+                                the file has none"
+                            .into(),
                     );
                 };
                 if b.len() < len {
                     return Err(format!(
                         "buffers[0].byteLength: {len}, but the BIN chunk has only {} bytes",
                         b.len()
-                    ));
+                    )
+                    .into());
                 }
                 b[..len].to_vec()
             }
@@ -82,7 +86,8 @@ pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Lo
                             "buffers[{i}].byteLength: {len}, but its data: URI holds only {} \
                              bytes",
                             data.len()
-                        ));
+                        )
+                        .into());
                     }
                     data.truncate(len);
                     data
@@ -90,17 +95,22 @@ pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Lo
                     let Some(dir) = src.base_dir else {
                         return Err(at(
                             "an external file needs the asset's path to be found".to_string()
-                        ));
+                        )
+                        .into());
                     };
                     let path = resolve(uri, dir).map_err(at)?;
                     let after = src.used.saturating_add(len as u64);
                     if after > src.limit {
-                        return Err(format!(
-                            "buffers[{i}].byteLength: {len} bytes from \"{}\" would take the \
-                             input past {} bytes (--max-input-bytes)",
-                            inbetween::error::shorten(uri),
-                            src.limit
-                        ));
+                        return Err(message![
+                            format!(
+                                "buffers[{i}].byteLength: {len} bytes from \"{}\" would take \
+                                 the input past {} bytes (",
+                                inbetween::error::shorten(uri),
+                                src.limit
+                            ),
+                            Setting::MaxInputBytes,
+                            ")"
+                        ]);
                     }
                     let data = read_file(&path, len).map_err(at)?;
                     if data.len() < len {
@@ -108,7 +118,8 @@ pub(super) fn load_buffers(doc: &gltf::Document, src: &mut Sources) -> Result<Lo
                             "buffers[{i}].byteLength: {len}, but \"{}\" has only {} bytes",
                             inbetween::error::shorten(uri),
                             data.len()
-                        ));
+                        )
+                        .into());
                     }
                     src.used = after;
                     files.push(path);

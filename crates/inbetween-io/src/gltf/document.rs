@@ -40,7 +40,8 @@ use super::{
 use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use glam::{DQuat, DVec3, DVec4};
 use inbetween::clock::Fps;
-use inbetween::error::{InputResult, shorten};
+use inbetween::error::{InputError, InputResult, Setting, shorten};
+use inbetween::message;
 use inbetween::rotation::Repr;
 use std::collections::HashMap;
 
@@ -144,11 +145,14 @@ impl GltfClip {
                             None => a.index().to_string(),
                         })
                         .collect();
-                    return Err(input_err!(
-                        "--animation {}: no such animation in {src} (it has {})",
-                        shorten(want),
-                        list.join(", ")
-                    ));
+                    return Err(InputError::new(message![
+                        Setting::Animation,
+                        format!(
+                            " {}: no such animation in {src} (it has {})",
+                            shorten(want),
+                            list.join(", ")
+                        )
+                    ]));
                 };
                 let a = all.into_iter().nth(i).expect("found above");
                 if a.rotations().is_empty() {
@@ -759,8 +763,12 @@ mod tests {
         );
         let e = clip("samplers.glb", Some("Run")).unwrap_err();
         assert!(
-            e.message().contains("--animation Run: no such animation"),
+            e.message().starts_with("animation Run: no such animation"),
             "{e}"
+        );
+        assert_eq!(
+            e.parts().settings().collect::<Vec<_>>(),
+            [inbetween::error::Setting::Animation]
         );
     }
 

@@ -10,7 +10,8 @@ use super::{ContainerFormat, Resampled};
 use glam::{DQuat, DVec3};
 use inbetween::bake::FrameSink;
 use inbetween::clock::Fps;
-use inbetween::error::InputResult;
+use inbetween::error::{InputError, InputResult, Setting};
+use inbetween::message;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -110,12 +111,15 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
         for k in first..=last {
             let t = fps.time_of(k) as f32;
             if prev.is_some_and(|p| t <= p) {
-                return Err(input_err!(
-                    "{src}: animation {}: frames {} and {k} at {fps} fps have the same float32 \
-                     time; glTF times are float32: use a lower --fps",
-                    anim.label(),
-                    k - 1
-                ));
+                return Err(InputError::new(message![
+                    format!(
+                        "{src}: animation {}: frames {} and {k} at {fps} fps have the same \
+                         float32 time; glTF times are float32: use a lower ",
+                        anim.label(),
+                        k - 1
+                    ),
+                    Setting::FrameRate
+                ]));
             }
             prev = Some(t);
         }

@@ -54,7 +54,8 @@ use accessor::Storage;
 use glam::{DQuat, DVec3};
 use gltf::accessor::Dimensions;
 use gltf::animation::Property;
-use inbetween::error::{InputError, InputResult, shorten};
+use inbetween::error::{InputError, InputResult, Setting, shorten};
+use inbetween::message;
 use std::path::{Path, PathBuf};
 
 /// A glTF 2.0 asset as read: its document (parsed and validated), the bytes of its buffers, and
@@ -170,9 +171,12 @@ impl Asset {
     ) -> InputResult<Asset> {
         let fail = |m: String| InputError::new(m).at(source);
         if bytes.len() as u64 > max_bytes {
-            return Err(fail(format!(
-                "input larger than {max_bytes} bytes (--max-input-bytes)"
-            )));
+            return Err(InputError::new(message![
+                format!("input larger than {max_bytes} bytes ("),
+                Setting::MaxInputBytes,
+                ")"
+            ])
+            .at(source));
         }
         let (json_bytes, blob, container) = if bytes.starts_with(b"glTF") {
             let glb = gltf::Glb::from_slice(bytes)
@@ -196,7 +200,8 @@ impl Asset {
             limit: max_bytes,
             used: bytes.len() as u64,
         };
-        let loaded = accessor::load_buffers(&document, &mut sources).map_err(fail)?;
+        let loaded = accessor::load_buffers(&document, &mut sources)
+            .map_err(|m| InputError::new(m).at(source))?;
         files.extend(loaded.files);
         let mut warnings = Vec::new();
         if let Some((a, c, what)) = parsed.ignored.first() {

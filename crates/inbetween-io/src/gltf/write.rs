@@ -29,7 +29,8 @@
 use super::Asset;
 use base64::Engine;
 use glam::{DQuat, DVec4};
-use inbetween::error::{Error, InputError};
+use inbetween::error::{Error, InputError, Setting};
+use inbetween::message;
 use serde_json::{Value, json};
 use std::collections::HashSet;
 use std::io::Write;
@@ -202,9 +203,17 @@ impl Asset {
                 let bytes = super::accessor::read_file(&path, left.saturating_add(1) as usize)
                     .map_err(at)?;
                 if bytes.len() as u64 > left {
-                    return Err(at(format!(
-                        "embedding it would take the input past {} bytes (--max-input-bytes)",
-                        self.max_bytes
+                    return Err(InputError::new(message![
+                        format!(
+                            "embedding it would take the input past {} bytes (",
+                            self.max_bytes
+                        ),
+                        Setting::MaxInputBytes,
+                        ")"
+                    ])
+                    .at_setting(format!(
+                        "{src}: images[{i}].uri (\"{}\")",
+                        inbetween::error::shorten(uri)
                     )));
                 }
                 used += bytes.len() as u64;

@@ -12,9 +12,10 @@
 
 use crate::ReadOptions;
 use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime, shorten};
-use crate::read::json::check_frame_time;
+use crate::read::json::{RateFrom, check_frame_time};
 use glam::DVec3;
-use inbetween::error::InputResult;
+use inbetween::error::{InputError, InputResult, Setting};
+use inbetween::message;
 use inbetween::rotation::{MAX_WIDTH, Repr};
 use std::collections::{HashMap, HashSet};
 
@@ -205,7 +206,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         if let Some(f) = frame_check {
             let frame = number(f)?;
             if let Some(rate) = opts.key_fps {
-                check_frame_time(frame, t, rate, "--key-fps")
+                check_frame_time(frame, t, rate, RateFrom::Given)
                     .map_err(|e| e.at(format!("{}: columns \"frame\" and \"time\"", loc())))?;
             }
         }
@@ -419,21 +420,30 @@ fn choose_rotation(
         }
         let cols = &sets[0].1;
         let missing: Vec<_> = cols.iter().filter(|c| !has(c)).collect();
-        return Err(input_err!(
-            "{hloc}: --from {from} needs columns {}, missing \"{}\"",
-            cols.join(","),
-            missing[0]
-        ));
+        return Err(InputError::new(message![
+            format!("{hloc}: "),
+            Setting::Rotation,
+            format!(
+                " {from} needs columns {}, missing \"{}\"",
+                cols.join(","),
+                missing[0]
+            )
+        ]));
     }
     let full: Vec<_> = candidates
         .iter()
         .filter(|(_, cols)| cols.iter().all(has))
         .collect();
     match full.as_slice() {
-        [(Repr::Euler(_), _)] => Err(input_err!(
-            "{hloc}: columns e1,e2,e3 hold Euler angles but the sequence is unknown: pass \
-             --from euler:SEQ (e.g. --from euler:ZYX)"
-        )),
+        [(Repr::Euler(_), _)] => Err(InputError::new(message![
+            format!(
+                "{hloc}: columns e1,e2,e3 hold Euler angles but the sequence is unknown: pass "
+            ),
+            Setting::Rotation,
+            " euler:SEQ (e.g. ",
+            Setting::Rotation,
+            " euler:ZYX)"
+        ])),
         [(repr, cols)] => Ok((*repr, cols.clone())),
         [] => {
             // Name the first missing column of the best partial match.
@@ -455,14 +465,17 @@ fn choose_rotation(
                 ))
             }
         }
-        several => Err(input_err!(
-            "{hloc}: found columns of several rotations ({}); keep one or pass --from",
-            several
-                .iter()
-                .map(|(r, _)| r.to_string())
-                .collect::<Vec<_>>()
-                .join(", ")
-        )),
+        several => Err(InputError::new(message![
+            format!(
+                "{hloc}: found columns of several rotations ({}); keep one or pass ",
+                several
+                    .iter()
+                    .map(|(r, _)| r.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            Setting::Rotation
+        ])),
     }
 }
 
@@ -497,7 +510,12 @@ mod tests {
     fn euler_needs_a_sequence() {
         let text = "time,e1,e2,e3\n0,0,0,0\n1,90,0,0\n";
         let err = read(text, "k.csv", &opts()).unwrap_err();
-        assert!(err.message().contains("--from euler:SEQ"), "{err}");
+        assert!(
+            err.message()
+                .contains("pass rotation representation euler:SEQ"),
+            "{err}"
+        );
+        assert!(err.parts().settings().all(|s| s == Setting::Rotation));
         let o = ReadOptions {
             from: Some(Repr::parse("euler:ZYX").unwrap()),
             angles: AngleUnit::Deg,

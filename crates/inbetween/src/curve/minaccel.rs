@@ -41,8 +41,8 @@
 use super::banded::Banded;
 use super::hermite::Hermite;
 use super::{Blend, Segment};
-use crate::error::InputResult;
 use crate::error::input_err;
+use crate::error::{InputError, InputResult, Setting};
 use crate::rotation::quat::exp;
 use crate::tangent::Knots;
 use glam::{DQuat, DVec3, DVec4};
@@ -128,10 +128,14 @@ impl Problem {
         let too_many = |steps: &[usize]| {
             let total = steps.iter().fold(1usize, |a, &b| a.saturating_add(b));
             (total > MAX_GRID_POINTS).then(|| {
-                input_err!(
-                    "minaccel would need a grid of {total} points (at most {MAX_GRID_POINTS}): \
-                     lower --fps or the end velocities, or use another scheme"
-                )
+                InputError::new(crate::message![
+                    format!(
+                        "minaccel would need a grid of {total} points (at most \
+                         {MAX_GRID_POINTS}): lower "
+                    ),
+                    Setting::FrameRate,
+                    " or the end velocities, or use another scheme"
+                ])
             })
         };
         let mut steps = base_steps(keys, fps);

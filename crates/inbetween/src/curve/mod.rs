@@ -52,7 +52,7 @@ pub trait Segment: Sized {
     fn blend_gap(&self, u: f64) -> f64;
 
     /// A limitation of the scheme that this segment runs into, to be reported on stderr.
-    fn limitation(&self) -> Option<&'static str> {
+    fn limitation(&self) -> Option<crate::error::Message> {
         None
     }
 }

@@ -24,6 +24,8 @@
 
 use super::blend4::{Block4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
+use crate::error::{Message, Setting};
+use crate::message;
 use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::{exp, geodesic};
 use crate::tangent::{Knots, step};
@@ -191,12 +193,16 @@ impl Segment for Squad {
         (self.outer.eval(u) + self.inner.eval(u)).length()
     }
 
-    fn limitation(&self) -> Option<&'static str> {
-        self.aliased.then_some(
-            "an inner control point of squad is half a turn or more from its key (an end \
-             velocity or a change of spacing too large for squad), so the curve misses the \
-             tangent there; use --scheme hermite or add keys",
-        )
+    fn limitation(&self) -> Option<Message> {
+        self.aliased.then(|| {
+            message![
+                "an inner control point of squad is half a turn or more from its key (an end \
+                 velocity or a change of spacing too large for squad), so the curve misses the \
+                 tangent there; use ",
+                Setting::Scheme,
+                " hermite or add keys"
+            ]
+        })
     }
 }
 

@@ -16,9 +16,10 @@ pub fn reduce_shared(
         return Ok(Vec::new());
     };
     if tracks.iter().any(|t| t.times != times) {
-        return Err(crate::error::input_err!(
-            "--shared-keys: the tracks have different frame times; shared keys need one grid"
-        )
+        return Err(crate::error::InputError::new(crate::message![
+            crate::error::Setting::SharedKeys,
+            ": the tracks have different frame times; shared keys need one grid"
+        ])
         .into());
     }
     let n = times.len();
