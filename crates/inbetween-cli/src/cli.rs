@@ -82,9 +82,10 @@ pub struct ReduceArgs {
     #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
     pub tolerance: f64,
 
-    /// The scheme the keys are for (interp's --scheme; use the same with interp).
-    #[arg(long, value_enum, default_value = "bezier")]
-    pub scheme: SchemeArg,
+    /// The scheme the keys are for (interp's --scheme; use the same with interp). Default
+    /// bezier; slerp for glTF output, whose LINEAR samplers play by slerp.
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeArg>,
 
     #[command(flatten)]
     pub curve: CurveArgs,
@@ -273,9 +274,11 @@ pub struct InterpArgs {
     #[command(flatten)]
     pub output: OutputArgs,
 
-    /// Interpolation scheme (bezier: third order, C¹, local; see docs/schemes.md).
-    #[arg(long, value_enum, default_value = "bezier")]
-    pub scheme: SchemeArg,
+    /// Interpolation scheme (bezier: third order, C¹, local; see docs/schemes.md). Default
+    /// bezier; for glTF input, each sampler as glTF plays it (LINEAR by slerp), and a scheme
+    /// given re-interpolates the LINEAR keys.
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeArg>,
 
     #[command(flatten)]
     pub curve: CurveArgs,

@@ -15,7 +15,13 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    let input = read_curves(&args.input, &args.curve, Scheme::default(), stdin, warn)?;
+    let input = read_curves(
+        &args.input,
+        &args.curve,
+        &|_| Scheme::default(),
+        stdin,
+        warn,
+    )?;
     let unit = args.input.angles;
     let schemes: Vec<CurveOptions> = args
         .scheme

@@ -3,6 +3,7 @@
 use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
 use crate::cli::{InterpArgs, PathArg, SpanArg};
 use crate::output::{Output, WriteBehind};
+use glam::DQuat;
 use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
 use inbetween::{
@@ -13,9 +14,19 @@ use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
-use inbetween_io::gltf::frames::{GltfFrames, check_grid};
+use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::write::{FrameWriter, NpyWriter};
 use std::io::Read;
+
+/// The curves' scheme: `--scheme`, else each glTF sampler as glTF plays it (`LINEAR` keys by
+/// slerp; `STEP` and `CUBICSPLINE` channels are their samplers whatever the scheme), else bezier.
+fn scheme(args: &InterpArgs, input: Format) -> Scheme {
+    match (args.scheme, input) {
+        (Some(s), _) => s.into(),
+        (None, Format::Gltf) => Scheme::Slerp,
+        (None, _) => Scheme::Bezier,
+    }
+}
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
 ///
@@ -34,7 +45,7 @@ pub fn run(
         Mode::Sampled,
         &args.input,
         &args.curve,
-        args.scheme.into(),
+        &|f| scheme(args, f),
         stdin,
         warn,
     )?;
@@ -84,7 +95,8 @@ pub fn run(
             (SpanArg::Track, None) => own_span(i),
         }
     };
-    for (i, t) in tracks.iter().enumerate() {
+    // glTF output samples the ends of each animation's span, frames or not: no key is missed.
+    for (i, t) in tracks.iter().enumerate().filter(|_| !to_gltf) {
         near_misses(&doc.source, t.name(), own_span(i), span(i), fps, warn);
     }
     let rows: u64 = (0..tracks.len())
@@ -230,6 +242,16 @@ pub fn run(
         )),
     };
     for (i, (curve, track)) in curves.iter().zip(tracks).enumerate() {
+        // glTF output: the animation's first and last times, where they are not frames, are
+        // sampled too (after the frames), so its first and last poses are kept.
+        let edges = match (gltf.filter(|_| to_gltf), &sources[i]) {
+            (Some(g), Some(s)) => gltf_edges(g, s.animation, fps),
+            _ => [None, None],
+        };
+        let at = |t: f64| match curve {
+            TrackCurve::Curve(c) => c.rotation(t),
+            TrackCurve::Sampled(sampler, _) => sampler.at(t).0,
+        };
         match curve {
             TrackCurve::Curve(curve) => {
                 bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), &mut |m| {
@@ -252,6 +274,9 @@ pub fn run(
                     &mut |m| warn(&crate::flags::say(m)),
                 )?
             }
+        }
+        for t in edges.into_iter().flatten() {
+            sink.edge(t, at(t))?;
         }
     }
     sink.finish()?;
@@ -377,7 +402,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
     }
     let opts = resample::Options {
         fps,
-        curve: curve_options(curve, args.scheme.into(), fps, args.input.angles),
+        curve: curve_options(curve, scheme(args, Format::Bvh), fps, args.input.angles),
         tcb: tcb_flags(curve),
         threads: 0,
     };
@@ -434,6 +459,13 @@ enum TrackCurve {
 /// A frame writer that hands back its output when done.
 trait Sink: FrameSink {
     fn into_output(self: Box<Self>) -> std::io::Result<Output>;
+    /// The current track's rotation at an edge of its glTF animation's span that is not a
+    /// frame ([`gltf_edges`]); only glTF output has such samples.
+    fn edge(&mut self, _time: f64, _q: DQuat) -> std::io::Result<()> {
+        Err(std::io::Error::other(
+            "internal error: an edge sample for output other than glTF",
+        ))
+    }
 }
 
 impl Sink for FrameWriter<WriteBehind> {
@@ -451,6 +483,9 @@ impl Sink for BvhFrames<WriteBehind> {
 impl Sink for GltfFrames<WriteBehind> {
     fn into_output(self: Box<Self>) -> std::io::Result<Output> {
         self.into_inner()?.finish()
+    }
+    fn edge(&mut self, time: f64, q: DQuat) -> std::io::Result<()> {
+        GltfFrames::edge(self, time, q)
     }
 }
 

@@ -10,7 +10,13 @@ use std::io::{Read, Write};
 
 /// Runs `plot`: one track's chart, schemes side by side.
 pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) -> Result<(), Error> {
-    let input = read_curves(&args.input, &args.curve, Scheme::default(), stdin, warn)?;
+    let input = read_curves(
+        &args.input,
+        &args.curve,
+        &|_| Scheme::default(),
+        stdin,
+        warn,
+    )?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let unit = args.input.angles;
     let track = match &args.track {

@@ -2,16 +2,16 @@
 //! (the library's [`inbetween::reduce`]).
 
 use super::settings::{Curves, output_format, rates, read_curves};
-use crate::cli::{MethodArg, ReduceArgs, SchemeArg};
+use crate::cli::{MethodArg, ReduceArgs};
 use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
-use inbetween::{Error, EulerSeq, InputError, PathMode, Repr};
-use inbetween_io::OutputFormat;
+use inbetween::{Error, EulerSeq, InputError, PathMode, Repr, Scheme};
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
 use inbetween_io::gltf::ContainerFormat;
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
+use inbetween_io::{Format, OutputFormat};
 use std::io::Read;
 
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
@@ -27,7 +27,7 @@ pub fn run(
         ))
         .into());
     }
-    let input = read_curves(&args.input, &args.curve, args.scheme.into(), stdin, warn)?;
+    let input = read_curves(&args.input, &args.curve, &|f| scheme(args, f), stdin, warn)?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match output_format(&args.output, input.format) {
         OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
@@ -290,7 +290,17 @@ fn reduce_tracks(
     Ok(reduced)
 }
 
-/// `reduce anim.glb --scheme slerp -o small.glb`: each rotation channel repointed to a `LINEAR`
+/// The scheme of the keys: `--scheme`, else slerp for glTF output (its `LINEAR` samplers play
+/// by slerp), else bezier; `input` is the input's format, which glTF output needs.
+fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
+    match (args.scheme, output_format(&args.output, input)) {
+        (Some(s), _) => s.into(),
+        (None, OutputFormat::Gltf(_)) => Scheme::Slerp,
+        (None, _) => Scheme::Bezier,
+    }
+}
+
+/// `reduce anim.glb -o small.glb`: each rotation channel repointed to a `LINEAR`
 /// sampler with its kept keys, which a glTF player interpolates by slerp, as verified; the rest
 /// of the asset (translation channels included) as read.
 fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Result<(), Error> {
@@ -300,7 +310,7 @@ fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Res
         )
         .into());
     };
-    if args.scheme != SchemeArg::Slerp {
+    if scheme(args, Format::Gltf) != Scheme::Slerp {
         return Err(InputError::new(
             "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
              play as reduced; use --scheme slerp, or write csv or json",

@@ -200,17 +200,18 @@ pub struct Curves {
     pub tracks: Vec<Track>,
     /// The output rate (and minaccel's grid rate).
     pub fps: Fps,
-    /// The curve options of the command line (scheme: `scheme`).
+    /// The curve options of the command line (scheme: `scheme` of the input's format).
     pub opts: CurveOptions,
     /// A glTF input's asset and chosen animations.
     pub gltf: Option<Arc<GltfClip>>,
 }
 
-/// Reads the input and validates it into tracks, with the output rate and the curve options.
+/// Reads the input and validates it into tracks, with the output rate and the curve options;
+/// `scheme` gives the curves' scheme for the input's format (a default may depend on it).
 pub fn read_curves(
     input: &InputArgs,
     curve: &CurveArgs,
-    scheme: Scheme,
+    scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<Curves, InputError> {
@@ -222,7 +223,7 @@ pub fn read_curves_in(
     mode: Mode,
     input: &InputArgs,
     curve: &CurveArgs,
-    scheme: Scheme,
+    scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<Curves, InputError> {
@@ -286,7 +287,7 @@ pub fn read_curves_in(
             )));
         }
     }
-    let opts = curve_options(curve, scheme, fps, input.angles);
+    let opts = curve_options(curve, scheme(format), fps, input.angles);
     Ok(Curves {
         doc,
         format,

@@ -612,6 +612,165 @@ fn python_cubicspline(
     )
 }
 
+/// The independent playback of one rotation channel (`fixtures/gltf/playback_ref.py`: LINEAR by
+/// Appendix C's slerp, STEP held, CUBICSPLINE by Appendix C) at `times`, when the checkers' venv
+/// exists.
+fn python_playback(
+    asset: &Path,
+    animation: usize,
+    channel: usize,
+    times: &[f64],
+) -> Option<Vec<DQuat>> {
+    let python = crate::support::checker_python("glTF playback reference check")?;
+    let (a, c) = (animation.to_string(), channel.to_string());
+    let times: Vec<String> = times.iter().map(|t| format!("{t:?}")).collect();
+    let mut args: Vec<&std::ffi::OsStr> = vec![asset.as_os_str(), a.as_ref(), c.as_ref()];
+    args.extend(times.iter().map(std::ffi::OsStr::new));
+    let doc = crate::support::python_json(&python, "fixtures/gltf/playback_ref.py", &args);
+    let quat = |r: &Value| {
+        let c: Vec<f64> = r
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        DQuat::from_xyzw(c[0], c[1], c[2], c[3])
+    };
+    Some(
+        doc["rotations"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(quat)
+            .collect(),
+    )
+}
+
+/// Without `--scheme`, `interp` of a glTF plays every sampler as glTF defines it: each frame at
+/// 30 fps (not the keys' rate) equals the independent Appendix C playback of the asset — LINEAR
+/// (float32 and normalized-integer keys) by slerp, STEP held, CUBICSPLINE — to 1e-9 rad
+/// (measured: 1.1e-15), on the synthetic samplers and the Khronos sample RiggedSimple.
+/// `--scheme bezier` re-interpolates the LINEAR keys and so leaves that playback (measured: 0.18
+/// and 0.089 rad at worst; more than 1e-3 rad somewhere on each asset is asserted).
+#[test]
+fn gltf_without_a_scheme_plays_as_the_asset_defines() {
+    let dir = tempfile::tempdir().unwrap();
+    // (asset, animation index and name, rotation channels with their track names); the sparse
+    // channel of samplers.gltf is left out (the reference does not read sparse accessors).
+    // (animation, channel, track name) of each rotation channel checked.
+    type Channels<'a> = &'a [(usize, usize, &'a str)];
+    let cases: [(&str, Channels); 2] = [
+        (
+            "gltf/samplers.gltf",
+            &[
+                (0, 0, "Mixed/step"),
+                (0, 1, "Mixed/byte"),
+                (0, 2, "Mixed/short"),
+                (0, 4, "Mixed/cubic"),
+                (1, 0, "Other/other"),
+            ],
+        ),
+        (
+            "gltf/real/RiggedSimple.gltf",
+            &[(0, 1, "0/node2"), (1, 1, "1/node3")],
+        ),
+    ];
+    for (asset, channels) in cases {
+        let src = fixtures().join(asset);
+        let mut bezier_off = 0.0f64;
+        for scheme in [None, Some("bezier")] {
+            let csv = dir.path().join("frames.csv");
+            let mut argv = args!("interp", &src, "--fps", "30", "-o", &csv).to_vec();
+            if let Some(s) = scheme {
+                argv.extend(args!("--scheme", s));
+            }
+            ok(&argv);
+            for &(a, c, track) in channels {
+                let frames = csv_track(&csv, track);
+                assert!(
+                    frames.len() > 30,
+                    "{asset} {track}: {} frames",
+                    frames.len()
+                );
+                let times: Vec<f64> = frames.iter().map(|f| f.0).collect();
+                let Some(want) = python_playback(&src, a, c, &times) else {
+                    return;
+                };
+                let worst = frames
+                    .iter()
+                    .zip(&want)
+                    .map(|((_, q), w)| rot_angle(*q, *w))
+                    .fold(0.0, f64::max);
+                match scheme {
+                    None => assert!(worst < 1e-9, "{asset} {track}: {worst:e} rad"),
+                    Some(_) => bezier_off = bezier_off.max(worst),
+                }
+            }
+        }
+        assert!(
+            bezier_off > 1e-3,
+            "{asset}: bezier within {bezier_off:e} rad"
+        );
+    }
+}
+
+/// glTF output keeps each animation's first and last poses: its new time accessor starts at the
+/// earliest and ends at the latest time of any of the animation's samplers (the accessors' own
+/// `min` and `max`), frames or not — RiggedSimple's 1/24 s at 30 fps, the synthetic samplers'
+/// 0.5 s at 14.4 fps — with the grid's frames between, and the rotation at every time written
+/// is the independent playback of the input there, to float32 (1e-6 rad).
+#[test]
+fn gltf_output_keeps_the_first_and_last_pose() {
+    let dir = tempfile::tempdir().unwrap();
+    for (asset, fps, channels) in [
+        ("gltf/real/RiggedSimple.gltf", "30", &[(0, 1), (1, 1)][..]),
+        (
+            "gltf/samplers.gltf",
+            "14.4",
+            &[(0, 0), (0, 1), (0, 2), (0, 4), (1, 0)][..],
+        ),
+    ] {
+        let src = fixtures().join(asset);
+        let out = dir.path().join("out.glb");
+        ok(args!("interp", &src, "--fps", fps, "-o", &out));
+        validate(&out);
+        let json = asset_json(&src);
+        let back = Asset::read_path(&out).unwrap();
+        let step = 1.0 / fps.parse::<f64>().unwrap();
+        for &(a, c) in channels {
+            let inputs = json["animations"][a]["samplers"].as_array().unwrap().iter();
+            let ends = inputs.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+                let acc = &json["accessors"][s["input"].as_u64().unwrap() as usize];
+                let at = |m: &str| acc[m][0].as_f64().unwrap();
+                (lo.min(at("min")), hi.max(at("max")))
+            });
+            let got = channel(&back, a, c);
+            let times = got.times_f32();
+            let what = format!("{asset} animation {a} channel {c}");
+            assert_eq!(times[0], ends.0 as f32, "{what}: first time");
+            assert_eq!(*times.last().unwrap(), ends.1 as f32, "{what}: last time");
+            // Between the ends, the frames of the grid.
+            for w in times.windows(2) {
+                let d = (w[1] - w[0]) as f64;
+                assert!(
+                    d > 0.0 && d <= step * (1.0 + 1e-5),
+                    "{what}: {} to {}",
+                    w[0],
+                    w[1]
+                );
+            }
+            let at: Vec<f64> = times.iter().map(|&t| t as f64).collect();
+            let Some(want) = python_playback(&src, a, c, &at) else {
+                return;
+            };
+            for (i, (q, w)) in got.values().iter().zip(&want).enumerate() {
+                let d = rot_angle(q.normalize(), *w);
+                assert!(d < 1e-6, "{what}: sample {i} ({} s): {d:e} rad", at[i]);
+            }
+        }
+    }
+}
+
 /// Everything but what the writer appends to or rewrites: the objects as they were.
 fn untouched(json: &Value) -> Value {
     let mut j = json.clone();
@@ -773,7 +932,9 @@ fn an_animation_without_frames_is_kept_as_it_was() {
     assert_ne!(after["animations"][1], before["animations"][1]);
     let spawn = channel(&Asset::read_path(&out).unwrap(), 1, 1);
     assert_eq!(spawn.interpolation(), Interpolation::Linear);
-    assert_eq!(spawn.values().len(), 17); // 0.04 s .. 0.6 s: frames 2..=18 at 30 fps
+    // 0.04 s (the first key, not a frame at 30 fps), then frames 2..=18 (to 0.6 s).
+    assert_eq!(spawn.values().len(), 18);
+    assert_eq!(spawn.times_f32()[..2], [0.04, (2.0f64 / 30.0) as f32]);
 }
 
 /// `reduce anim.gltf --scheme slerp -o small.glb`: every rotation channel becomes a LINEAR
@@ -841,8 +1002,23 @@ fn reduce_writes_slerp_keys_into_the_asset() {
         assert!(e.contains(want), "{e}");
         assert!(!b.exists() && !c.exists(), "nothing written");
     };
+    // glTF output without --scheme is slerp's (the only scheme a LINEAR sampler plays): the
+    // same bytes; another scheme is refused.
+    let d = dir.path().join("default.glb");
+    let no_scheme = [&reduce[..4], &reduce[6..], args!("-o", &d)].concat();
+    ok(&no_scheme);
+    assert_eq!(std::fs::read(&d).unwrap(), std::fs::read(&out).unwrap());
     refused(
-        args!("reduce", &src, "--tolerance", "0.5", "-o", &b),
+        args!(
+            "reduce",
+            &src,
+            "--scheme",
+            "bezier",
+            "--tolerance",
+            "0.5",
+            "-o",
+            &b
+        ),
         "only --scheme slerp's keys play as reduced",
     );
     refused(

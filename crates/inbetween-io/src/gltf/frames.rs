@@ -1,7 +1,9 @@
 //! [`GltfFrames`]: baked frames written into the input asset as new `LINEAR` rotation samplers.
 //!
 //! Each track is a rotation channel of a [`GltfClip`] (by name). Every track of an animation is
-//! baked over the frames of that animation's span ([`GltfClip::frames`]); at
+//! baked over the frames of that animation's span ([`GltfClip::frames`]), and sampled at the
+//! span's first and last times where those are not frames ([`edges`], given with
+//! [`GltfFrames::edge`]), so the animation's first and last poses are kept; at
 //! [`FrameSink::finish`] each animation gets one time accessor and each channel a new sampler
 //! ([`Asset::write`](super::Asset::write) with [`Resampled`]). The asset is otherwise as read.
 
@@ -24,8 +26,34 @@ pub struct GltfFrames<W: Write> {
     format: ContainerFormat,
     /// The folder the output goes to (relative URIs are rewritten for it).
     out_dir: Option<PathBuf>,
-    /// Per track: `(animation, channel, first frame, rotations)`.
-    tracks: Vec<(usize, usize, Option<i64>, Vec<DQuat>)>,
+    tracks: Vec<Baked>,
+}
+
+/// One track's samples as given.
+struct Baked {
+    animation: usize,
+    channel: usize,
+    /// The first frame's number, once one is given.
+    first: Option<i64>,
+    /// The rotations at the frames, in order.
+    rotations: Vec<DQuat>,
+    /// The rotations at the span's first and last times, where those are not frames.
+    edges: [Option<DQuat>; 2],
+}
+
+/// The times of animation `a`'s span at `fps` that are not frames and are sampled besides them:
+/// its first time when that is before its first frame, its last when that is after its last
+/// frame (none for an animation whose span holds no frame: it is written as it was).
+pub fn edges(clip: &GltfClip, a: usize, fps: Fps) -> [Option<f64>; 2] {
+    let (first, last) = clip.frames(a, fps);
+    if first > last {
+        return [None, None];
+    }
+    let (lo, hi) = clip.span(a, fps);
+    [
+        (lo < fps.time_of(first)).then_some(lo),
+        (hi > fps.time_of(last)).then_some(hi),
+    ]
 }
 
 fn internal(msg: String) -> io::Error {
@@ -56,6 +84,22 @@ impl<W: Write> GltfFrames<W> {
         self
     }
 
+    /// The rotation at `time`, one of the [`edges`] of the animation of the track whose frames
+    /// were given last (after its frames: the frames are written in time order).
+    pub fn edge(&mut self, time: f64, q: DQuat) -> io::Result<()> {
+        let t = self
+            .tracks
+            .last_mut()
+            .ok_or_else(|| internal("an edge sample before a track".into()))?;
+        let edges = edges(&self.clip, t.animation, self.fps);
+        let side = edges
+            .iter()
+            .position(|&e| e == Some(time))
+            .ok_or_else(|| internal(format!("{time} s is not an edge of the track's span")))?;
+        t.edges[side] = Some(q);
+        Ok(())
+    }
+
     /// The destination, after [`FrameSink::finish`].
     pub fn into_inner(mut self) -> io::Result<W> {
         self.out
@@ -81,7 +125,8 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
     for (a, anim) in clip.animations().iter().enumerate() {
         let (first, last) = clip.frames(a, fps);
         if first <= last {
-            let frames = (last - first) as u128 + 1;
+            let edges = edges(clip, a, fps).iter().flatten().count() as u128;
+            let frames = (last - first) as u128 + 1 + edges;
             new_bytes += frames * (4 + 16 * anim.rotations().len() as u128);
         }
     }
@@ -107,6 +152,8 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
             ));
             continue;
         }
+        // The span's ends are at least two float32 units from any frame where they are not
+        // one (else they would have been snapped to it), so only frames can collide.
         let mut prev: Option<f32> = None;
         for k in first..=last {
             let t = fps.time_of(k) as f32;
@@ -132,7 +179,13 @@ impl<W: Write> FrameSink for GltfFrames<W> {
         let s = name
             .and_then(|n| self.clip.source_of(n, Mode::Frames))
             .ok_or_else(|| internal(format!("no glTF channel for track {name:?}")))?;
-        self.tracks.push((s.animation, s.channel, None, Vec::new()));
+        self.tracks.push(Baked {
+            animation: s.animation,
+            channel: s.channel,
+            first: None,
+            rotations: Vec::new(),
+            edges: [None, None],
+        });
         Ok(())
     }
 
@@ -141,11 +194,11 @@ impl<W: Write> FrameSink for GltfFrames<W> {
             .tracks
             .last_mut()
             .ok_or_else(|| internal("a frame before a track".into()))?;
-        let first = *t.2.get_or_insert(k);
-        if k - first != t.3.len() as i64 {
+        let first = *t.first.get_or_insert(k);
+        if k - first != t.rotations.len() as i64 {
             return Err(internal(format!("frame {k} out of order")));
         }
-        t.3.push(q);
+        t.rotations.push(q);
         Ok(())
     }
 
@@ -156,23 +209,38 @@ impl<W: Write> FrameSink for GltfFrames<W> {
             if first > last {
                 continue; // no frame: the animation stays as it was (check_grid warned)
             }
+            let [lo, hi] = edges(&self.clip, a, self.fps);
+            let grid = (first..=last).map(|k| self.fps.time_of(k));
             let mut r = Resampled {
                 animation: anim.index(),
-                times: (first..=last).map(|k| self.fps.time_of(k)).collect(),
+                times: lo.into_iter().chain(grid).chain(hi).collect(),
                 channels: Vec::new(),
             };
-            for (ta, c, f, qs) in &mut self.tracks {
-                if *ta != a {
+            for t in &mut self.tracks {
+                if t.animation != a {
                     continue;
                 }
-                if *f != Some(first) || qs.len() != r.times.len() {
+                let c = t.channel;
+                let sides = t.edges.map(|e| e.is_some());
+                if t.first != Some(first)
+                    || t.rotations.len() as i64 != last - first + 1
+                    || sides != [lo.is_some(), hi.is_some()]
+                {
                     return Err(internal(format!(
-                        "animation {a} channel {c}: frames {f:?}+{} for {first}..={last}",
-                        qs.len()
+                        "animation {a} channel {c}: frames from {:?}, {} rotations, edges \
+                         {sides:?} for frames {first}..={last}, edges {:?}",
+                        t.first,
+                        t.rotations.len(),
+                        [lo, hi]
                     )));
                 }
                 // Moved, not copied: the frames are the bulk of the memory.
-                r.channels.push((*c, std::mem::take(qs)));
+                let mut qs = std::mem::take(&mut t.rotations);
+                if let Some(q) = t.edges[0] {
+                    qs.insert(0, q);
+                }
+                qs.extend(t.edges[1]);
+                r.channels.push((c, qs));
             }
             if !r.channels.is_empty() {
                 resampled.push(r);
