@@ -10,7 +10,8 @@ use inbetween_io::{Format, OutputFormat};
 use std::path::PathBuf;
 
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
-/// matrices, axis-angle, rotation vectors) from CSV or JSON and writes every in-between frame.
+/// matrices, axis-angle, rotation vectors) from CSV, JSON, BVH motion capture or glTF 2.0
+/// (.gltf, .glb) and writes every in-between frame as CSV, JSON, npy, BVH or glTF.
 #[derive(Debug, Parser)]
 #[command(name = "inbetween", version, max_term_width = 100)]
 pub struct Cli {
@@ -260,8 +261,8 @@ pub struct ConvertArgs {
     pub fps: Option<Fps>,
 
     /// Write BVH on this BVH file's skeleton (its hierarchy and channel orders): every track a
-    /// joint, keys on one grid of consecutive frames. Output is BVH unless -o or
-    /// --output-format says otherwise.
+    /// joint, keys on one grid of consecutive frames; frames with no declared rate (and no
+    /// --fps) are at its Frame Time. Output is BVH unless -o or --output-format says otherwise.
     #[arg(long, value_name = "BVH")]
     pub skeleton: Option<PathBuf>,
 }

@@ -177,11 +177,15 @@ pub fn settle<T: PartialEq + std::fmt::Display>(
 }
 
 /// Whether bytes are a glTF asset: the format as given, else `path`'s extension, else the
-/// bytes start with the GLB magic `glTF`.
+/// bytes start with the GLB magic `glTF` or are a JSON object with a top-level `"asset"` (a
+/// `.gltf` on standard input).
 pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> bool {
     format
         .or_else(|| path.and_then(Format::from_path))
-        .map_or(bytes.starts_with(b"glTF"), |f| f == Format::Gltf)
+        .map_or_else(
+            || bytes.starts_with(b"glTF") || gltf::has_asset_member(bytes),
+            |f| f == Format::Gltf,
+        )
 }
 
 /// Parses a document from raw bytes: the format as given, else from `path`'s extension, else

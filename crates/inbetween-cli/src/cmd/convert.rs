@@ -4,22 +4,24 @@ use super::settings::{key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use crate::output::Output;
 use inbetween::{Error, InputError};
-use inbetween_io::document::{Document, KeyTime};
+use inbetween_io::clip::Clip;
+use inbetween_io::document::Document;
 use inbetween_io::gltf::document::Mode;
 use inbetween_io::write::write_keys;
 use inbetween_io::{Format, OutputFormat};
 use std::io::Read;
+use std::sync::Arc;
 
 /// `convert … --skeleton clip.bvh -o out.bvh`: the keys as the motion of the skeleton (of the
 /// input itself when it is BVH).
-fn write_bvh(args: &ConvertArgs, doc: &Document, fps: inbetween::Fps) -> Result<(), Error> {
-    let skeleton = match (&args.skeleton, &doc.skeleton) {
-        (Some(path), _) => {
-            let source = path.display().to_string();
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
-            std::sync::Arc::new(inbetween_io::bvh::parse(&text, &source)?.0)
-        }
+fn write_bvh(
+    args: &ConvertArgs,
+    doc: &Document,
+    template: Option<Arc<Clip>>,
+    fps: inbetween::Fps,
+) -> Result<(), Error> {
+    let skeleton = match (template, &doc.skeleton) {
+        (Some(t), _) => t,
         (None, Some(own)) => own.clone(),
         (None, None) => {
             return Err(InputError::new(format!(
@@ -36,6 +38,14 @@ fn write_bvh(args: &ConvertArgs, doc: &Document, fps: inbetween::Fps) -> Result<
     Ok(())
 }
 
+/// The `--skeleton` BVH file, read.
+fn read_skeleton(path: &std::path::Path) -> Result<Arc<Clip>, InputError> {
+    let source = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
+    Ok(Arc::new(inbetween_io::bvh::parse(&text, &source)?.0))
+}
+
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
 /// `interp`, a track of one key is fine.
 pub fn run(
@@ -44,13 +54,17 @@ pub fn run(
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
     let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
-    let (frame_fps, _) = rates(&doc, args.fps);
+    let template = args.skeleton.as_deref().map(read_skeleton).transpose()?;
+    // Frames of keys that declare no rate, with no --fps, are at the skeleton's Frame Time: the
+    // rate the clip they came from was captured at.
+    let fps = args.fps.or(template.as_ref().map(|t| t.fps()));
+    let (frame_fps, _) = rates(&doc, fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;
     }
     // Frame numbers read at the default rate, unasked: the rate is written out (JSON "fps", or
     // times converted from frames), so say which.
-    if args.fps.is_none()
+    if fps.is_none()
         && let Some(w) = key_rate_warning(&doc, frame_fps)
     {
         warn(&w.replace("at the output rate, ", "at the default rate, "));
@@ -86,7 +100,7 @@ pub fn run(
     }
     let format = match chosen {
         OutputFormat::Doc(f) => f,
-        OutputFormat::Bvh => return write_bvh(args, &doc, frame_fps),
+        OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps),
         OutputFormat::Gltf(_) => {
             return Err(InputError::new(
                 "convert does not write glTF; resample a glTF asset's rotation channels into \
@@ -114,17 +128,10 @@ pub fn run(
     {
         warn("CSV has no place for start_velocity/end_velocity; they are not written");
     }
-    let all_frames = doc
-        .tracks
-        .iter()
-        .flat_map(|t| &t.keys)
-        .all(|k| matches!(k.when, KeyTime::Frame(_)));
-    // A JSON document's rate (a CSV input never had one to lose).
-    if format == Format::Csv && in_format == Format::Json && all_frames && doc.fps.is_some() {
-        warn(&format!(
-            "CSV has no place for the rate: the frame numbers are written as they are, at \
-             {frame_fps} fps; read them back with --key-fps {frame_fps}"
-        ));
+    if format == Format::Csv
+        && let Some(w) = super::settings::csv_rate_warning(&doc, in_format, doc.skeleton.is_some())
+    {
+        warn(&w);
     }
     let style = super::settings::style(&args.input, &args.output);
     let mut out = Output::open(args.output.output.as_deref())?;

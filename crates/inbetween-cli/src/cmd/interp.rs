@@ -349,6 +349,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
     if args.input.input_format.or_else(|| Format::from_path(path)) != Some(Format::Bvh)
         || args.input.animation.is_some()
         || args.input.tracks.is_some()
+        || args.input.from.is_some()
         || curve.snap_keys.is_some()
         || curve.path == PathArg::Euler
         || curve.start_velocity.is_some()

@@ -100,6 +100,12 @@ pub fn run(
     };
     let (frame_fps, _) = rates(doc, args.curve.fps);
     let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
+    if format == Format::Csv
+        && let Some(w) =
+            super::settings::csv_rate_warning(&out_doc, input.format, doc.skeleton.is_some())
+    {
+        warn(&w);
+    }
     let mut out = Output::open(args.output.output.as_deref())?;
     write_keys(&mut out, &out_doc, format, style, frame_fps)?;
     out.commit()?;

@@ -58,6 +58,31 @@ pub fn key_rate_warning(doc: &Document, frame_fps: Fps) -> Option<String> {
     })
 }
 
+/// The warning for keys written to CSV as frame numbers whose rate the document has (a JSON
+/// `"fps"`, a BVH Frame Time, `--key-fps`): CSV has no place for it. `None` when a key is at a
+/// time in seconds (CSV then writes times) or the document has no rate to lose: a CSV input's
+/// rate is the user's own `--key-fps`. `skeleton`: the keys come from a BVH clip, whose file
+/// gives the rate back as `--skeleton`.
+pub fn csv_rate_warning(doc: &Document, input: Format, skeleton: bool) -> Option<String> {
+    let fps = doc.fps.filter(|_| input != Format::Csv)?;
+    let all_frames = doc
+        .tracks
+        .iter()
+        .flat_map(|t| &t.keys)
+        .all(|k| matches!(k.when, KeyTime::Frame(_)));
+    let or = if skeleton {
+        " (or --skeleton with the BVH file, whose Frame Time is the rate)"
+    } else {
+        ""
+    };
+    all_frames.then(|| {
+        format!(
+            "CSV has no place for the rate: the frame numbers are written as they are, at {fps} \
+             fps; read them back with --key-fps {fps}{or}"
+        )
+    })
+}
+
 /// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
 /// Warnings found while reading go to `warn`. A glTF input is read at `fps` (`--fps`, else 30:
 /// its keys snap to that rate's frames and, for [`Mode::Frames`], its `STEP` and `CUBICSPLINE`
@@ -106,6 +131,17 @@ pub fn read_input(
             inbetween_io::parse_bytes(bytes, &source, path, args.input_format, &opts)?;
         (doc, format, None)
     };
+    // A BVH joint declares its rotation order in CHANNELS and glTF stores quaternions: --from,
+    // which says how CSV columns and JSON keys are written, would be silently ignored.
+    if let (Some(r), Format::Bvh | Format::Gltf) = (args.from, format) {
+        let what = match format {
+            Format::Bvh => "a BVH file declares each joint's rotation order in its CHANNELS",
+            _ => "a glTF asset stores quaternions",
+        };
+        return Err(InputError::new(format!(
+            "{source}: --from {r}: {what}; --from says how CSV and JSON keys are written"
+        )));
+    }
     for w in &doc.warnings {
         warn(w);
     }

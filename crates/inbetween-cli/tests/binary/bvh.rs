@@ -191,9 +191,20 @@ fn an_independent_reader_agrees() {
 /// `src` → `convert` → JSON keys → `convert keys.json --skeleton src` → BVH, in `dir`: the BVH
 /// text that comes back.
 fn through_keys(src: &std::path::Path, dir: &std::path::Path) -> String {
-    let (keys, out) = (dir.join("keys.json"), dir.join("back.bvh"));
-    let run = |args: &[&std::ffi::OsStr]| {
-        crate::support::stdout_of(crate::support::bin().args(args));
+    through_keys_as(src, dir, "json").0
+}
+
+/// [`through_keys`] with the keys as `ext` (`json` or `csv`): the BVH text that comes back, and
+/// what the first `convert` printed on stderr.
+fn through_keys_as(src: &std::path::Path, dir: &std::path::Path, ext: &str) -> (String, String) {
+    let (keys, out) = (dir.join(format!("keys.{ext}")), dir.join("back.bvh"));
+    let mut stderr = String::new();
+    let mut run = |args: &[&std::ffi::OsStr]| {
+        let o = crate::support::bin().args(args).output().unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        if stderr.is_empty() {
+            stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+        }
     };
     run(&[
         "convert".as_ref(),
@@ -209,7 +220,7 @@ fn through_keys(src: &std::path::Path, dir: &std::path::Path) -> String {
         "-o".as_ref(),
         out.as_os_str(),
     ]);
-    std::fs::read_to_string(&out).unwrap()
+    (std::fs::read_to_string(&out).unwrap(), stderr)
 }
 
 /// BVH → `convert` → JSON keys → `convert --skeleton` → BVH gives back every rotation and
@@ -471,6 +482,31 @@ fn a_real_clip_goes_through_keys_and_back() {
     let (src, text) = cmu();
     let (a, b) = (plain(&text), plain(&through_keys(&src, dir.path())));
     assert_eq!(b.hierarchy, a.hierarchy);
+    let (want, got) = (a.poses(), b.poses());
+    assert_eq!(got.len(), 61);
+    for (i, (w, g)) in want.iter().zip(&got).enumerate() {
+        same_pose(w, g, 1e-8, &format!("frame {i}"));
+    }
+}
+
+/// BVH → CSV keys → `convert --skeleton` → BVH keeps the clip's rate: CSV has no place for it, so
+/// the first step warns and says how to read it back, and the skeleton's own Frame Time is the
+/// keys' rate (1/120 s, where the default 30 fps made a clip 4× slow); every pose comes back.
+#[test]
+fn a_real_clip_through_csv_keys_keeps_its_rate() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, text) = cmu();
+    let (back, stderr) = through_keys_as(&src, dir.path(), "csv");
+    assert!(
+        stderr.contains(
+            "CSV has no place for the rate: the frame numbers are written as they are, at 120 \
+             fps; read them back with --key-fps 120 (or --skeleton with the BVH file"
+        ),
+        "{stderr}"
+    );
+    let (a, b) = (plain(&text), plain(&back));
+    let rate = |p: &Plain| 1.0 / p.frame_time.parse::<f64>().unwrap();
+    assert!((rate(&a) - 120.0).abs() < 1e-2 && (rate(&b) - 120.0).abs() < 1e-7);
     let (want, got) = (a.poses(), b.poses());
     assert_eq!(got.len(), 61);
     for (i, (w, g)) in want.iter().zip(&got).enumerate() {

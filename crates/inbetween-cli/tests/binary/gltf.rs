@@ -71,9 +71,19 @@ fn at_rate(frames: std::ops::RangeInclusive<i64>, fps: f64) -> Vec<f32> {
 /// rotation with keys at 0, 0.1, 0.5, 0.7 s (frames 0, 3, 15, 21 at 30 fps; not float32-exact)
 /// and a CUBICSPLINE rotation; animation "Idle" (1), one LINEAR rotation on Arm.
 fn walk_json() -> Value {
+    walk_json_signed(false)
+}
+
+/// [`walk_json`], with `flip`: Hips' LINEAR key 10 and Cubic's CUBICSPLINE key 1 (vertex and
+/// tangents) stored negated — the same rotations, in the opposite hemisphere from their
+/// neighbours, as some exporters write them.
+fn walk_json_signed(flip: bool) -> Value {
     let mut b = Builder::default();
     let t30 = at_rate(0..=30, 30.0);
-    let hips: Vec<DQuat> = t30.iter().map(|&t| spin(f64::from(t))).collect();
+    let mut hips: Vec<DQuat> = t30.iter().map(|&t| spin(f64::from(t))).collect();
+    if flip {
+        hips[10] = -hips[10];
+    }
     let tr: Vec<f32> = t30.iter().flat_map(|&t| [t, 2.0 * t * t, -t]).collect();
     let t_arm = at_rate(5..=20, 30.0);
     let arm: Vec<DQuat> = t_arm
@@ -93,7 +103,8 @@ fn walk_json() -> Value {
         let d = DQuat::from_xyzw(0.0, 0.0, 0.75 * (a / 2.0).cos(), -0.75 * (a / 2.0).sin());
         let s = 1.0 + 0.1 * k as f64;
         let d = DQuat::from_xyzw(d.x * s, d.y * s, d.z * s, d.w * s);
-        cubic.extend([d, v, d]);
+        let sign = if flip && k == 1 { -1.0 } else { 1.0 };
+        cubic.extend([d * sign, v * sign, d * sign]);
     }
     let idle = [DQuat::IDENTITY, DQuat::from_rotation_x(0.5)];
 
@@ -769,6 +780,92 @@ fn gltf_output_keeps_the_first_and_last_pose() {
             }
         }
     }
+}
+
+/// Rotation keys in opposite hemispheres from their neighbours are named in a warning that says
+/// how the file plays. Stored negated, Cubic's CUBICSPLINE key 1 makes Appendix C's spline turn
+/// the long way (more than 1 rad from the sign-continuous file's curve between keys 0 and 1),
+/// and Hips' LINEAR key 10 plays as before (slerp takes the shorter way); the same asset with
+/// sign-continuous keys gets no such warning.
+#[test]
+fn keys_in_opposite_hemispheres_are_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let (aligned, flipped) = (dir.path().join("aligned"), dir.path().join("flipped"));
+    std::fs::create_dir(&aligned).unwrap();
+    std::fs::create_dir(&flipped).unwrap();
+    let aligned = write_walk(&aligned, &walk_json());
+    let flipped = write_walk(&flipped, &walk_json_signed(true));
+    let csv = dir.path().join("f.csv");
+    let quiet = ok(args!("interp", &aligned, "--animation", "Walk", "-o", &csv));
+    assert!(!quiet.contains("hemispheres"), "{quiet}");
+    let loud = ok(args!("interp", &flipped, "--animation", "Walk", "-o", &csv));
+    assert!(
+        loud.contains(
+            "node \"Cubic\"): CUBICSPLINE keys 0 and 1 (0 s, 0.4 s) lie in \
+             opposite hemispheres (dot -0."
+        ) && loud.contains("it turns the long way round between them"),
+        "{loud}"
+    );
+    assert!(
+        loud.contains(
+            "node \"Hips\"): LINEAR keys 9 and 10 (0.3 s, 0.33333334 s) lie in \
+             opposite hemispheres (dot -"
+        ) && loud.contains("(and 1 more pairs)"),
+        "{loud}"
+    );
+    let (a, f) = (
+        Asset::read_path(&aligned).unwrap(),
+        Asset::read_path(&flipped).unwrap(),
+    );
+    let swing = (1..40)
+        .map(|i| i as f64 / 100.0)
+        .map(|t| rot_angle(channel(&a, 0, 4).sample(t), channel(&f, 0, 4).sample(t)))
+        .fold(0.0, f64::max);
+    assert!(swing > 1.0, "CUBICSPLINE: {swing} rad");
+    let same = (0..100)
+        .map(|i| i as f64 / 100.0)
+        .map(|t| rot_angle(channel(&a, 0, 0).sample(t), channel(&f, 0, 0).sample(t)))
+        .fold(0.0, f64::max);
+    assert!(same < 1e-6, "LINEAR: {same} rad");
+}
+
+/// A `.gltf` on standard input is read as glTF (told by its top-level `"asset"`), the same frames
+/// as from the file; a keyframe document on standard input is still one.
+#[test]
+fn a_gltf_on_standard_input_is_gltf() {
+    let src = fixtures().join("gltf/minimal_linear.gltf");
+    let from_file = run(args!(
+        "interp",
+        &src,
+        "--fps",
+        "10",
+        "--output-format",
+        "csv"
+    ));
+    assert!(from_file.status.success());
+    let piped = bin()
+        .args(args!("interp", "--fps", "10", "--output-format", "csv"))
+        .write_stdin(std::fs::read(&src).unwrap())
+        .output()
+        .unwrap();
+    assert!(
+        piped.status.success(),
+        "{}",
+        String::from_utf8_lossy(&piped.stderr)
+    );
+    assert_eq!(piped.stdout, from_file.stdout);
+    let keys = bin()
+        .args(args!("interp", "--fps", "10"))
+        .write_stdin(
+            r#"{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "quat": [0, 1, 0, 0]}]}"#,
+        )
+        .output()
+        .unwrap();
+    assert!(
+        keys.status.success(),
+        "{}",
+        String::from_utf8_lossy(&keys.stderr)
+    );
 }
 
 /// Everything but what the writer appends to or rewrites: the objects as they were.

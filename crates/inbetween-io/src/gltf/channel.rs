@@ -62,6 +62,51 @@ pub struct Channel<T> {
     pub(super) tangents: Option<Vec<(T, T)>>,
 }
 
+/// Consecutive rotation keys in opposite hemispheres ([`RotationChannel::sign_flips`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SignFlips {
+    /// The first pair: keys `key` and `key + 1`.
+    pub key: usize,
+    /// Their normalised values' dot product (negative).
+    pub dot: f64,
+    /// How many consecutive pairs are in opposite hemispheres.
+    pub pairs: usize,
+}
+
+/// The warning for a rotation channel whose consecutive keys lie in opposite hemispheres, saying
+/// how the file plays: `LINEAR`'s slerp takes the shorter way (as glTF 2.0 Appendix C says, and as
+/// read here), but not every player checks; `CUBICSPLINE` blends the stored 4-vectors with no
+/// sign correction, so the curve swings the long way round (as the file plays, and as read here)
+/// — mostly an exporter's sign flip, not what the animator saw.
+pub(super) fn sign_flip_warning(ch: &RotationChannel) -> Option<String> {
+    let f = ch.sign_flips()?;
+    let more = match f.pairs {
+        1 => String::new(),
+        n => format!(" (and {} more pairs)", n - 1),
+    };
+    // The times as stored (float32, shortest).
+    let (k, t) = (f.key, ch.times_f32());
+    let pair = format!(
+        "keys {k} and {} ({} s, {} s) lie in opposite hemispheres (dot {:.2}){more}",
+        k + 1,
+        t[k],
+        t[k + 1],
+        f.dot
+    );
+    Some(match ch.interpolation {
+        Interpolation::CubicSpline => format!(
+            "CUBICSPLINE {pair}: the spline blends the stored values with no sign correction \
+             (glTF 2.0 Appendix C), so it turns the long way round between them, as the file \
+             plays and as read here; an exporter's sign flip is the usual cause: re-export with \
+             sign-continuous keys (or sampled)"
+        ),
+        _ => format!(
+            "LINEAR {pair}: glTF's slerp takes the shorter way, as read here, but a player that \
+             blends the stored values as they are turns the long way; store sign-continuous keys"
+        ),
+    })
+}
+
 /// A channel targeting a node's `rotation`.
 pub type RotationChannel = Channel<DQuat>;
 /// A channel targeting a node's `translation`.
@@ -156,6 +201,27 @@ fn hermite_basis(s: f64) -> [f64; 4] {
 }
 
 impl Channel<DQuat> {
+    /// Consecutive keys whose values lie in opposite hemispheres (`v_k · v_{k+1} < 0`, on the
+    /// normalised values; for `CUBICSPLINE` the vertices): how many pairs, and the first pair's
+    /// `k` and dot product. `None` when there is none, and for `STEP` (a step does not blend).
+    pub fn sign_flips(&self) -> Option<SignFlips> {
+        if self.interpolation == Interpolation::Step {
+            return None;
+        }
+        let mut flips = self
+            .values
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (k, w[0].normalize().dot(w[1].normalize())))
+            .filter(|&(_, d)| d < 0.0);
+        let (key, dot) = flips.next()?;
+        Some(SignFlips {
+            key,
+            dot,
+            pairs: 1 + flips.count(),
+        })
+    }
+
     /// The rotation at time `t` (seconds) by the sampler's interpolation, a unit quaternion:
     ///
     /// - `STEP`: the last key at or before `t`, normalised.

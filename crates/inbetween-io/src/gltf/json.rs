@@ -285,3 +285,67 @@ mod tests {
         assert_eq!(cut_quotes("a \"b\\\"c\" d"), "a \"b\\\"c\" d");
     }
 }
+
+/// Whether `bytes` are a JSON object with a top-level member `"asset"`: every glTF asset has one
+/// (glTF 2.0 §5.1), a keyframe document never does. How a `.gltf` without a name (on standard
+/// input) is told from a keyframe document: one pass over the bytes, no parsing; text that is
+/// not JSON is not glTF.
+pub(crate) fn has_asset_member(bytes: &[u8]) -> bool {
+    let b = bytes.strip_prefix(b"\xef\xbb\xbf").unwrap_or(bytes);
+    let Some(open) = b.iter().position(|c| !c.is_ascii_whitespace()) else {
+        return false;
+    };
+    if b[open] != b'{' {
+        return false;
+    }
+    let (mut depth, mut key_next, mut i) = (1usize, true, open + 1);
+    while i < b.len() {
+        match b[i] {
+            b'"' => {
+                let start = i + 1;
+                i += 1;
+                while i < b.len() && b[i] != b'"' {
+                    i += if b[i] == b'\\' { 2 } else { 1 };
+                }
+                if depth == 1 && key_next && b.get(start..i) == Some(b"asset") {
+                    return true;
+                }
+            }
+            b'{' | b'[' => depth += 1,
+            b'}' | b']' => {
+                depth -= 1;
+                if depth == 0 {
+                    return false;
+                }
+            }
+            b':' if depth == 1 => key_next = false,
+            b',' if depth == 1 => key_next = true,
+            _ => {}
+        }
+        i += 1;
+    }
+    false
+}
+
+#[cfg(test)]
+mod sniff_tests {
+    use super::has_asset_member;
+
+    #[test]
+    fn a_gltf_is_told_from_a_keyframe_document() {
+        let gltf = br#" {"scenes": [{"nodes": [0]}], "asset": {"version": "2.0"}}"#;
+        assert!(has_asset_member(gltf));
+        assert!(has_asset_member(b"\xef\xbb\xbf{\"asset\":{}}"));
+        for not in [
+            &br#"{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}], "name": "asset"}"#[..],
+            br#"{"tracks": [{"name": "x", "keys": [], "asset": 1}]}"#,
+            br#"{"name": "a\"asset", "keys": []}"#,
+            br#"[{"asset": 1}]"#,
+            b"time,w,x,y,z\n0,1,0,0,0\n",
+            b"",
+            b"{\"ass",
+        ] {
+            assert!(!has_asset_member(not), "{}", String::from_utf8_lossy(not));
+        }
+    }
+}

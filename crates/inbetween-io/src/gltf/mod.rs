@@ -46,8 +46,10 @@ pub mod keys;
 mod write;
 
 pub use channel::{
-    Channel, Interpolation, RotationChannel, TranslationChannel, f32_ulp, on_frame, snap_key_time,
+    Channel, Interpolation, RotationChannel, SignFlips, TranslationChannel, f32_ulp, on_frame,
+    snap_key_time,
 };
+pub(crate) use json::has_asset_member;
 pub use write::{ContainerFormat, Resampled};
 
 use accessor::Storage;
@@ -328,6 +330,9 @@ impl Asset {
                     let (channel, warning) =
                         self.read_channel(&ch, c, ROTATION_KIND).map_err(at)?;
                     if let Some(w) = warning {
+                        warnings.push(format!("{}: {label}: {w}", self.source));
+                    }
+                    if let Some(w) = channel::sign_flip_warning(&channel) {
                         warnings.push(format!("{}: {label}: {w}", self.source));
                     }
                     rotations.push(channel);
