@@ -289,6 +289,12 @@ pub struct InterpArgs {
     #[arg(long)]
     pub velocity: bool,
 
+    /// Write BVH on this BVH file's skeleton (its hierarchy and channel orders; without --fps
+    /// its Frame Time is the rate): a track per joint with channels, found by name, as reduce
+    /// and convert write them. Output is BVH unless -o or --output-format says otherwise.
+    #[arg(long, value_name = "BVH")]
+    pub skeleton: Option<PathBuf>,
+
     /// Report on stderr what the minaccel solver did for each track (points, iterations, energy,
     /// projected gradient).
     #[arg(short, long)]
@@ -307,7 +313,7 @@ pub struct InterpArgs {
 }
 
 /// Options that shape the curve (shared by interp, analyze and plot).
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct CurveArgs {
     /// Output frame rate: 24, 25, 30, 60, 23.976, 29.97, 59.94 (the exact /1001 ratios),
     /// 30000/1001, any positive number or ratio. Default: the document's "fps", else 30.

@@ -38,14 +38,6 @@ fn write_bvh(
     Ok(())
 }
 
-/// The `--skeleton` BVH file, read.
-fn read_skeleton(path: &std::path::Path) -> Result<Arc<Clip>, InputError> {
-    let source = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
-    Ok(Arc::new(inbetween_io::bvh::parse(&text, &source)?.0))
-}
-
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
 /// `interp`, a track of one key is fine.
 pub fn run(
@@ -54,7 +46,11 @@ pub fn run(
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
     let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
-    let template = args.skeleton.as_deref().map(read_skeleton).transpose()?;
+    let template = args
+        .skeleton
+        .as_deref()
+        .map(super::skeleton::read)
+        .transpose()?;
     // Frames of keys that declare no rate, with no --fps, are at the skeleton's Frame Time: the
     // rate the clip they came from was captured at.
     let fps = args.fps.or(template.as_ref().map(|t| t.fps()));

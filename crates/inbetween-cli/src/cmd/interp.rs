@@ -1,7 +1,7 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
 use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
-use crate::cli::{InterpArgs, PathArg, SpanArg};
+use crate::cli::{CurveArgs, InterpArgs, PathArg, SpanArg};
 use crate::output::{Output, WriteBehind};
 use glam::DQuat;
 use inbetween::bake::{Sampled, bake_sampled};
@@ -41,10 +41,23 @@ pub fn run(
     if let Some(done) = lean_bvh(args, warn) {
         return done;
     }
+    // --skeleton: its Frame Time is the rate where --fps gives none.
+    let template = args
+        .skeleton
+        .as_deref()
+        .map(super::skeleton::read)
+        .transpose()?;
+    let curve_args = match &template {
+        Some(t) if args.curve.fps.is_none() => CurveArgs {
+            fps: Some(t.fps()),
+            ..args.curve.clone()
+        },
+        _ => args.curve.clone(),
+    };
     let input = read_curves_in(
         Mode::Sampled,
         &args.input,
-        &args.curve,
+        &curve_args,
         &|f| scheme(args, f),
         stdin,
         warn,
@@ -77,7 +90,17 @@ pub fn run(
     let clip = (0..tracks.len()).fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
         (lo.min(own_span(i).0), hi.max(own_span(i).1))
     });
-    let format = output_format(&args.output, input.format);
+    // --skeleton writes BVH unless another format is asked for.
+    let format = match (&template, &args.output.output_format, &args.output.output) {
+        (Some(_), None, None) => OutputFormat::Bvh,
+        _ => output_format(&args.output, input.format),
+    };
+    if template.is_some() && format != OutputFormat::Bvh {
+        return Err(InputError::new(
+            "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
+        )
+        .into());
+    }
     // A glTF input: each track's animation, whose span (every sampler's keys) the clip covers;
     // glTF output writes each animation over its own span.
     let clip = match gltf {
@@ -155,10 +178,11 @@ pub fn run(
     }
     let skeleton = match format {
         OutputFormat::Bvh => {
-            let Some(skeleton) = doc.skeleton.clone() else {
+            let Some(skeleton) = template.clone().or_else(|| doc.skeleton.clone()) else {
                 return Err(InputError::new(format!(
-                    "{}: BVH output is written on a BVH input's skeleton; this input is not BVH \
-                     (write csv or json)",
+                    "{}: BVH output is written on a skeleton: a BVH input's, or --skeleton \
+                     clip.bvh's for keys of it (as reduce and convert write them); or write csv \
+                     or json",
                     doc.source
                 ))
                 .into());
@@ -185,6 +209,15 @@ pub fn run(
             Some(skeleton)
         }
         _ => None,
+    };
+    // The order the tracks are written in: the skeleton's joints' for BVH output.
+    let order: Vec<usize> = match &skeleton {
+        Some(s) => {
+            let named = args.skeleton.as_deref().map(|p| p.display().to_string());
+            let label = named.as_deref().unwrap_or(&doc.source);
+            super::skeleton::joint_order(s, tracks, &doc.source, label)?
+        }
+        None => (0..tracks.len()).collect(),
     };
     let gltf_out = match format {
         OutputFormat::Gltf(container) => {
@@ -241,7 +274,8 @@ pub fn run(
             args.velocity,
         )),
     };
-    for (i, (curve, track)) in curves.iter().zip(tracks).enumerate() {
+    for &i in &order {
+        let (curve, track) = (&curves[i], &tracks[i]);
         // glTF output: the animation's first and last times, where they are not frames, are
         // sampled too (after the frames), so its first and last poses are kept.
         let edges = match (gltf.filter(|_| to_gltf), &sources[i]) {
@@ -350,6 +384,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         || args.input.animation.is_some()
         || args.input.tracks.is_some()
         || args.input.from.is_some()
+        || args.skeleton.is_some()
         || curve.snap_keys.is_some()
         || curve.path == PathArg::Euler
         || curve.start_velocity.is_some()

@@ -6,3 +6,4 @@ pub mod interp;
 pub mod plot;
 pub mod reduce;
 pub mod settings;
+pub mod skeleton;

@@ -513,3 +513,70 @@ fn a_real_clip_through_csv_keys_keeps_its_rate() {
         same_pose(w, g, 1e-8, &format!("frame {i}"));
     }
 }
+
+/// `reduce` → JSON keys → `interp keys.json --skeleton clip.bvh` → BVH: the clip back at its own
+/// rate (the keys' declared fps), every joint's rotation within the tolerance (0.5°) and every
+/// position within the translation tolerance (0.01) of the original at every frame, read by
+/// this test's own reader; keys that miss a joint are refused naming it.
+#[test]
+fn reduced_keys_go_back_onto_the_skeleton_through_interp() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, text) = cmu();
+    let (keys, out) = (dir.path().join("keys.json"), dir.path().join("back.bvh"));
+    let run =
+        |args: &[&std::ffi::OsStr]| crate::support::stdout_of(crate::support::bin().args(args));
+    let os = |s: &'static str| std::ffi::OsStr::new(s);
+    run(&[
+        os("reduce"),
+        src.as_os_str(),
+        os("--tolerance"),
+        os("0.5"),
+        os("--translation-tolerance"),
+        os("0.01"),
+        os("-o"),
+        keys.as_os_str(),
+    ]);
+    run(&[
+        os("interp"),
+        keys.as_os_str(),
+        os("--skeleton"),
+        src.as_os_str(),
+        os("-o"),
+        out.as_os_str(),
+    ]);
+    let (a, b) = (plain(&text), plain(&std::fs::read_to_string(&out).unwrap()));
+    assert_eq!(b.hierarchy, a.hierarchy);
+    let rate = |p: &Plain| 1.0 / p.frame_time.parse::<f64>().unwrap();
+    assert!((rate(&b) - 120.0).abs() < 1e-7, "{}", b.frame_time);
+    let (want, got) = (a.poses(), b.poses());
+    assert_eq!(got.len(), want.len());
+    let tol = 0.5f64.to_radians() * (1.0 + 1e-9);
+    for (i, (w, g)) in want.iter().zip(&got).enumerate() {
+        for (k, (x, y)) in w.iter().zip(g).enumerate() {
+            let d = rot_angle(x.0, y.0);
+            assert!(d <= tol, "frame {i} joint {k}: {} deg", d.to_degrees());
+            for (p, q) in x.1.iter().zip(&y.1) {
+                assert!(
+                    (p - q).abs() <= 0.01 + 1e-9,
+                    "frame {i} joint {k}: {p} vs {q}"
+                );
+            }
+        }
+    }
+    // A document whose tracks are not the skeleton's joints is refused, naming the first joint.
+    let o = crate::support::bin()
+        .args(["interp", "-", "--skeleton"])
+        .arg(&src)
+        .write_stdin(
+            r#"{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "quat": [1, 0, 0, 0]}]}"#,
+        )
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("<stdin>: no track for joint \"Hips\""),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(o.stdout.is_empty());
+}

@@ -1,0 +1,67 @@
+//! `--skeleton clip.bvh`: a BVH file whose hierarchy, channel orders and Frame Time keys are
+//! written on (`convert` and `interp` to BVH), and how a document's tracks find its joints.
+
+use inbetween::{InputError, Track};
+use inbetween_io::clip::Clip;
+use std::collections::HashMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The `--skeleton` BVH file, read.
+pub fn read(path: &Path) -> Result<Arc<Clip>, InputError> {
+    let source = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
+    Ok(Arc::new(inbetween_io::bvh::parse(&text, &source)?.0))
+}
+
+/// The tracks in the order of `skeleton`'s joints with channels (what BVH frames are written in),
+/// each found by its joint's track name (the first track of that name): every such joint needs a
+/// track, with translations where it has position channels, and every track must be a joint's.
+/// `source` names the keys, `skeleton_source` the skeleton, in messages.
+pub fn joint_order(
+    skeleton: &Clip,
+    tracks: &[Track],
+    source: &str,
+    skeleton_source: &str,
+) -> Result<Vec<usize>, InputError> {
+    let mut by_name: HashMap<&str, usize> = HashMap::with_capacity(tracks.len());
+    for (i, t) in tracks.iter().enumerate() {
+        if let Some(n) = t.name() {
+            by_name.entry(n).or_insert(i);
+        }
+    }
+    let short = inbetween::error::shorten;
+    let mut order = Vec::with_capacity(tracks.len());
+    for j in skeleton.track_joints() {
+        let joint = &skeleton.joints()[j];
+        let name = joint.track_name();
+        let Some(&i) = by_name.get(name) else {
+            return Err(InputError::new(format!(
+                "{source}: no track for joint \"{}\" of {skeleton_source}: BVH output needs a \
+                 track per joint with channels, named as convert and reduce name them",
+                short(name)
+            )));
+        };
+        if joint.position().is_some() && tracks[i].translations().is_none() {
+            return Err(InputError::new(format!(
+                "{source}: track \"{}\" has no translations, which joint \"{}\" of \
+                 {skeleton_source} has position channels for",
+                short(name),
+                short(name)
+            )));
+        }
+        order.push(i);
+    }
+    if order.len() != tracks.len() {
+        let extra = (0..tracks.len()).find(|i| !order.contains(i)).unwrap_or(0);
+        let name = tracks[extra]
+            .name()
+            .map_or("(unnamed)".into(), |n| short(n).into_owned());
+        return Err(InputError::new(format!(
+            "{source}: track \"{name}\" is not a joint of {skeleton_source} (BVH output writes \
+             the skeleton's joints only)"
+        )));
+    }
+    Ok(order)
+}
