@@ -33,7 +33,7 @@ fn write_bvh(
         }
     };
     let mut out = Output::open(args.output.output.as_deref())?;
-    inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps)?;
+    inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps, args.output.euler_mode())?;
     out.commit()?;
     Ok(())
 }

@@ -15,7 +15,7 @@ use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
-use inbetween_io::write::{FrameWriter, NpyWriter};
+use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter};
 use std::io::Read;
 
 /// The curves' scheme: `--scheme`, else each glTF sampler as glTF plays it (`LINEAR` keys by
@@ -252,7 +252,13 @@ pub fn run(
     };
     let out = WriteBehind::new(Output::open(args.output.output.as_deref())?);
     let mut sink: Box<dyn Sink> = match format {
-        OutputFormat::Bvh => Box::new(BvhFrames::new(out, skeleton.expect("checked above"), fps)),
+        OutputFormat::Bvh => {
+            let frames = BvhFrames::new(out, skeleton.expect("checked above"), fps);
+            match args.output.euler_mode() {
+                EulerMode::Wrapped => Box::new(frames.wrapped()),
+                _ => Box::new(frames),
+            }
+        }
         OutputFormat::Gltf(_) => {
             let (clip, container) = gltf_out.expect("checked above");
             let frames = GltfFrames::new(out, clip, fps, container);
@@ -385,6 +391,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         || args.input.tracks.is_some()
         || args.input.from.is_some()
         || args.skeleton.is_some()
+        || args.output.euler_mode() == EulerMode::Wrapped
         || curve.snap_keys.is_some()
         || curve.path == PathArg::Euler
         || curve.start_velocity.is_some()

@@ -580,3 +580,125 @@ fn reduced_keys_go_back_onto_the_skeleton_through_interp() {
     );
     assert!(o.stdout.is_empty());
 }
+
+/// BVH output with `--euler wrapped` writes each triple in scipy's ranges, so a clip whose
+/// angles wrap at ±180° comes back as written at its own rate; the default (continuous) writes
+/// the same rotations without the jump (−170° as 190°).
+#[test]
+fn wrapped_euler_output_keeps_a_wrapping_clip_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("spin.bvh");
+    std::fs::write(
+        &src,
+        "HIERARCHY\nROOT a\n{\nOFFSET 0 0 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n\
+         End Site\n{\nOFFSET 0 1 0\n}\n}\nMOTION\nFrames: 3\nFrame Time: 0.1\n\
+         150 10 20\n170 10 20\n-170 10 20\n",
+    )
+    .unwrap();
+    let motion = |euler: &str| {
+        let out = dir.path().join(format!("{euler}.bvh"));
+        crate::support::stdout_of(crate::support::bin().args([
+            "interp".as_ref(),
+            src.as_os_str(),
+            "--euler".as_ref(),
+            euler.as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let rows: Vec<Vec<f64>> = text
+            .split("Frame Time:")
+            .nth(1)
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+            .collect();
+        rows
+    };
+    let near = |a: &[Vec<f64>], b: &[[f64; 3]]| {
+        a.len() == b.len()
+            && a.iter()
+                .zip(b)
+                .all(|(r, w)| r.iter().zip(w).all(|(x, y)| (x - y).abs() < 1e-9))
+    };
+    let wrapped = motion("wrapped");
+    assert!(
+        near(
+            &wrapped,
+            &[
+                [150.0, 10.0, 20.0],
+                [170.0, 10.0, 20.0],
+                [-170.0, 10.0, 20.0]
+            ]
+        ),
+        "{wrapped:?}"
+    );
+    let continuous = motion("continuous");
+    assert!(
+        near(
+            &continuous,
+            &[
+                [150.0, 10.0, 20.0],
+                [170.0, 10.0, 20.0],
+                [190.0, 10.0, 20.0]
+            ]
+        ),
+        "{continuous:?}"
+    );
+}
+
+/// A BVH file with CRLF line ends comes back with CRLF throughout (the hierarchy is kept as
+/// written, so the motion follows it) and otherwise the bytes of the LF file's output; one whose
+/// lines end in CR alone is refused with a message that says so, nothing written.
+#[test]
+fn line_ends_are_kept_and_cr_alone_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let (src, text) = cmu();
+    let crlf = dir.path().join("crlf.bvh");
+    std::fs::write(&crlf, text.replace('\n', "\r\n")).unwrap();
+    let back = |input: &std::path::Path, name: &str| {
+        let out = dir.path().join(name);
+        crate::support::stdout_of(crate::support::bin().args([
+            "interp".as_ref(),
+            input.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ]));
+        std::fs::read(&out).unwrap()
+    };
+    let (lf_out, crlf_out) = (back(&src, "lf.bvh"), back(&crlf, "crlf_out.bvh"));
+    let lines = |b: &[u8]| b.iter().filter(|&&c| c == b'\n').count();
+    let crlfs = crlf_out.windows(2).filter(|w| w == b"\r\n").count();
+    assert_eq!(
+        crlfs,
+        lines(&crlf_out),
+        "every line of the output ends in CRLF"
+    );
+    assert_eq!(
+        String::from_utf8(crlf_out)
+            .unwrap()
+            .replace("\r\n", "\n")
+            .into_bytes(),
+        lf_out
+    );
+    let cr = dir.path().join("cr.bvh");
+    std::fs::write(&cr, text.replace('\n', "\r")).unwrap();
+    let out = dir.path().join("never.bvh");
+    let o = crate::support::bin()
+        .args([
+            "interp".as_ref(),
+            cr.as_os_str(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("cr.bvh: its lines end in CR alone"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!out.exists());
+}

@@ -35,6 +35,8 @@ pub struct BvhFrames<W: Write> {
     rotation: Option<(EulerSeq, [Option<usize>; 3])>,
     position: Option<[Option<usize>; 3]>,
     unwrap: Option<EulerUnwrap>,
+    /// Each triple in scipy's ranges instead of continuous ([`BvhFrames::wrapped`]).
+    wrapped: bool,
     track_index: usize,
 }
 
@@ -59,8 +61,16 @@ impl<W: Write> BvhFrames<W> {
             rotation: None,
             position: None,
             unwrap: None,
+            wrapped: false,
             track_index: 0,
         }
+    }
+
+    /// Rotations as each triple in scipy's ranges (`--euler wrapped`), not continuous along
+    /// the track.
+    pub fn wrapped(mut self) -> BvhFrames<W> {
+        self.wrapped = true;
+        self
     }
 
     /// The destination, after [`FrameSink::finish`].
@@ -115,12 +125,15 @@ impl<W: Write> FrameSink for BvhFrames<W> {
             })?;
         self.rotation = joint.rotation();
         self.position = joint.position();
-        self.unwrap = self.rotation.map(|(seq, _)| EulerUnwrap::new(seq));
+        self.unwrap = self
+            .rotation
+            .filter(|_| !self.wrapped)
+            .map(|(seq, _)| EulerUnwrap::new(seq));
         Ok(())
     }
 
     fn euler_start(&mut self, seq: EulerSeq, angles: [f64; 3]) {
-        if self.rotation.is_some_and(|(s, _)| s == seq) {
+        if !self.wrapped && self.rotation.is_some_and(|(s, _)| s == seq) {
             self.unwrap = Some(EulerUnwrap::with_start(seq, angles));
         }
     }

@@ -3,6 +3,7 @@
 
 use super::Clip;
 use crate::document::{Document, KeyTime};
+use crate::write::EulerMode;
 use inbetween::error::{InputError, InputResult, Setting};
 use inbetween::message;
 use inbetween::rotation::unwrap::EulerUnwrap;
@@ -14,12 +15,14 @@ use std::io::Write;
 /// by its [`track_name`](super::Joint::track_name) (and translations where it has position
 /// channels); every track must have the same keys
 /// at consecutive frame numbers. Rotations are continuous Euler angles in each joint's own
-/// order, from the first key's own triple when the keys were Euler angles in that sequence.
+/// order, from the first key's own triple when the keys were Euler angles in that sequence, or
+/// with [`EulerMode::Wrapped`] each triple in scipy's ranges.
 pub fn write_keys<W: Write>(
     out: W,
     doc: &Document,
     skeleton: &Clip,
     fps: inbetween::clock::Fps,
+    euler: EulerMode,
 ) -> InputResult<()> {
     let layout = || {
         InputError::new(message![
@@ -93,7 +96,10 @@ pub fn write_keys<W: Write>(
                 _ => EulerUnwrap::new(seq),
             };
             for (i, key) in track.keys.iter().enumerate() {
-                let e = unwrap.next(key.rot);
+                let e = match euler {
+                    EulerMode::Wrapped => seq.from_quat(key.rot),
+                    _ => unwrap.next(key.rot),
+                };
                 for (c, a) in cols.iter().zip(e) {
                     if let Some(c) = c {
                         values[i * width + c] = a.to_degrees();
@@ -141,7 +147,7 @@ mod tests {
             let doc = document(clip.clone(), "many.bvh", Vec::new());
             least_of_runs(|| {
                 let mut out = Vec::new();
-                write_keys(&mut out, &doc, &clip, fps).unwrap();
+                write_keys(&mut out, &doc, &clip, fps, EulerMode::Continuous).unwrap();
                 assert!(out.len() > 12 * n);
             })
         };

@@ -115,7 +115,10 @@ mod tests {
         write(&mut out, clip.hierarchy(), clip.fps(), 18, clip.values()).unwrap();
         let end = messy.find("MOTION").unwrap();
         assert_eq!(&out[..end], &messy.as_bytes()[..end]);
-        assert_eq!(&out[end..end + 7], b"MOTION\n");
+        // The motion ends its lines as the hierarchy does.
+        assert_eq!(&out[end..end + 8], b"MOTION\r\n");
+        let lines = out.iter().filter(|&&c| c == b'\n').count();
+        assert_eq!(out.windows(2).filter(|w| w == b"\r\n").count(), lines);
         assert_eq!(round_trip(&clip).values(), clip.values());
     }
 
@@ -268,8 +271,10 @@ pub(crate) fn fill_joint_row(
     q: glam::DQuat,
     position: Option<glam::DVec3>,
 ) {
-    if let (Some((_, cols)), Some(u)) = (rotation, unwrap) {
-        for (c, a) in cols.iter().zip(u.next(q)) {
+    if let Some((seq, cols)) = rotation {
+        // Continuous along the track, or (without an unwrapper) each triple in scipy's ranges.
+        let angles = unwrap.map_or_else(|| seq.from_quat(q), |u| u.next(q));
+        for (c, a) in cols.iter().zip(angles) {
             if let Some(c) = c {
                 row[*c] = a.to_degrees();
             }

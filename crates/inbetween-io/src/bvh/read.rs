@@ -299,6 +299,13 @@ fn values_for(head: &Head, body_len: u64) -> Vec<f64> {
 /// disagrees with the number of rows, the rows win and a warning says so.
 pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // Lines that end in CR alone (classic Mac OS) would read as one line: say so.
+    if !text.contains('\n') && text.contains('\r') {
+        return Err(input_err!(
+            "{source}: its lines end in CR alone (classic Mac OS); convert the line ends to LF \
+             or CRLF (e.g. tr '\\r' '\\n' < in.bvh > out.bvh)"
+        ));
+    }
     let head = parse_head(text, source)?;
     // The line after the Frame Time line (`body` starts at its line end).
     let body = &text[head.body_start..];

@@ -11,7 +11,8 @@
 //!
 //! Each number is first rounded to 12 significant digits and to at most 10 decimals
 //! ([`bvh_round`]), then written as the shortest decimal that reads back as that f64 (integers
-//! without `.0`, −0 as `0`); lines end in `\n`. The rounding is far above the noise of an angle
+//! without `.0`, −0 as `0`); lines end as the hierarchy's do: `\r\n` when its first line ends
+//! so (a file written on Windows comes back with one line ending throughout), else `\n`. The rounding is far above the noise of an angle
 //! that went through a quaternion (about 1e-13 degrees) and far below anything a skeleton can
 //! show (1e-10 degrees), so an angle the source wrote as `10` or `-11.725488` is written so again
 //! rather than `9.99999999999999` or `-11.725488000000004`. The writer streams: [`BvhWriter`] takes one row at a time
@@ -86,6 +87,16 @@ pub struct BvhWriter<W: Write> {
     channels: usize,
     frames: u64,
     written: u64,
+    /// The line end: the hierarchy's (`\r\n` or `\n`).
+    eol: &'static str,
+}
+
+/// The line end of `hierarchy`: `\r\n` when its first line ends so, else `\n`.
+fn line_end(hierarchy: &str) -> &'static str {
+    match hierarchy.find('\n') {
+        Some(i) if hierarchy[..i].ends_with('\r') => "\r\n",
+        _ => "\n",
+    }
 }
 
 fn invalid(kind: io::ErrorKind, msg: String) -> io::Error {
@@ -109,14 +120,15 @@ impl<W: Write> BvhWriter<W> {
                 "internal error: a BVH file needs at least one channel".to_string(),
             ));
         }
+        let eol = line_end(hierarchy);
         let mut buf = Vec::with_capacity(FLUSH_AT + 4096);
         buf.extend_from_slice(hierarchy.as_bytes());
         if !hierarchy.is_empty() && !hierarchy.ends_with('\n') {
-            buf.push(b'\n');
+            buf.extend_from_slice(eol.as_bytes());
         }
         buf.extend_from_slice(
             format!(
-                "MOTION\nFrames: {frames}\nFrame Time: {}\n",
+                "MOTION{eol}Frames: {frames}{eol}Frame Time: {}{eol}",
                 frame_time_text(fps)
             )
             .as_bytes(),
@@ -128,6 +140,7 @@ impl<W: Write> BvhWriter<W> {
             channels,
             frames,
             written: 0,
+            eol,
         })
     }
 
@@ -173,7 +186,7 @@ impl<W: Write> BvhWriter<W> {
                 self.buf.truncate(self.buf.len() - 2);
             }
         }
-        self.buf.push(b'\n');
+        self.buf.extend_from_slice(self.eol.as_bytes());
         self.written += 1;
         if self.buf.len() >= FLUSH_AT {
             self.out.write_all(&self.buf)?;
