@@ -590,42 +590,10 @@ fn validate(file: &Path) {
 
 // ---- real assets (fixtures/gltf/real, credited in fixtures/README.md) ----
 
-/// The independent Appendix C evaluation (`fixtures/gltf/cubicspline_ref.py`, numpy and
-/// pygltflib) of one channel at `times`, when the checkers' venv exists (CI builds it;
+/// The independent playback of one rotation channel (`fixtures/gltf/playback_ref.py`, numpy and
+/// pygltflib: LINEAR by Appendix C's slerp, STEP held, CUBICSPLINE by Appendix C through
+/// `cubicspline_ref.py`) at `times`, when the checkers' venv exists (CI builds it;
 /// INBETWEEN_REQUIRE_PYTHON_CHECKS makes its absence a failure).
-fn python_cubicspline(
-    asset: &Path,
-    animation: usize,
-    channel: usize,
-    times: &[f64],
-) -> Option<Vec<DQuat>> {
-    let python = crate::support::checker_python("CUBICSPLINE reference check")?;
-    let (a, c) = (animation.to_string(), channel.to_string());
-    let times: Vec<String> = times.iter().map(|t| format!("{t:?}")).collect();
-    let mut args: Vec<&std::ffi::OsStr> = vec![asset.as_os_str(), a.as_ref(), c.as_ref()];
-    args.extend(times.iter().map(std::ffi::OsStr::new));
-    let doc = crate::support::python_json(&python, "fixtures/gltf/cubicspline_ref.py", &args);
-    let rotations = doc["rotations"].as_array().unwrap();
-    assert_eq!(rotations.len(), times.len());
-    Some(
-        rotations
-            .iter()
-            .map(|r| {
-                let c: Vec<f64> = r
-                    .as_array()
-                    .unwrap()
-                    .iter()
-                    .map(|x| x.as_f64().unwrap())
-                    .collect();
-                DQuat::from_xyzw(c[0], c[1], c[2], c[3])
-            })
-            .collect(),
-    )
-}
-
-/// The independent playback of one rotation channel (`fixtures/gltf/playback_ref.py`: LINEAR by
-/// Appendix C's slerp, STEP held, CUBICSPLINE by Appendix C) at `times`, when the checkers' venv
-/// exists.
 fn python_playback(
     asset: &Path,
     animation: usize,
@@ -916,7 +884,7 @@ fn a_real_cubicspline_bake_agrees_with_the_python_reference() {
         // The span is 1/24 s .. 1 s.
         assert_eq!(frames.len(), if fps == "24" { 24 } else { 29 });
         let times: Vec<f64> = frames.iter().map(|f| f.0).collect();
-        let Some(want) = python_cubicspline(&src, 0, 0, &times) else {
+        let Some(want) = python_playback(&src, 0, 0, &times) else {
             return;
         };
         for (i, ((t, q), w)) in frames.iter().zip(&want).enumerate() {
@@ -992,7 +960,7 @@ fn real_assets_resample_validate_and_keep_their_keys() {
                                 .map(|&t| (t as f64 * fps).round() / fps)
                                 .collect();
                             assert!(times.len() > ch.times().len(), "{what}: frames");
-                            let Some(want) = python_cubicspline(&src, a, ch.index(), &times) else {
+                            let Some(want) = python_playback(&src, a, ch.index(), &times) else {
                                 continue;
                             };
                             for (i, (g, w)) in got.values().iter().zip(&want).enumerate() {

@@ -110,6 +110,23 @@ pub struct ReduceOptions {
     pub method: Method,
 }
 
+impl Default for ReduceOptions {
+    /// The command line's defaults: keys for the default curve ([`CurveOptions::default`],
+    /// bezier), a tolerance of 0.5° (what the README's examples use; the command line has no
+    /// default and asks for one), the error as an angle, positions not reduced, key velocities
+    /// estimated, the greedy method.
+    fn default() -> ReduceOptions {
+        ReduceOptions {
+            curve: CurveOptions::default(),
+            tolerance: 0.5f64.to_radians(),
+            distance: None,
+            translation_tolerance: None,
+            velocities: true,
+            method: Method::Greedy,
+        }
+    }
+}
+
 /// A reduced track.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Reduced {
