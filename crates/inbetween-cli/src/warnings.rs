@@ -34,6 +34,33 @@ fn kind(msg: &str) -> String {
     out
 }
 
+/// `msg` without its leading location: the `: `-ended segments with no space outside
+/// parentheses and quotes but before a parenthesis (`clip.gltf: `, `keys.csv:3: `,
+/// `animations[0].channels[1] (node "Hips"): `). The whole message when nothing else would be
+/// left.
+fn without_location(msg: &str) -> &str {
+    let mut rest = msg;
+    while let Some(end) = rest.find(": ") {
+        let (mut depth, mut quoted) = (0i32, false);
+        let segment = &rest[..end];
+        let spaced = segment.char_indices().any(|(i, c)| {
+            match c {
+                '"' => quoted = !quoted,
+                '(' if !quoted => depth += 1,
+                ')' if !quoted => depth -= 1,
+                _ => {}
+            }
+            // A space that opens a parenthesis belongs to the location.
+            c == ' ' && depth == 0 && !quoted && !segment[i + 1..].starts_with('(')
+        });
+        if spaced || rest[end + 2..].is_empty() {
+            break;
+        }
+        rest = &rest[end + 2..];
+    }
+    rest
+}
+
 impl Warnings {
     /// Records `msg`; returns the line to print, if it is among the first of its kind.
     pub fn note(&mut self, msg: &str) -> Option<String> {
@@ -56,8 +83,15 @@ impl Warnings {
             .iter()
             .filter(|(_, n)| *n > PER_KIND)
             .map(|(first, n)| {
-                let mut s: String = first.chars().take(60).collect();
-                if first.chars().count() > 60 {
+                // A long warning is quoted from its words, not its location (a glTF channel's
+                // path alone would fill the 60 characters).
+                let quoted = if first.chars().count() > 60 {
+                    without_location(first)
+                } else {
+                    first
+                };
+                let mut s: String = quoted.chars().take(60).collect();
+                if quoted.chars().count() > 60 {
                     s.push('…');
                 }
                 format!(
@@ -90,5 +124,34 @@ mod tests {
                 "inbetween: warning: … and 15 more warnings like \"k.csv:2: quaternion norm 0.5 normalized\""
             ]
         );
+    }
+
+    /// A long warning's summary quotes its words, not its location.
+    #[test]
+    fn a_long_warning_is_summarised_by_its_words() {
+        let mut w = Warnings::default();
+        for c in 0..12 {
+            w.note(&format!(
+                "fixtures/gltf/walk.gltf: animations[0].channels[{c}] (animation \"Walk\", node \
+                 \"Hips\"): translation channel {c} has other key times than the rotation"
+            ));
+        }
+        assert_eq!(
+            w.summary(),
+            [
+                "inbetween: warning: … and 2 more warnings like \"translation channel 0 has other \
+                 key times than the rotation\""
+            ]
+        );
+        assert_eq!(without_location("keys.csv:3: a b: c"), "a b: c");
+        assert_eq!(
+            without_location("t.json: track \"a b\": x"),
+            "track \"a b\": x"
+        );
+        assert_eq!(
+            without_location("CSV has no place for the rate: x"),
+            "CSV has no place for the rate: x"
+        );
+        assert_eq!(without_location("a: "), "a: ");
     }
 }
