@@ -88,11 +88,8 @@ pub fn run(
         }
         (f, _) => f,
     };
-    if args.skeleton.is_some() && chosen != OutputFormat::Bvh {
-        return Err(InputError::new(
-            "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
-        )
-        .into());
+    if args.skeleton.is_some() {
+        super::skeleton::check_output(chosen)?;
     }
     let format = match chosen {
         OutputFormat::Doc(f) => f,

@@ -47,17 +47,21 @@ pub fn run(
         .as_deref()
         .map(super::skeleton::read)
         .transpose()?;
+    let with_rate;
     let curve_args = match &template {
-        Some(t) if args.curve.fps.is_none() => CurveArgs {
-            fps: Some(t.fps()),
-            ..args.curve.clone()
-        },
-        _ => args.curve.clone(),
+        Some(t) if args.curve.fps.is_none() => {
+            with_rate = CurveArgs {
+                fps: Some(t.fps()),
+                ..args.curve.clone()
+            };
+            &with_rate
+        }
+        _ => &args.curve,
     };
     let input = read_curves_in(
         Mode::Sampled,
         &args.input,
-        &curve_args,
+        curve_args,
         &|f| scheme(args, f),
         stdin,
         warn,
@@ -95,11 +99,8 @@ pub fn run(
         (Some(_), None, None) => OutputFormat::Bvh,
         _ => output_format(&args.output, input.format),
     };
-    if template.is_some() && format != OutputFormat::Bvh {
-        return Err(InputError::new(
-            "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
-        )
-        .into());
+    if template.is_some() {
+        super::skeleton::check_output(format)?;
     }
     // A glTF input: each track's animation, whose span (every sampler's keys) the clip covers;
     // glTF output writes each animation over its own span.

@@ -316,7 +316,7 @@ fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Res
         )
         .into());
     };
-    if scheme(args, Format::Gltf) != Scheme::Slerp {
+    if input.opts.scheme != Scheme::Slerp {
         return Err(InputError::new(
             "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
              play as reduced; use --scheme slerp, or write csv or json",

@@ -2,6 +2,7 @@
 //! written on (`convert` and `interp` to BVH), and how a document's tracks find its joints.
 
 use inbetween::{InputError, Track};
+use inbetween_io::OutputFormat;
 use inbetween_io::clip::Clip;
 use std::collections::HashMap;
 use std::path::Path;
@@ -13,6 +14,16 @@ pub fn read(path: &Path) -> Result<Arc<Clip>, InputError> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| InputError::new(format!("{source}: cannot read: {e}")))?;
     Ok(Arc::new(inbetween_io::bvh::parse(&text, &source)?.0))
+}
+
+/// With `--skeleton`, the output must be BVH (its default there; another format is refused).
+pub fn check_output(format: OutputFormat) -> Result<(), InputError> {
+    if format == OutputFormat::Bvh {
+        return Ok(());
+    }
+    Err(InputError::new(
+        "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
+    ))
 }
 
 /// The tracks in the order of `skeleton`'s joints with channels (what BVH frames are written in),

@@ -35,9 +35,12 @@ struct Baked {
     channel: usize,
     /// The first frame's number, once one is given.
     first: Option<i64>,
-    /// The rotations at the frames, in order.
+    /// The rotations in time order: a slot for the span's first time when that is not a frame
+    /// (`start`; filled by [`GltfFrames::edge`]), then the frames'.
     rotations: Vec<DQuat>,
-    /// The rotations at the span's first and last times, where those are not frames.
+    start: bool,
+    /// The rotations at the span's first and last times, once given, where those are not
+    /// frames.
     edges: [Option<DQuat>; 2],
 }
 
@@ -96,6 +99,9 @@ impl<W: Write> GltfFrames<W> {
             .iter()
             .position(|&e| e == Some(time))
             .ok_or_else(|| internal(format!("{time} s is not an edge of the track's span")))?;
+        if side == 0 && t.start {
+            t.rotations[0] = q;
+        }
         t.edges[side] = Some(q);
         Ok(())
     }
@@ -179,11 +185,18 @@ impl<W: Write> FrameSink for GltfFrames<W> {
         let s = name
             .and_then(|n| self.clip.source_of(n, Mode::Frames))
             .ok_or_else(|| internal(format!("no glTF channel for track {name:?}")))?;
+        let start = edges(&self.clip, s.animation, self.fps)[0].is_some();
         self.tracks.push(Baked {
             animation: s.animation,
             channel: s.channel,
             first: None,
-            rotations: Vec::new(),
+            // The first edge's slot, so that its rotation never has to be inserted in front.
+            rotations: if start {
+                vec![DQuat::IDENTITY]
+            } else {
+                Vec::new()
+            },
+            start,
             edges: [None, None],
         });
         Ok(())
@@ -195,7 +208,7 @@ impl<W: Write> FrameSink for GltfFrames<W> {
             .last_mut()
             .ok_or_else(|| internal("a frame before a track".into()))?;
         let first = *t.first.get_or_insert(k);
-        if k - first != t.rotations.len() as i64 {
+        if k - first + i64::from(t.start) != t.rotations.len() as i64 {
             return Err(internal(format!("frame {k} out of order")));
         }
         t.rotations.push(q);
@@ -223,7 +236,7 @@ impl<W: Write> FrameSink for GltfFrames<W> {
                 let c = t.channel;
                 let sides = t.edges.map(|e| e.is_some());
                 if t.first != Some(first)
-                    || t.rotations.len() as i64 != last - first + 1
+                    || t.rotations.len() as i64 != last - first + 1 + i64::from(t.start)
                     || sides != [lo.is_some(), hi.is_some()]
                 {
                     return Err(internal(format!(
@@ -236,9 +249,6 @@ impl<W: Write> FrameSink for GltfFrames<W> {
                 }
                 // Moved, not copied: the frames are the bulk of the memory.
                 let mut qs = std::mem::take(&mut t.rotations);
-                if let Some(q) = t.edges[0] {
-                    qs.insert(0, q);
-                }
                 qs.extend(t.edges[1]);
                 r.channels.push((c, qs));
             }
