@@ -402,11 +402,14 @@ fn channels_the_tool_does_not_process_are_ignored_with_one_warning() {
             );
         }
         assert_eq!(chans[n]["target"]["path"], json!("rotation"));
+        // The rotation's old sampler (1) is gone: the new LINEAR one takes its place.
         assert_eq!(
             chans[n]["sampler"],
-            json!(2),
+            json!(1),
             "{name}: the new LINEAR sampler"
         );
+        let sampler = &written["animations"][0]["samplers"][1];
+        assert_eq!(sampler["interpolation"], json!("LINEAR"), "{name}");
     }
 }
 

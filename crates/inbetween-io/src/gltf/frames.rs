@@ -1,19 +1,23 @@
-//! [`GltfFrames`]: baked frames written into the input asset as new `LINEAR` rotation samplers.
+//! [`GltfFrames`]: baked frames written into the input asset as new `LINEAR` samplers.
 //!
 //! Each track is a rotation channel of a [`GltfClip`] (by name). Every track of an animation is
 //! baked over the frames of that animation's span ([`GltfClip::frames`]), and sampled at the
 //! span's first and last times where those are not frames ([`edges`], given with
 //! [`GltfFrames::edge`]), so the animation's first and last poses are kept; at
-//! [`FrameSink::finish`] each animation gets one time accessor and each channel a new sampler
-//! ([`Asset::write`](super::Asset::write) with [`Resampled`]). The asset is otherwise as read.
+//! [`FrameSink::finish`] each animation gets one time accessor and each of its channels a new
+//! sampler on it ([`Asset::write`](super::Asset::write) with [`Resampled`]): the tracks' baked
+//! rotations, and its other rotation, translation and scale channels sampled at the same times
+//! as their own samplers play them (STEP, LINEAR or CUBICSPLINE), so the whole animation is on
+//! one grid and its old samplers are removed. The asset is otherwise as read.
 
 use super::document::{GltfClip, Mode};
-use super::{ContainerFormat, Resampled};
+use super::{ContainerFormat, Resampled, Values};
 use glam::{DQuat, DVec3};
 use inbetween::bake::FrameSink;
 use inbetween::clock::Fps;
 use inbetween::error::{InputError, InputResult, Setting};
 use inbetween::message;
+use std::collections::HashSet;
 use std::io::{self, Write};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -133,7 +137,8 @@ pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
         if first <= last {
             let edges = edges(clip, a, fps).iter().flatten().count() as u128;
             let frames = (last - first) as u128 + 1 + edges;
-            new_bytes += frames * (4 + 16 * anim.rotations().len() as u128);
+            let vectors = (anim.translations().len() + anim.scales().len()) as u128;
+            new_bytes += frames * (4 + 16 * anim.rotations().len() as u128 + 12 * vectors);
         }
     }
     if new_bytes > MAX_NEW_BYTES as u128 {
@@ -250,11 +255,27 @@ impl<W: Write> FrameSink for GltfFrames<W> {
                 // Moved, not copied: the frames are the bulk of the memory.
                 let mut qs = std::mem::take(&mut t.rotations);
                 qs.extend(t.edges[1]);
-                r.channels.push((c, qs));
+                r.channels.push((c, Values::Rotations(qs)));
             }
-            if !r.channels.is_empty() {
-                resampled.push(r);
+            if r.channels.is_empty() {
+                continue;
             }
+            // The animation's other channels, played as their samplers define them, on the
+            // same times: rotations that are no track (not chosen), translations, scales.
+            let baked: HashSet<usize> = r.channels.iter().map(|(c, _)| *c).collect();
+            for ch in anim
+                .rotations()
+                .iter()
+                .filter(|ch| !baked.contains(&ch.index()))
+            {
+                let qs = r.times.iter().map(|&t| ch.sample(t)).collect();
+                r.channels.push((ch.index(), Values::Rotations(qs)));
+            }
+            for ch in anim.translations().iter().chain(anim.scales()) {
+                let vs = r.times.iter().map(|&t| ch.sample(t)).collect();
+                r.channels.push((ch.index(), Values::Vectors(vs)));
+            }
+            resampled.push(r);
         }
         let bytes = self
             .clip

@@ -3,7 +3,7 @@
 //! glTF 2.0 Appendix C, so keys reduced for `slerp` play as they were verified).
 
 use super::document::{GltfClip, Mode};
-use super::{ContainerFormat, Resampled};
+use super::{ContainerFormat, Resampled, Values};
 use glam::DQuat;
 use inbetween::error::InputResult;
 use std::path::Path;
@@ -38,7 +38,7 @@ pub fn keys_asset(
         resampled.push(Resampled {
             animation: clip.animations()[s.animation].index(),
             times: k.times.clone(),
-            channels: vec![(s.channel, k.rotations.clone())],
+            channels: vec![(s.channel, Values::Rotations(k.rotations.clone()))],
         });
     }
     clip.asset().to_bytes_in(&resampled, format, out_dir)

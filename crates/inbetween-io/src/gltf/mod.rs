@@ -43,6 +43,7 @@ pub mod document;
 pub mod frames;
 mod json;
 pub mod keys;
+mod prune;
 mod write;
 
 pub use channel::{
@@ -50,7 +51,7 @@ pub use channel::{
     snap_key_time,
 };
 pub(crate) use json::has_asset_member;
-pub use write::{ContainerFormat, Resampled};
+pub use write::{ContainerFormat, Resampled, Values};
 
 use accessor::Storage;
 use glam::{DQuat, DVec3};
@@ -83,7 +84,7 @@ pub struct Asset {
     bytes_read: u64,
 }
 
-/// One animation of an asset: its rotation and translation channels (scale and morph-weight
+/// One animation of an asset: its rotation, translation and scale channels (morph-weight
 /// channels are not read).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Animation {
@@ -91,6 +92,7 @@ pub struct Animation {
     name: Option<String>,
     rotations: Vec<RotationChannel>,
     translations: Vec<TranslationChannel>,
+    scales: Vec<TranslationChannel>,
     span: Option<(f64, f64)>,
     warnings: Vec<String>,
 }
@@ -119,6 +121,12 @@ impl Animation {
     /// The channels targeting a node's `translation`, in channel order.
     pub fn translations(&self) -> &[TranslationChannel] {
         &self.translations
+    }
+
+    /// The channels targeting a node's `scale`, in channel order (VEC3 float channels, read
+    /// and sampled as translations are).
+    pub fn scales(&self) -> &[TranslationChannel] {
+        &self.scales
     }
 
     /// The earliest and latest input time of all the animation's samplers (every sampler, not
@@ -278,7 +286,7 @@ impl Asset {
     /// sampler's input accessor is FLOAT SCALAR, finite and strictly increasing (glTF 2.0
     /// §3.11); its output has as many elements (three times as many for `CUBICSPLINE`, which
     /// needs at least two keys) of VEC4 FLOAT or normalized integers for a rotation, VEC3 FLOAT
-    /// for a translation; every value is finite, and a rotation value (a `CUBICSPLINE` vertex
+    /// for a translation or a scale; every value is finite, and a rotation value (a `CUBICSPLINE` vertex
     /// too) has non-zero length. The first problem is an error naming the file, animation,
     /// channel and accessor.
     pub fn animations(&self) -> InputResult<Vec<Animation>> {
@@ -311,6 +319,7 @@ impl Asset {
         }
         let mut rotations = Vec::new();
         let mut translations = Vec::new();
+        let mut scales = Vec::new();
         let mut warnings = Vec::new();
         for ch in anim.channels() {
             let c = self.json_channel(a, ch.index());
@@ -341,7 +350,11 @@ impl Asset {
                     let (channel, _) = self.read_channel(&ch, c, TRANSLATION_KIND).map_err(at)?;
                     translations.push(channel);
                 }
-                Property::Scale | Property::MorphTargetWeights => {}
+                Property::Scale => {
+                    let (channel, _) = self.read_channel(&ch, c, TRANSLATION_KIND).map_err(at)?;
+                    scales.push(channel);
+                }
+                Property::MorphTargetWeights => {}
             }
         }
         Ok(Animation {
@@ -349,6 +362,7 @@ impl Asset {
             name,
             rotations,
             translations,
+            scales,
             span,
             warnings,
         })

@@ -3,6 +3,8 @@
 
 use super::*;
 use glam::DVec4;
+use serde_json::Value;
+use std::collections::HashSet;
 use std::f64::consts::FRAC_PI_2;
 
 /// Float32 resolution of a unit quaternion's components, as an angle: written and read back
@@ -372,7 +374,10 @@ fn resample_all(asset: &Asset, fps: f64) -> Vec<Resampled> {
                 channels: a
                     .rotations()
                     .iter()
-                    .map(|c| (c.index(), times.iter().map(|&t| c.sample(t)).collect()))
+                    .map(|c| {
+                        let qs = times.iter().map(|&t| c.sample(t)).collect();
+                        (c.index(), Values::Rotations(qs))
+                    })
                     .collect(),
                 times,
             }
@@ -410,6 +415,9 @@ fn written_rotations_read_back_and_everything_else_is_kept() {
                     assert_eq!(ca.interpolation(), Interpolation::Linear);
                     assert_eq!(ca.times().len(), req.times.len());
                     // Sign-continuous unit quaternions, each the requested rotation.
+                    let Values::Rotations(qs) = qs else {
+                        panic!("rotations")
+                    };
                     for (k, (&q, &want)) in ca.values().iter().zip(qs).enumerate() {
                         assert!((q.length() - 1.0).abs() < 1e-6, "{what}: not unit");
                         assert_rot(q, want, 1e-6, &what);
@@ -418,10 +426,18 @@ fn written_rotations_read_back_and_everything_else_is_kept() {
                         }
                     }
                 }
-                // Translations untouched.
-                assert_eq!(a.translations(), b.translations());
+                // Translations and scales untouched (their samplers renumbered).
+                let keys = |c: &TranslationChannel| {
+                    let t = (c.index(), c.node(), c.interpolation(), c.times().to_vec());
+                    (t, c.values().to_vec(), c.tangents().map(<[_]>::to_vec))
+                };
+                let all = |a: &Animation| {
+                    let v = a.translations().iter().chain(a.scales());
+                    v.map(keys).collect::<Vec<_>>()
+                };
+                assert_eq!(all(a), all(b), "{what}");
             }
-            // The JSON outside what was appended is unchanged.
+            // The JSON outside the animations and their data is unchanged.
             let (old, new) = (&asset.json, &back.json);
             for key in ["nodes", "scenes", "scene", "extensionsUsed", "asset"] {
                 assert_eq!(old[key], new[key], "{what}: {key}");
@@ -432,22 +448,33 @@ fn written_rotations_read_back_and_everything_else_is_kept() {
                 42
             );
             assert_eq!(new["animations"][1]["extras"]["take"], 2);
-            let n_old = old["accessors"].as_array().unwrap().len();
-            assert_eq!(
-                new["accessors"].as_array().unwrap()[..n_old],
-                old["accessors"].as_array().unwrap()[..]
-            );
-            // One shared time accessor per animation with min and max, then one per channel.
-            let t_acc = &new["accessors"][n_old];
+            // Every rotation channel of an animation on its one time accessor, with min and max;
+            // the samplers the rotations had before are gone, the others renumbered.
+            let anim = &new["animations"][0];
+            let input = |c: usize| {
+                let s = anim["channels"][c]["sampler"].as_u64().unwrap() as usize;
+                anim["samplers"][s]["input"].clone()
+            };
+            let t_acc = &new["accessors"][input(0).as_u64().unwrap() as usize];
             assert_eq!(t_acc["type"], "SCALAR");
             assert_eq!(t_acc["min"][0], 0.0);
             assert_eq!(t_acc["max"][0], 2.0);
-            // The scale channel and the translation still use their old samplers.
+            let rotations = before[0].rotations().len();
+            for c in 0..rotations {
+                assert_eq!(input(c), input(0), "{what}: channel {c}");
+            }
+            let samplers = |j: &Value| j["animations"][0]["samplers"].as_array().unwrap().len();
+            let used_by_rotations: HashSet<_> = (0..rotations)
+                .map(|c| &old["animations"][0]["channels"][c]["sampler"])
+                .collect();
+            assert_eq!(
+                samplers(new),
+                samplers(old) - used_by_rotations.len() + rotations,
+                "{what}"
+            );
             for c in [5, 6] {
-                assert_eq!(
-                    new["animations"][0]["channels"][c],
-                    old["animations"][0]["channels"][c]
-                );
+                let target = |j: &Value| j["animations"][0]["channels"][c]["target"].clone();
+                assert_eq!(target(new), target(old));
             }
         }
     }
@@ -462,7 +489,7 @@ fn linear_channels_round_trip_at_their_own_keys_to_float32() {
     let r = Resampled {
         animation: 1,
         times: c.times().to_vec(),
-        channels: vec![(c.index(), c.values().to_vec())],
+        channels: vec![(c.index(), Values::Rotations(c.values().to_vec()))],
     };
     let back = Asset::from_slice(&write_to(&asset, &[r], ContainerFormat::Glb), "o.glb", None)
         .unwrap()
@@ -489,10 +516,13 @@ fn write_requests_are_checked() {
             .to_string()
     };
     let src = asset.source().to_string();
-    let r = |animation, times: Vec<f64>, channels| Resampled {
+    let r = |animation, times: Vec<f64>, channels: Vec<(usize, Vec<DQuat>)>| Resampled {
         animation,
         times,
-        channels,
+        channels: channels
+            .into_iter()
+            .map(|(c, qs)| (c, Values::Rotations(qs)))
+            .collect(),
     };
     assert_eq!(
         bad(r(5, vec![0.0], vec![])),

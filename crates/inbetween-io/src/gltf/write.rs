@@ -1,15 +1,21 @@
-//! Writing an asset back with resampled rotation channels, everything else preserved.
+//! Writing an asset back with resampled channels, everything else preserved.
 //!
 //! The JSON is edited as a `serde_json::Value` (so unknown extensions, `extras` and every
-//! object this module does not understand are copied as they were) and only ever appended to:
+//! object this module does not understand are copied as they were). Appended:
 //!
 //! - per [`Resampled`] (one per processed animation for `interp`, one per channel for
 //!   `reduce`), one float32 SCALAR time accessor with `min` and `max` (glTF 2.0
 //!   §3.11 requires them on a sampler input), shared by its channels;
-//! - per processed channel, one float32 VEC4 output accessor (unit quaternions, `x y z w`,
+//! - per processed channel, one float32 output accessor — VEC4 unit quaternions (`x y z w`,
 //!   sign-continuous: a quaternion whose dot product with the previous one is negative is
-//!   written negated) and one new `LINEAR` sampler, to which the channel is repointed;
+//!   written negated) or VEC3 translations or scales — and one new `LINEAR` sampler, to which
+//!   the channel is repointed;
 //! - the bytes of those accessors, each 4-byte aligned, in new buffer views.
+//!
+//! Then what no channel uses any more is removed (`prune`): the replaced samplers, and the
+//! accessors, buffer views and buffers only they used, every index renumbered; a buffer whose
+//! bytes are written here loses the bytes of its removed views (each remaining view keeps its
+//! offset modulo 4). Objects the input already left unused stay.
 //!
 //! Where the bytes go depends on the output container:
 //!
@@ -19,19 +25,20 @@
 //! - `.gltf`: a new buffer with a base64 `data:` URI holding only the new bytes; a `.glb`
 //!   input's `BIN` buffer becomes a `data:` URI too (a `.gltf` cannot have a chunk).
 //!
-//! The samplers and accessors the processed channels used before are left in place, unused
-//! (valid glTF; the Khronos validator reports unused objects as information only), so every
-//! index in the file keeps its meaning. Relative URIs (images, buffers that stay external) still
-//! name the input's files: written into another folder ([`Asset::to_bytes_in`]), each is
-//! rewritten relative to that folder (`../assets/skin.png`); `data:` URIs and absolute URIs are
-//! kept as they are.
+//! Buffers in files beside the input are never rewritten (their unused bytes stay). Relative
+//! URIs (images, buffers that stay external) still name the input's files: written into another
+//! folder ([`Asset::to_bytes_in`]), each is rewritten relative to that folder
+//! (`../assets/skin.png`); `data:` URIs and absolute URIs are kept as they are.
 
 use super::Asset;
+use super::prune::{Removed, compact};
 use base64::Engine;
-use glam::{DQuat, DVec4};
+use glam::{DQuat, DVec3, DVec4};
+use gltf::animation::Property;
 use inbetween::error::{Error, InputError, Setting};
 use inbetween::message;
 use serde_json::{Value, json};
+use std::borrow::Cow;
 use std::collections::HashSet;
 use std::io::Write;
 use std::path::Path;
@@ -57,19 +64,121 @@ impl ContainerFormat {
     }
 }
 
-/// New keys for rotation channels of one animation, all on one time grid. An animation may
-/// have several (each with its own grid: `reduce` keeps other keys on each channel); a channel
-/// is replaced once.
+/// New keys for channels of one animation, all on one time grid. An animation may have several
+/// (each with its own grid: `reduce` keeps other keys on each channel); a channel is replaced
+/// once.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resampled {
     /// The animation's index in the asset.
     pub animation: usize,
     /// The frame times in seconds; they must stay strictly increasing when rounded to float32.
     pub times: Vec<f64>,
-    /// `(channel index in the animation, one rotation per time)` for each channel to replace;
-    /// each must target a `rotation`. Rotations need not be unit or sign-continuous: they are
-    /// written normalised and sign-continuous.
-    pub channels: Vec<(usize, Vec<DQuat>)>,
+    /// `(channel index in the animation, one value per time)` for each channel to replace:
+    /// rotations for a channel targeting a `rotation`, vectors for a `translation` or `scale`.
+    pub channels: Vec<(usize, Values)>,
+}
+
+/// The new values of one channel, one per frame time, played by the `LINEAR` sampler written
+/// for them (slerp for rotations, lerp for vectors: glTF 2.0 Appendix C).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Values {
+    /// Rotations; they need not be unit or sign-continuous: they are written normalised and
+    /// sign-continuous (each negated when its dot product with the previous one is negative).
+    Rotations(Vec<DQuat>),
+    /// Translations or scales.
+    Vectors(Vec<DVec3>),
+}
+
+impl Values {
+    fn len(&self) -> usize {
+        match self {
+            Values::Rotations(q) => q.len(),
+            Values::Vectors(v) => v.len(),
+        }
+    }
+
+    fn fits(&self, property: Property) -> bool {
+        match self {
+            Values::Rotations(_) => property == Property::Rotation,
+            Values::Vectors(_) => matches!(property, Property::Translation | Property::Scale),
+        }
+    }
+
+    fn what(&self) -> &'static str {
+        match self {
+            Values::Rotations(_) => "a rotation",
+            Values::Vectors(_) => "a translation or scale",
+        }
+    }
+
+    fn noun(&self) -> &'static str {
+        match self {
+            Values::Rotations(_) => "rotation",
+            Values::Vectors(_) => "vector",
+        }
+    }
+
+    fn expected(&self) -> &'static str {
+        match self {
+            Values::Rotations(_) => "a finite non-zero quaternion",
+            Values::Vectors(_) => "a finite vector",
+        }
+    }
+
+    fn show(&self, k: usize) -> String {
+        match self {
+            Values::Rotations(q) => format!("{:?}", q[k]),
+            Values::Vectors(v) => format!("{:?}", v[k]),
+        }
+    }
+
+    /// The float32 components as written and the accessor type; `Err(k)` for the first value
+    /// that cannot be written.
+    fn floats(&self) -> Result<(Vec<f32>, &'static str), usize> {
+        match self {
+            Values::Rotations(q) => {
+                let unit = continuous_unit(q)?;
+                let floats = unit.iter().flat_map(|v| v.to_array().map(|x| x as f32));
+                Ok((floats.collect(), "VEC4"))
+            }
+            Values::Vectors(v) => {
+                let floats: Vec<f32> = v
+                    .iter()
+                    .flat_map(|p| p.to_array().map(|x| x as f32))
+                    .collect();
+                match floats.iter().position(|x| !x.is_finite()) {
+                    Some(i) => Err(i / 3),
+                    None => Ok((floats, "VEC3")),
+                }
+            }
+        }
+    }
+}
+
+/// `times` as float32, checked finite and strictly increasing (a sampler input, glTF 2.0
+/// §3.11).
+fn float32_times(src: &str, a: usize, times64: &[f64]) -> Result<Vec<f32>, InputError> {
+    let times: Vec<f32> = times64.iter().map(|&t| t as f32).collect();
+    if times.is_empty() {
+        return Err(input_err!("{src}: animation {a}: no frame times to write"));
+    }
+    for (k, (&t, &t64)) in times.iter().zip(times64).enumerate() {
+        if !t.is_finite() {
+            return Err(input_err!(
+                "{src}: animation {a}: frame time {k} is {}: expected a finite float32",
+                inbetween::error::num(t64)
+            ));
+        }
+        if k > 0 && t <= times[k - 1] {
+            return Err(input_err!(
+                "{src}: animation {a}: frame times {} and {} s are the same float32: \
+                 expected strictly increasing float32 times",
+                k - 1,
+                k
+            ));
+        }
+    }
+    Ok(times)
 }
 
 /// The new accessors, views and bytes, before they are placed in a buffer.
@@ -224,12 +333,94 @@ impl Asset {
         Ok(())
     }
 
-    /// Writes the asset with the rotation channels of `resampled` replaced, as `format`, to
-    /// `out` (see the module documentation for what is appended and where). Errors: an input
-    /// error for a bad request (an unknown animation or channel, a channel that is not a
-    /// rotation, a channel named twice, counts that disagree, times not strictly
-    /// increasing in float32, a rotation that is not finite and non-zero, a `.glb` over 4 GiB);
-    /// an I/O error from `out`.
+    /// Puts the bytes of the buffers that are written inline (a `.glb`'s buffer 0, `data:`
+    /// URIs, a `.gltf` output's buffers without a URI) and the `new` bytes where `format` keeps
+    /// them, each such buffer that lost a view compacted ([`compact`]), and points the new views
+    /// (buffer `null`) at the new bytes; returns a `.glb`'s `BIN` chunk.
+    fn place(
+        &self,
+        json: &mut Value,
+        removed: &Removed,
+        new: &[u8],
+        format: ContainerFormat,
+    ) -> Option<Vec<u8>> {
+        let kept = &removed.buffers_kept;
+        let glb = format == ContainerFormat::Glb;
+        for (i, &old) in kept.iter().enumerate().skip(usize::from(glb)) {
+            let uri = json["buffers"][i].get("uri").and_then(Value::as_str);
+            let has_uri = uri.is_some();
+            let mime = match uri {
+                None => "application/octet-stream".to_string(),
+                Some(u) if u.starts_with("data:") => {
+                    let m = u["data:".len()..]
+                        .split([';', ','])
+                        .next()
+                        .unwrap_or_default();
+                    if m.is_empty() {
+                        "application/octet-stream"
+                    } else {
+                        m
+                    }
+                    .to_string()
+                }
+                Some(_) => continue,
+            };
+            let mut bytes = Cow::Borrowed(self.buffer(old));
+            let compacted = removed.views_in.contains(&old)
+                && compact(json, i, &bytes)
+                    .map(|c| bytes = Cow::Owned(c))
+                    .is_some();
+            if compacted || !has_uri {
+                let b = &mut json["buffers"][i];
+                b["uri"] = json!(data_uri(&mime, &bytes));
+                b["byteLength"] = json!(bytes.len());
+            }
+        }
+        let (target, base, bin) = if glb {
+            let mut bin = if kept.first() == Some(&0) {
+                let bin = self.buffer(0);
+                match removed.views_in.contains(&0) {
+                    true => compact(json, 0, bin).unwrap_or_else(|| bin.to_vec()),
+                    false => bin.to_vec(),
+                }
+            } else {
+                Vec::new()
+            };
+            pad4(&mut bin, 0);
+            let base = bin.len();
+            bin.extend_from_slice(new);
+            let buffers = array_mut(json, "buffers");
+            if buffers.is_empty() {
+                buffers.push(json!({}));
+            }
+            let b0 = buffers[0].as_object_mut().expect("buffer object");
+            b0.remove("uri");
+            b0.insert("byteLength".into(), json!(bin.len()));
+            (0, base, Some(bin))
+        } else {
+            let buffers = array_mut(json, "buffers");
+            if !new.is_empty() {
+                let uri = data_uri("application/octet-stream", new);
+                buffers.push(json!({"byteLength": new.len(), "uri": uri}));
+            }
+            (buffers.len().saturating_sub(1), 0, None)
+        };
+        for view in array_mut(json, "bufferViews") {
+            if view.get("buffer").is_some_and(Value::is_null) {
+                let offset = view["byteOffset"].as_u64().unwrap_or(0) as usize;
+                view["buffer"] = json!(target);
+                view["byteOffset"] = json!(base + offset);
+            }
+        }
+        bin
+    }
+
+    /// Writes the asset with the channels of `resampled` replaced, as `format`, to
+    /// `out` (see the module documentation for what is appended, removed and where). Errors: an
+    /// input error for a bad request (an unknown animation or channel, values of another kind
+    /// than the channel's target, a channel named twice, counts that disagree, times not
+    /// strictly increasing in float32, a rotation that is not finite and non-zero or a vector
+    /// that is not finite, a `.glb` over 4 GiB); an I/O error from `out`.
     pub fn write(
         &self,
         resampled: &[Resampled],
@@ -267,6 +458,7 @@ impl Asset {
         {
             self.embed_files(&mut json, base)?;
         }
+        let before = json.clone();
         let mut new = Appended::default();
         // New accessors as (new view number, accessor JSON without bufferView).
         let mut accessors: Vec<(usize, Value)> = Vec::new();
@@ -284,26 +476,7 @@ impl Asset {
                     animations.len()
                 ));
             };
-            let times: Vec<f32> = r.times.iter().map(|&t| t as f32).collect();
-            if times.is_empty() {
-                return Err(input_err!("{src}: animation {a}: no frame times to write"));
-            }
-            for (k, (&t, &t64)) in times.iter().zip(&r.times).enumerate() {
-                if !t.is_finite() {
-                    return Err(input_err!(
-                        "{src}: animation {a}: frame time {k} is {}: expected a finite float32",
-                        inbetween::error::num(t64)
-                    ));
-                }
-                if k > 0 && t <= times[k - 1] {
-                    return Err(input_err!(
-                        "{src}: animation {a}: frame times {} and {} s are the same float32: \
-                         expected strictly increasing float32 times",
-                        k - 1,
-                        k
-                    ));
-                }
-            }
+            let times = float32_times(src, a, &r.times)?;
             let time_view = new.push(&f32_bytes(times.iter().copied()));
             let time_acc = accessors.len();
             accessors.push((
@@ -317,7 +490,7 @@ impl Asset {
                 }),
             ));
             let channels: Vec<_> = anim.channels().collect();
-            for (c, rotations) in &r.channels {
+            for (c, values) in &r.channels {
                 let c = *c;
                 let Some(ch) = self.typed_channel(a, c).and_then(|t| channels.get(t)) else {
                     return Err(input_err!(
@@ -325,10 +498,11 @@ impl Asset {
                         channels.len()
                     ));
                 };
-                if ch.target().property() != gltf::animation::Property::Rotation {
+                let property = ch.target().property();
+                if !values.fits(property) {
                     return Err(input_err!(
-                        "{src}: animation {a}: channel {c} targets {:?}, not a rotation",
-                        ch.target().property()
+                        "{src}: animation {a}: channel {c} targets {property:?}, not {}",
+                        values.what()
                     ));
                 }
                 if !seen_channels.insert((a, c)) {
@@ -336,90 +510,39 @@ impl Asset {
                         "{src}: animation {a}: channel {c} is resampled twice"
                     ));
                 }
-                if rotations.len() != times.len() {
+                if values.len() != times.len() {
                     return Err(input_err!(
-                        "{src}: animation {a}: channel {c}: {} rotations for {} frame times",
-                        rotations.len(),
+                        "{src}: animation {a}: channel {c}: {} {}s for {} frame times",
+                        values.len(),
+                        values.noun(),
                         times.len()
                     ));
                 }
-                let values = continuous_unit(rotations).map_err(|k| {
+                let (floats, kind) = values.floats().map_err(|k| {
                     input_err!(
-                        "{src}: animation {a}: channel {c}: rotation {k} is {:?}: expected a \
-                         finite non-zero quaternion",
-                        rotations[k]
+                        "{src}: animation {a}: channel {c}: {} {k} is {}: expected {}",
+                        values.noun(),
+                        values.show(k),
+                        values.expected()
                     )
                 })?;
-                let view = new.push(&f32_bytes(
-                    values.iter().flat_map(|v| v.to_array().map(|x| x as f32)),
-                ));
+                let view = new.push(&f32_bytes(floats));
                 let out_acc = accessors.len();
                 accessors.push((
                     view,
-                    json!({"componentType": 5126, "count": values.len(), "type": "VEC4"}),
+                    json!({"componentType": 5126, "count": times.len(), "type": kind}),
                 ));
                 samplers.push((a, c, time_acc, out_acc));
             }
         }
 
-        // Where the new bytes go, and the first new view's and accessor's indices.
-        let first_view = json
-            .get("bufferViews")
-            .and_then(Value::as_array)
-            .map_or(0, Vec::len);
-        let first_acc = json
-            .get("accessors")
-            .and_then(Value::as_array)
-            .map_or(0, Vec::len);
-        let buffer_count = json
-            .get("buffers")
-            .and_then(Value::as_array)
-            .map_or(0, Vec::len);
-        let (target_buffer, base, bin) = match format {
-            ContainerFormat::Glb => {
-                let mut bin = if buffer_count > 0 {
-                    self.buffer(0).to_vec()
-                } else {
-                    Vec::new()
-                };
-                pad4(&mut bin, 0);
-                let base = bin.len();
-                bin.extend_from_slice(&new.bytes);
-                let buffers = array_mut(&mut json, "buffers");
-                if buffers.is_empty() {
-                    buffers.push(json!({}));
-                }
-                let b0 = buffers[0].as_object_mut().expect("buffer object");
-                b0.remove("uri");
-                b0.insert("byteLength".into(), json!(bin.len()));
-                (0, base, Some(bin))
-            }
-            ContainerFormat::Gltf => {
-                let b64 = |d: &[u8]| {
-                    format!(
-                        "data:application/octet-stream;base64,{}",
-                        base64::engine::general_purpose::STANDARD.encode(d)
-                    )
-                };
-                let buffers = array_mut(&mut json, "buffers");
-                // A GLB's BIN buffer has no URI: embed it.
-                for (i, b) in buffers.iter_mut().enumerate() {
-                    let b = b.as_object_mut().expect("buffer object");
-                    if !b.contains_key("uri") {
-                        b.insert("uri".into(), json!(b64(self.buffer(i))));
-                    }
-                }
-                if !new.bytes.is_empty() {
-                    buffers.push(json!({"byteLength": new.bytes.len(), "uri": b64(&new.bytes)}));
-                }
-                (buffers.len() - 1, 0, None)
-            }
-        };
+        // The new views (their buffer set once the bytes are placed), accessors and samplers,
+        // each processed channel repointed; then what no channel uses any more is removed.
+        let first_view = array_mut(&mut json, "bufferViews").len();
+        let first_acc = array_mut(&mut json, "accessors").len();
         let views = array_mut(&mut json, "bufferViews");
         for &(offset, len) in &new.views {
-            views.push(
-                json!({"buffer": target_buffer, "byteOffset": base + offset, "byteLength": len}),
-            );
+            views.push(json!({"buffer": null, "byteOffset": offset, "byteLength": len}));
         }
         let accs = array_mut(&mut json, "accessors");
         for (view, mut acc) in accessors {
@@ -438,6 +561,8 @@ impl Asset {
             let sampler = list.len() - 1;
             array_mut(anim, "channels")[c]["sampler"] = json!(sampler);
         }
+        let removed = super::prune::prune(&before, &mut json, format == ContainerFormat::Glb);
+        let bin = self.place(&mut json, &removed, &new.bytes, format);
 
         match format {
             ContainerFormat::Gltf => {
