@@ -4,9 +4,12 @@
 //! - `speed` (default): `|ω(t)|` in `--angles` units per second, one line per scheme; a jump of
 //!   angular velocity at a key shows as a vertical step (both one-sided values are drawn).
 //! - `components`: `ω_x, ω_y, ω_z`, one line each per scheme (solid, dashed, dotted).
-//! - `energy`: Barr's energy accumulated over the frames, `Σ_{t_p ≤ t} w_p |q_p'' ∖ q_p|²`.
+//! - `energy`: Barr's energy accumulated over the grid `analyze` takes it on
+//!   ([`inbetween::metrics::energy_rate`]), `Σ_{t_p ≤ t} w_p |q_p'' ∖ q_p|²`.
 //!
-//! Keys are marked by grey vertical lines with a dot on the time axis. Colours are the
+//! Keys are marked by a dot on the time axis, and by grey vertical lines while those stay
+//! readable: when the keys are on average at least [`KEY_LINE_SPACING`] pixels apart on the
+//! time axis (dense keys drew a grey curtain over the curves). Colours are the
 //! Okabe–Ito palette (readable with colour-blindness), one per scheme.
 
 use glam::DVec3;
@@ -32,6 +35,10 @@ pub enum What {
 
 /// Samples per key segment for the smooth schemes.
 const SAMPLES: usize = 120;
+
+/// The least mean spacing of the keys on the time axis, in pixels of the 1440-pixel-wide
+/// chart, for their vertical lines to be drawn.
+pub const KEY_LINE_SPACING: f64 = 8.0;
 
 /// The colour of a scheme.
 pub fn colour(s: Scheme) -> RGBColor {
@@ -93,8 +100,8 @@ struct Line {
 }
 
 /// Draws the chart of `track` for `schemes` (each with the rest of `opts`) and returns the SVG
-/// text; energy is accumulated over the frames at `fps`. Fails when minaccel cannot solve (an
-/// input error) or plotters cannot draw.
+/// text; energy is accumulated on the grid of `energy_rate` at `fps`. Fails when minaccel cannot
+/// solve (an input error) or plotters cannot draw.
 pub fn svg(
     track: &Track,
     schemes: &[Scheme],
@@ -105,8 +112,22 @@ pub fn svg(
 ) -> Result<String, Error> {
     let u = unit.as_str();
     let mut lines = Vec::new();
+    // The energy's grid, analyze's; minaccel is solved on it, as analyze solves it.
+    let fine = inbetween::metrics::energy_rate(track.times(), fps);
     for &s in schemes {
-        let curve = Curve::new(track, &CurveOptions { scheme: s, ..*opts })?;
+        let grid_rate = if what == What::Energy {
+            fine
+        } else {
+            opts.grid_rate
+        };
+        let curve = Curve::new(
+            track,
+            &CurveOptions {
+                scheme: s,
+                grid_rate,
+                ..*opts
+            },
+        )?;
         let c = colour(s);
         match what {
             What::Speed => lines.push(Line {
@@ -134,8 +155,8 @@ pub fn svg(
             }
             What::Energy => {
                 let (t0, t1) = track.span();
-                let (first, last) = fps.frames_between(t0, t1);
-                let times: Vec<f64> = (first..=last).map(|k| fps.time_of(k)).collect();
+                let (first, last) = fine.frames_between(t0, t1);
+                let times: Vec<f64> = (first..=last).map(|k| fine.time_of(k)).collect();
                 let pts: Vec<_> = times.iter().map(|&t| curve.eval(t)).collect();
                 let mut acc = 0.0;
                 // A track may span no frame at all (keys closer than a frame period).
@@ -221,7 +242,13 @@ pub fn svg(
             .draw()
             .map_err(|e| err(&e))?;
         let grey = RGBColor(0xB0, 0xB0, 0xB0);
-        for &tk in track.times() {
+        let keys = track.times();
+        let px = |t: f64| f64::from(chart.backend_coord(&(t, y0)).0);
+        let spacing = match keys {
+            [first, .., last] => (px(*last) - px(*first)) / (keys.len() - 1) as f64,
+            _ => f64::INFINITY,
+        };
+        for &tk in keys.iter().filter(|_| spacing >= KEY_LINE_SPACING) {
             chart
                 .draw_series(std::iter::once(PathElement::new(
                     vec![(tk, y0), (tk, y1)],

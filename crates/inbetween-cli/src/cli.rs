@@ -11,7 +11,7 @@ use std::path::PathBuf;
 
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
 /// matrices, axis-angle, rotation vectors) from CSV, JSON, BVH motion capture or glTF 2.0
-/// (.gltf, .glb) and writes every in-between frame as CSV, JSON, npy, BVH or glTF.
+/// (.gltf, .glb) and writes every in-between frame as CSV, JSON, npy, npz, BVH or glTF.
 #[derive(Debug, Parser)]
 #[command(name = "inbetween", version, max_term_width = 100)]
 pub struct Cli {
@@ -198,8 +198,8 @@ pub struct OutputArgs {
     #[arg(long, value_name = "REPR", value_parser = parse_repr, default_value = "quat")]
     pub to: Repr,
 
-    /// Output format: csv, json, or (interp only) npy, a NumPy array of float64 rows; by
-    /// default the input's format.
+    /// Output format: csv, json, or (interp only) npy, a NumPy array of float64 rows, or npz,
+    /// named NumPy arrays (times, names, rotations, …); by default the input's format.
     #[arg(long, value_name = "F", value_parser = parse_output_format)]
     pub output_format: Option<OutputFormat>,
 

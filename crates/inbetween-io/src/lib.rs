@@ -89,13 +89,15 @@ impl Format {
     }
 }
 
-/// Output format of a command: a document format, or NumPy `.npy` (interp's frames only).
+/// Output format of a command: a document format, or NumPy `.npy` / `.npz` (interp's frames only).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OutputFormat {
     /// A keyframe-document format.
     Doc(Format),
     /// A NumPy `.npy` array of float64 rows.
     Npy,
+    /// A NumPy `.npz` archive of named arrays (frames × tracks).
+    Npz,
     /// A BVH file on the input's skeleton (BVH input only).
     Bvh,
     /// The input glTF asset with resampled rotation channels (glTF input only), in this
@@ -104,16 +106,17 @@ pub enum OutputFormat {
 }
 
 impl OutputFormat {
-    /// `csv`, `json`, `npy`, `bvh`, `gltf` or `glb`.
+    /// `csv`, `json`, `npy`, `npz`, `bvh`, `gltf` or `glb`.
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
+            "npz" => Ok(OutputFormat::Npz),
             "bvh" => Ok(OutputFormat::Bvh),
             "gltf" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Gltf)),
             "glb" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Glb)),
             "csv" | "json" => Format::parse(s).map(OutputFormat::Doc),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"npy\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+                "expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
             )),
         }
     }

@@ -9,10 +9,15 @@
 //! | `max_accel` | largest `|α|` over the samples | angle/s² |
 //! | `c1_jump` | largest `|ω(t_k⁺) − ω(t_k⁻)|` over interior keys (C¹ defect) | angle/s |
 //! | `c2_jump` | largest `|α(t_k⁺) − α(t_k⁻)|` over interior keys (C² defect) | angle/s² |
-//! | `energy` | Barr's discrete `E = Σ w_p |q_p'' ∖ q_p|²` over the frames at `--fps` | (S³ units)²/s³ |
+//! | `energy` | Barr's discrete `E = Σ w_p |q_p'' ∖ q_p|²` on the grid of [`energy_rate`] | (S³ units)²/s³ |
 //!
 //! ω and α are world-frame angular velocity and acceleration ([`crate::Curve`]); "angle" is
 //! `--angles` (degrees by default).
+//!
+//! The energy is taken on a grid finer than the frames where the keys are dense
+//! ([`energy_rate`]: at least [`ENERGY_SAMPLES_PER_KEY`] samples per key interval on average,
+//! at most [`MAX_ENERGY_MULTIPLE`] times the frame rate): on the frames alone, keys at every
+//! frame (motion capture) are every sample, and every scheme through them had the same energy.
 
 use crate::clock::Fps;
 use crate::curve::Scheme;
@@ -55,8 +60,54 @@ pub struct Metrics {
 /// Samples per frame interval for the integrals and maxima.
 const SAMPLES_PER_FRAME: f64 = 8.0;
 
+/// The fewest samples per key interval, on average, that the energy is taken on.
+pub const ENERGY_SAMPLES_PER_KEY: u64 = 8;
+
+/// The largest multiple of the frame rate the energy is taken at.
+pub const MAX_ENERGY_MULTIPLE: u64 = 8;
+
+/// The rate whose grid the energy of a curve through `key_times` is taken on: `m·fps`, with
+/// `m` the smallest whole number for which the keys' mean interval `(t_n − t_1)/(n − 1)` holds
+/// at least [`ENERGY_SAMPLES_PER_KEY`] grid intervals, at most [`MAX_ENERGY_MULTIPLE`] (and
+/// never past the highest rate, [`crate::clock::MAX_FPS`]). Keys 8 or more frames apart on
+/// average give `fps` itself; keys at every frame give `8·fps`, so that the grid sees the
+/// curve between keys.
+///
+/// ```
+/// use inbetween::Fps;
+/// use inbetween::metrics::energy_rate;
+/// let fps = Fps::new(30, 1).unwrap();
+/// let every_frame: Vec<f64> = (0..31).map(|k| k as f64 / 30.0).collect();
+/// assert_eq!(energy_rate(&every_frame, fps), Fps::new(240, 1).unwrap());
+/// assert_eq!(energy_rate(&[0.0, 0.1, 0.2, 0.3], fps), Fps::new(90, 1).unwrap()); // 3 frames apart
+/// assert_eq!(energy_rate(&[0.0, 0.5, 1.0], fps), fps); // 15 frames apart
+/// ```
+pub fn energy_rate(key_times: &[f64], fps: Fps) -> Fps {
+    let n = key_times.len();
+    if n < 2 {
+        return fps;
+    }
+    let mean = (key_times[n - 1] - key_times[0]) / (n - 1) as f64;
+    let frames = mean * fps.as_f64();
+    let m = if frames >= ENERGY_SAMPLES_PER_KEY as f64 {
+        1
+    } else {
+        // frames > 0: the keys are increasing.
+        ((ENERGY_SAMPLES_PER_KEY as f64 / frames).ceil() as u64).clamp(1, MAX_ENERGY_MULTIPLE)
+    };
+    (1..=m)
+        .rev()
+        .find_map(|m| {
+            fps.num()
+                .checked_mul(m)
+                .and_then(|num| Fps::new(num, fps.den()).ok())
+        })
+        .unwrap_or(fps)
+}
+
 /// Computes the figures of `curve`, sampled at least 8 times per frame interval of `fps`; the
-/// energy is that of its frames at `fps`.
+/// energy is that of its points on the grid of [`energy_rate`] (build a minaccel curve with
+/// that grid rate, as [`measure_each`] does, for its energy to be that of its grid).
 pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
     let rate = fps;
     let b = curve.breaks().to_vec();
@@ -94,10 +145,11 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
         c1 = c1.max((curve.omega(tk, Side::Right) - curve.omega(tk, Side::Left)).length());
         c2 = c2.max((curve.alpha(tk, Side::Right) - curve.alpha(tk, Side::Left)).length());
     }
-    let (first, last) = rate.frames_between(keys[0], keys[keys.len() - 1]);
+    let fine = energy_rate(&keys, rate);
+    let (first, last) = fine.frames_between(keys[0], keys[keys.len() - 1]);
     let (times, pts): (Vec<f64>, Vec<DQuat>) = (first..=last)
         .map(|k| {
-            let t = rate.time_of(k);
+            let t = fine.time_of(k);
             (t, curve.eval(t))
         })
         .unzip();
@@ -127,7 +179,8 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
 }
 
 /// The figures of every track's curve under each of `schemes` (track by track, each track's
-/// schemes in order), measured as [`measure`] measures them, the tracks shared out among the
+/// schemes in order), measured as [`measure`] measures them (minaccel solved on the grid of
+/// [`energy_rate`], whatever the options' grid rate), the tracks shared out among the
 /// machine's cores (at most [`crate::reduce::MAX_THREADS`] threads); a curve that cannot be built is its error in that
 /// place. The same whatever the number of threads.
 pub fn measure_each(
@@ -138,7 +191,13 @@ pub fn measure_each(
     crate::parallel::map(tracks, |track| {
         schemes
             .iter()
-            .map(|opts| Curve::new(track, opts).map(|c| measure(&c, fps)))
+            .map(|opts| {
+                let opts = CurveOptions {
+                    grid_rate: energy_rate(track.times(), fps),
+                    ..*opts
+                };
+                Curve::new(track, &opts).map(|c| measure(&c, fps))
+            })
             .collect::<Vec<_>>()
     })
     .into_iter()
@@ -306,6 +365,61 @@ mod tests {
             "internal error: non-finite figure in the analysis of an unnamed track, scheme squad \
              (\"max_speed\" = inf)"
         );
+    }
+
+    /// Keys at every frame of 30 fps on `θ(t) = a·t²` about z: on the 240 fps grid of
+    /// [`energy_rate`], slerp's energy is its corners at the keys alone, in closed form (each
+    /// key `h·(sin δ₊ − sin δ₋)²/h⁴`, `δ±` the quaternion angle of one grid step on either
+    /// side: the tangential part of the three-point `q''` on a great circle), and bezier's,
+    /// a C¹ curve, is near the continuum `∫(θ''/2)² dt = a²` per second. On the frames alone
+    /// (the rule before) every sample was a key and both were the same.
+    #[test]
+    fn on_dense_keys_the_energy_tells_slerp_from_bezier() {
+        let (a, fps) = (2.0, Fps::new(30, 1).unwrap());
+        let times: Vec<f64> = (0..=30).map(|k| fps.time_of(k)).collect();
+        let theta = |t: f64| a * t * t;
+        let quats = times
+            .iter()
+            .map(|&t| DQuat::from_rotation_z(theta(t)))
+            .collect();
+        let track = Track::new(times.clone(), quats).unwrap();
+        assert_eq!(energy_rate(&times, fps), Fps::new(240, 1).unwrap());
+        let figure = |scheme| {
+            let opts = CurveOptions {
+                scheme,
+                ..CurveOptions::default()
+            };
+            let m = measure_each(std::slice::from_ref(&track), &[opts], fps);
+            m[0].as_ref().unwrap().energy
+        };
+        let h = 1.0 / 240.0;
+        let want: f64 = (1..30)
+            .map(|i| {
+                let step = |j: usize| (theta(times[j + 1]) - theta(times[j])) / 2.0 / 8.0;
+                let (before, after) = (step(i - 1), step(i));
+                h * ((after.sin() - before.sin()) / (h * h)).powi(2)
+            })
+            .sum();
+        let slerp = figure(Scheme::Slerp);
+        assert!(
+            (slerp - want).abs() <= 1e-9 * want,
+            "slerp {slerp} vs closed form {want}"
+        );
+        let bezier = figure(Scheme::Bezier);
+        assert!(
+            (bezier - a * a).abs() < 0.1 * a * a,
+            "bezier {bezier} vs {}",
+            a * a
+        );
+        assert!(slerp > 5.0 * bezier, "slerp {slerp}, bezier {bezier}");
+        // The frames alone (every sample a key: one figure for every scheme) hid slerp's
+        // corners: its figure there was bezier's.
+        let on_keys = energy(&times, track.rotations());
+        assert!(
+            slerp > 5.0 * on_keys,
+            "slerp {slerp}, on the keys {on_keys}"
+        );
+        assert!((on_keys - bezier).abs() < 0.1 * a * a, "{on_keys} {bezier}");
     }
 
     #[test]

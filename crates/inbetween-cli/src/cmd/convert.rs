@@ -101,13 +101,18 @@ pub fn run(
             )
             .into());
         }
-        OutputFormat::Npy => {
+        OutputFormat::Npy | OutputFormat::Npz => {
+            let name = if chosen == OutputFormat::Npy {
+                "npy"
+            } else {
+                "npz"
+            };
             let what = match (&args.output.output_format, &args.output.output) {
                 (None, Some(path)) => format!("-o {}", path.display()),
-                _ => "--output-format npy".to_string(),
+                _ => format!("--output-format {name}"),
             };
             return Err(InputError::new(format!(
-                "{what}: convert writes keyframe documents (csv or json); npy is for interp's \
+                "{what}: convert writes keyframe documents (csv or json); {name} is for interp's \
                  frames"
             ))
             .into());

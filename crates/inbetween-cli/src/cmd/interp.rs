@@ -15,7 +15,7 @@ use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
-use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter};
+use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter, NpzShape, NpzWriter};
 use std::io::Read;
 
 /// The curves' scheme: `--scheme`, else each glTF sampler as glTF plays it (`LINEAR` keys by
@@ -165,18 +165,23 @@ pub fn run(
         velocity: args.velocity,
         // Two generating threads pay only when the output is cheap to write (npy); with text,
         // formatting already uses the second core (measured: docs/performance.md).
-        parallel: format == OutputFormat::Npy,
+        parallel: matches!(format, OutputFormat::Npy | OutputFormat::Npz),
     };
     let style = super::settings::style(&args.input, &args.output);
     let track_column = doc.named_tracks || tracks.len() > 1;
     let positions = tracks.iter().any(|t| t.translations().is_some());
-    if positions && format == OutputFormat::Npy {
-        return Err(InputError::new(format!(
-            "{}: the tracks have translations, which npy output does not carry; write csv or json",
-            doc.source
-        ))
-        .into());
-    }
+    let npz = match format {
+        OutputFormat::Npz => Some(npz_shape(
+            args,
+            tracks,
+            &style,
+            span,
+            fps,
+            positions,
+            &doc.source,
+        )?),
+        _ => None,
+    };
     let skeleton = match format {
         OutputFormat::Bvh => {
             let Some(skeleton) = template.clone().or_else(|| doc.skeleton.clone()) else {
@@ -273,13 +278,11 @@ pub fn run(
             let w = FrameWriter::new(out, format, style, fps, track_column, args.velocity);
             Box::new(if positions { w.with_positions() } else { w })
         }
-        OutputFormat::Npy => Box::new(NpyWriter::new(
-            out,
-            style,
-            rows,
-            track_column,
-            args.velocity,
-        )),
+        OutputFormat::Npy => {
+            let w = NpyWriter::new(out, style, rows, track_column, args.velocity);
+            Box::new(if positions { w.with_positions() } else { w })
+        }
+        OutputFormat::Npz => Box::new(NpzWriter::new(out, style, fps, npz.expect("checked above"))),
     };
     for &i in &order {
         let (curve, track) = (&curves[i], &tracks[i]);
@@ -343,6 +346,65 @@ pub fn run(
         }
     }
     Ok(())
+}
+
+/// The arrays of `.npz` output: every track on the same frames (its arrays are frames ×
+/// tracks), and an archive a zip without ZIP64 holds; input errors otherwise, before anything
+/// is written or held.
+fn npz_shape(
+    args: &InterpArgs,
+    tracks: &[inbetween::Track],
+    style: &inbetween_io::write::Style,
+    span: impl Fn(usize) -> (f64, f64),
+    fps: inbetween::Fps,
+    positions: bool,
+    source: &str,
+) -> Result<NpzShape, Error> {
+    let ranges: Vec<(i64, i64)> = (0..tracks.len())
+        .map(|i| fps.frames_between(span(i).0, span(i).1))
+        // Tracks without frames have the same (empty) frames.
+        .map(|(a, b)| if b < a { (0, -1) } else { (a, b) })
+        .collect();
+    if let Some(i) = ranges.iter().position(|r| *r != ranges[0]) {
+        let label = |i: usize| inbetween_io::document::track_label(source, tracks[i].name());
+        return Err(InputError::new(format!(
+            "--span track: npz output holds every track on the same frames (arrays of frames × \
+             tracks), but {} spans frames {}..={} and {} frames {}..={}; use --span clip, or \
+             write npy, csv or json",
+            label(0),
+            ranges[0].0,
+            ranges[0].1,
+            label(i),
+            ranges[i].0,
+            ranges[i].1
+        ))
+        .into());
+    }
+    let shape = NpzShape {
+        frames: tracks
+            .first()
+            .map_or(0, |_| fps.frame_count(span(0).0, span(0).1)),
+        tracks: tracks.len(),
+        velocity: args.velocity,
+        positions,
+    };
+    let longest = tracks
+        .iter()
+        .map(|t| t.name().map_or(0, |n| n.chars().count()))
+        .max()
+        .unwrap_or(0);
+    let size = inbetween_io::write::npz::npz_size(style.repr.width(), shape, longest);
+    if size > inbetween_io::write::zip::MAX_BYTES {
+        return Err(InputError::new(format!(
+            "{source}: npz output of {} frames × {} tracks would take {size} bytes, more than a \
+             zip without ZIP64 holds ({} bytes); write npy, or fewer frames (--fps, --tracks)",
+            shape.frames,
+            shape.tracks,
+            inbetween_io::write::zip::MAX_BYTES
+        ))
+        .into());
+    }
+    Ok(shape)
 }
 
 /// Warns when an end of the written span `(lo, hi)` is a key (of the track `name` spanning
@@ -530,6 +592,12 @@ impl Sink for GltfFrames<WriteBehind> {
     }
     fn edge(&mut self, time: f64, q: DQuat) -> std::io::Result<()> {
         GltfFrames::edge(self, time, q)
+    }
+}
+
+impl Sink for NpzWriter<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
     }
 }
 

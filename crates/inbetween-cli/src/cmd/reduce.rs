@@ -33,7 +33,7 @@ pub fn run(
         OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
         OutputFormat::Doc(f) => f,
         // A BVH input's keys default to JSON (on standard output, or to an `-o` whose name does
-        // not say bvh: `-o keys`, `/dev/null`); npy and BVH are not keyframe documents.
+        // not say bvh: `-o keys`, `/dev/null`); npy, npz and BVH are not keyframe documents.
         OutputFormat::Bvh
             if args.output.output_format.is_none()
                 && !args.output.output.as_deref().is_some_and(|p| {
@@ -45,6 +45,7 @@ pub fn run(
         other => {
             let name = match other {
                 OutputFormat::Npy => "npy",
+                OutputFormat::Npz => "npz",
                 _ => "bvh (it holds every frame)",
             };
             return Err(InputError::new(format!(

@@ -6,6 +6,7 @@ mod support;
 mod analyze;
 mod animator;
 mod app_conventions;
+mod arrays;
 mod bvh;
 mod bvh_stream;
 mod bvh_untrusted;

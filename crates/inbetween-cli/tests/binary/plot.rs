@@ -82,6 +82,40 @@ fn speed_chart_has_a_series_per_scheme_and_key_markers() {
     }
 }
 
+/// `n` keys over one second, turning about z at a varying speed, as CSV in `dir`.
+fn keys_csv(dir: &std::path::Path, n: usize) -> std::path::PathBuf {
+    let mut text = String::from("time,w,x,y,z\n");
+    for i in 0..n {
+        let t = i as f64 / (n - 1) as f64;
+        let half = t * t;
+        text += &format!("{t},{},0,0,{}\n", half.cos(), half.sin());
+    }
+    let path = dir.join(format!("keys{n}.csv"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Key lines are drawn while the keys are at least 8 px apart on average on the time axis
+/// (about 1280 px wide: up to some 160 key intervals); denser keys, which drew a grey curtain,
+/// keep only their dots on the axis.
+#[test]
+fn key_lines_only_while_readable() {
+    let dir = tempfile::tempdir().unwrap();
+    for (n, lines) in [(5, 5), (100, 100), (150, 150), (175, 0), (400, 0)] {
+        let keys = keys_csv(dir.path(), n);
+        let text = plot(&[keys.to_str().unwrap(), "--scheme", "bezier"]);
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let count = |tag: &str, attr: &str| {
+            doc.descendants()
+                .filter(|e| e.has_tag_name(tag) && e.attribute(attr) == Some("#B0B0B0"))
+                .count()
+        };
+        assert_eq!(count("polyline", "stroke"), lines, "{n} keys");
+        // Every key keeps its dot (and the legend has one).
+        assert_eq!(count("circle", "fill"), n + 1, "{n} keys");
+    }
+}
+
 #[test]
 fn chosen_schemes_only_and_components() {
     let text = plot(&[

@@ -19,6 +19,7 @@
 //! - `worker`: the order-preserving formatting thread behind [`FrameWriter`].
 //! - [`keyframes`]: [`write_keys`], a document's keys for `convert`.
 //! - [`npy`]: [`NpyWriter`], frames as a NumPy array.
+//! - [`npz`]: [`NpzWriter`], frames as named NumPy arrays in a [`zip`] archive.
 //!
 //! Last line of defence (docs/spec.md, *Exit codes*): output never holds NaN, infinity or a zero
 //! quaternion. Every writer checks each value it writes (one `is_finite` per value, one norm
@@ -30,11 +31,14 @@ pub mod columns;
 pub mod frames;
 pub mod keyframes;
 pub mod npy;
+pub mod npz;
 mod worker;
+pub mod zip;
 
 pub use frames::FrameWriter;
 pub use keyframes::write_keys;
 pub use npy::NpyWriter;
+pub use npz::{NpzShape, NpzWriter};
 
 use crate::num::NumFormat;
 use glam::DQuat;

@@ -1,12 +1,14 @@
 //! Frames as a NumPy `.npy` file (format version 1.0): one float64 row per frame,
 //!
 //! ```text
-//! [track_index,] frame, time, <rotation values>, [wx, wy, wz]
+//! [track_index,] frame, time, <rotation values>, [wx, wy, wz], [tx, ty, tz]
 //! ```
 //!
 //! with the rotation values in the order of the CSV columns (`w,x,y,z`; Euler angles in SEQ
 //! order; the matrix row-major; …) and angles in `--angles` units; `track_index` (0-based, in the
-//! order tracks appear) only when the CSV output would have a `track` column. `np.load(path)`
+//! order tracks appear) only when the CSV output would have a `track` column; the translation
+//! last, as in the CSV ([`NpyWriter::with_positions`]; zeros for a track without, where the CSV
+//! has empty cells). `np.load(path)`
 //! returns an `(n_frames, n_columns)` array. The header must state the shape, so the writer is
 //! given the exact number of frames; it checks it at the end.
 
@@ -26,6 +28,8 @@ pub struct NpyWriter<W: Write> {
     track: (Option<String>, usize),
     tracks: usize,
     velocity: bool,
+    /// Write `tx, ty, tz` (zeros for a frame without a position).
+    positions: bool,
     rows_expected: u64,
     rows: u64,
     vals: [f64; MAX_WIDTH],
@@ -33,14 +37,31 @@ pub struct NpyWriter<W: Write> {
     unwrap: Option<inbetween::rotation::unwrap::EulerUnwrap>,
 }
 
-/// Number of columns of a frame row.
-pub fn columns(repr: Repr, track_column: bool, velocity: bool) -> usize {
-    usize::from(track_column) + 2 + repr.width() + if velocity { 3 } else { 0 }
+/// Number of columns of a frame row (`positions`: the three translation columns).
+pub fn columns(repr: Repr, track_column: bool, velocity: bool, positions: bool) -> usize {
+    usize::from(track_column)
+        + 2
+        + repr.width()
+        + 3 * usize::from(velocity)
+        + 3 * usize::from(positions)
 }
 
 /// The `.npy` v1.0 header for a `rows × cols` little-endian float64 C-order array.
 pub fn header(rows: u64, cols: usize) -> Vec<u8> {
-    let dict = format!("{{'descr': '<f8', 'fortran_order': False, 'shape': ({rows}, {cols}), }}");
+    array_header("<f8", &[rows, cols as u64])
+}
+
+/// The `.npy` v1.0 header for a C-order array of dtype `descr` (`<f8`, `<i8`, `|b1`, `<U12`) and
+/// `shape` (empty: a 0-d array), padded to a multiple of 64 bytes.
+pub fn array_header(descr: &str, shape: &[u64]) -> Vec<u8> {
+    let shape = match shape {
+        [n] => format!("({n},)"),
+        _ => {
+            let dims: Vec<String> = shape.iter().map(u64::to_string).collect();
+            format!("({})", dims.join(", "))
+        }
+    };
+    let dict = format!("{{'descr': '{descr}', 'fortran_order': False, 'shape': {shape}, }}");
     // magic (6) + version (2) + header length (2) + dict + padding + '\n', a multiple of 64.
     let unpadded = 10 + dict.len() + 1;
     let total = unpadded.div_ceil(64) * 64;
@@ -58,7 +79,10 @@ impl<W: Write> NpyWriter<W> {
     /// index column, `velocity` the angular velocity columns.
     pub fn new(w: W, style: Style, rows: u64, track_column: bool, velocity: bool) -> Self {
         let mut buf = Vec::with_capacity(1 << 16);
-        buf.extend_from_slice(&header(rows, columns(style.repr, track_column, velocity)));
+        buf.extend_from_slice(&header(
+            rows,
+            columns(style.repr, track_column, velocity, false),
+        ));
         NpyWriter {
             w,
             buf,
@@ -67,11 +91,27 @@ impl<W: Write> NpyWriter<W> {
             track: (None, 0),
             tracks: 0,
             velocity,
+            positions: false,
             rows_expected: rows,
             rows: 0,
             vals: [0.0; MAX_WIDTH],
             unwrap: None,
         }
+    }
+
+    /// Writes positions too (tracks with translations): `tx, ty, tz` after the other columns,
+    /// zeros for a track without (the CSV's empty cells). Call before the first track.
+    pub fn with_positions(mut self) -> Self {
+        debug_assert_eq!(self.rows, 0, "called before any row");
+        let cols = columns(
+            self.style.repr,
+            self.track_index.is_some(),
+            self.velocity,
+            true,
+        );
+        self.buf = header(self.rows_expected, cols);
+        self.positions = true;
+        self
     }
 
     /// The writer, after [`FrameSink::finish`].
@@ -86,10 +126,20 @@ impl<W: Write> NpyWriter<W> {
 
     /// What is wrong with a frame whose checks failed (the cold path of `frame`).
     #[cold]
-    fn refuse(&self, k: i64, time: f64, q: DQuat, omega: Option<[f64; 3]>) -> io::Error {
+    fn refuse(
+        &self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<[f64; 3]>,
+        position: DVec3,
+    ) -> io::Error {
         let repr = self.style.repr;
+        let bad_position = position.to_array().into_iter().find(|x| !x.is_finite());
         let bad = if !time.is_finite() {
             Bad::NonFinite("time", time)
+        } else if let Some(x) = bad_position.filter(|_| self.positions) {
+            Bad::NonFinite("translation", x)
         } else if let Some(bad) = rotation_fault(repr, q, &self.vals[..repr.width()]) {
             bad
         } else {
@@ -121,6 +171,49 @@ impl<W: Write> FrameSink for NpyWriter<W> {
 
     #[inline]
     fn frame(&mut self, k: i64, time: f64, q: DQuat, omega: Option<DVec3>) -> io::Result<()> {
+        self.row(k, time, q, omega, DVec3::ZERO)
+    }
+
+    #[inline]
+    fn frame_at(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: DVec3,
+    ) -> io::Result<()> {
+        self.row(k, time, q, omega, position)
+    }
+
+    fn end_track(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        if self.rows != self.rows_expected {
+            return Err(io::Error::other(format!(
+                "npy writer: {} rows written, {} announced",
+                self.rows, self.rows_expected
+            )));
+        }
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        self.w.flush()
+    }
+}
+
+impl<W: Write> NpyWriter<W> {
+    /// One row: the frame, and its position when the writer has position columns.
+    #[inline]
+    fn row(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: DVec3,
+    ) -> io::Result<()> {
         let row_start = self.buf.len();
         if let Some(i) = self.track_index {
             self.push(i);
@@ -149,9 +242,15 @@ impl<W: Write> FrameSink for NpyWriter<W> {
                 None => ok = false,
             }
         }
+        if self.positions {
+            for x in position.to_array() {
+                ok &= x.is_finite();
+                self.push(x);
+            }
+        }
         if !ok {
             self.buf.truncate(row_start);
-            return Err(self.refuse(k, time, q, w));
+            return Err(self.refuse(k, time, q, w, position));
         }
         self.rows += 1;
         if self.buf.len() >= 1 << 16 {
@@ -159,22 +258,6 @@ impl<W: Write> FrameSink for NpyWriter<W> {
             self.buf.clear();
         }
         Ok(())
-    }
-
-    fn end_track(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-
-    fn finish(&mut self) -> io::Result<()> {
-        if self.rows != self.rows_expected {
-            return Err(io::Error::other(format!(
-                "npy writer: {} rows written, {} announced",
-                self.rows, self.rows_expected
-            )));
-        }
-        self.w.write_all(&self.buf)?;
-        self.buf.clear();
-        self.w.flush()
     }
 }
 
@@ -235,6 +318,50 @@ mod tests {
             // (track, frame, time, rx, ry, rz, wx, wy, wz).
             assert_eq!(w.buf.len(), header(3, 9).len() + 9 * 8);
         }
+    }
+
+    #[test]
+    fn positions_are_the_last_three_columns() {
+        let mut w = writer(false).with_positions();
+        w.begin_track(Some("arm")).unwrap();
+        w.frame_at(0, 0.0, DQuat::IDENTITY, None, DVec3::new(1.0, 2.0, 3.0))
+            .unwrap();
+        // A track without positions: zeros.
+        w.frame(1, 0.5, DQuat::IDENTITY, None).unwrap();
+        let err = w
+            .frame_at(
+                2,
+                1.0,
+                DQuat::IDENTITY,
+                None,
+                DVec3::new(0.0, f64::NAN, 0.0),
+            )
+            .unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "internal error: non-finite value in frame 2 of track \"arm\" (\"translation\" = NaN)"
+        );
+        // track, frame, time, rx, ry, rz, tx, ty, tz.
+        let h = header(3, 9);
+        assert_eq!(&w.buf[..h.len()], h.as_slice());
+        let vals: Vec<f64> = w.buf[h.len()..]
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+            .collect();
+        assert_eq!(vals.len(), 18);
+        assert_eq!(vals[6..9], [1.0, 2.0, 3.0]);
+        assert_eq!(vals[15..18], [0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn headers_of_every_rank() {
+        let dict = |h: Vec<u8>| String::from_utf8(h[10..].to_vec()).unwrap();
+        assert!(dict(array_header("<U3", &[])).contains("'shape': (), "));
+        assert!(
+            dict(array_header("|b1", &[7]))
+                .contains("'descr': '|b1', 'fortran_order': False, 'shape': (7,), ")
+        );
+        assert!(dict(array_header("<f8", &[2, 3, 4])).contains("'shape': (2, 3, 4), "));
     }
 
     #[test]
