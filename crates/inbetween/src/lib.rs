@@ -47,7 +47,7 @@ pub mod clock;
 pub mod curve;
 pub mod error;
 pub mod metrics;
-mod parallel;
+pub mod parallel;
 pub mod position;
 pub mod reduce;
 pub mod rotation;

@@ -8,7 +8,7 @@ pub const MAX_THREADS: usize = 8;
 /// `f` of every item, in the items' order: the items are taken in order as threads come free
 /// (one per core, at most [`MAX_THREADS`], never more than the items), so the result is the
 /// same whatever the number of threads. One core, or one item, runs on the calling thread.
-pub(crate) fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(MAX_THREADS)

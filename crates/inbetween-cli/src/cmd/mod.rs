@@ -5,5 +5,6 @@ pub mod convert;
 pub mod interp;
 pub mod plot;
 pub mod reduce;
+pub mod reduce_bvh;
 pub mod settings;
 pub mod skeleton;

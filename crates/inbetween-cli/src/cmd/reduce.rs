@@ -5,7 +5,7 @@ use super::settings::{Curves, output_format, rates, read_curves};
 use crate::cli::{MethodArg, ReduceArgs};
 use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
-use inbetween::{Error, EulerSeq, InputError, PathMode, Repr, Scheme};
+use inbetween::{CurveOptions, Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
 use inbetween_io::gltf::ContainerFormat;
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
@@ -27,32 +27,15 @@ pub fn run(
         ))
         .into());
     }
+    if let Some(done) = super::reduce_bvh::lean(args, warn) {
+        return done;
+    }
     let input = read_curves(&args.input, &args.curve, &|f| scheme(args, f), stdin, warn)?;
     let (doc, tracks) = (&input.doc, &input.tracks);
-    let format = match output_format(&args.output, input.format) {
+    let format = match keys_format(args, input.format)? {
         OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
         OutputFormat::Doc(f) => f,
-        // A BVH input's keys default to JSON (on standard output, or to an `-o` whose name does
-        // not say bvh: `-o keys`, `/dev/null`); npy, npz and BVH are not keyframe documents.
-        OutputFormat::Bvh
-            if args.output.output_format.is_none()
-                && !args.output.output.as_deref().is_some_and(|p| {
-                    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("bvh"))
-                }) =>
-        {
-            inbetween_io::Format::Json
-        }
-        other => {
-            let name = match other {
-                OutputFormat::Npy => "npy",
-                OutputFormat::Npz => "npz",
-                _ => "bvh (it holds every frame)",
-            };
-            return Err(InputError::new(format!(
-                "reduce writes keys: csv, json, or glTF for a glTF input, not {name}"
-            ))
-            .into());
-        }
+        _ => unreachable!("keys_format gives keys documents and glTF"),
     };
     if tracks.iter().any(|t| t.translations().is_some()) && args.translation_tolerance.is_none() {
         return Err(InputError::new(format!(
@@ -72,28 +55,7 @@ pub fn run(
             .tracks
             .iter()
             .zip(&reduced)
-            .map(|(d, r)| DocTrack {
-                name: d.name.clone(),
-                keys: r.keys.iter().map(|&i| d.keys[i]).collect(),
-                start_velocity: None,
-                end_velocity: None,
-                origin: KeyOrigin::Frames,
-                euler: d
-                    .euler
-                    .as_ref()
-                    .map(|(seq, a)| (*seq, r.keys.iter().map(|&i| a[i]).collect())),
-                velocities: r
-                    .velocities
-                    .as_ref()
-                    .map(|w| w.iter().copied().map(Some).collect())
-                    .unwrap_or_default(),
-                tcb: Vec::new(),
-                translations: if d.translations.is_empty() {
-                    Vec::new()
-                } else {
-                    r.keys.iter().map(|&i| d.translations[i]).collect()
-                },
-            })
+            .map(|(d, r)| kept(d, r))
             .collect(),
         named_tracks: doc.named_tracks,
         warnings: Vec::new(),
@@ -101,14 +63,87 @@ pub fn run(
     };
     let (frame_fps, _) = rates(doc, args.curve.fps);
     let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
+    let skeleton = doc.skeleton.is_some();
+    write(
+        args,
+        &out_doc,
+        (format, style, frame_fps),
+        (input.format, skeleton),
+        warn,
+    )
+}
+
+/// The output format of the keys for an input in `input` format: a keys document (CSV, JSON),
+/// or glTF; a BVH input's keys default to JSON (on standard output, or to an `-o` whose name
+/// does not say bvh: `-o keys`, `/dev/null`); npy and BVH are refused.
+pub(super) fn keys_format(args: &ReduceArgs, input: Format) -> Result<OutputFormat, Error> {
+    Ok(match output_format(&args.output, input) {
+        OutputFormat::Bvh
+            if args.output.output_format.is_none()
+                && !args.output.output.as_deref().is_some_and(|p| {
+                    p.extension().is_some_and(|e| e.eq_ignore_ascii_case("bvh"))
+                }) =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
+        f @ (OutputFormat::Gltf(_) | OutputFormat::Doc(_)) => f,
+        other => {
+            let name = match other {
+                OutputFormat::Npy => "npy",
+                OutputFormat::Npz => "npz",
+                _ => "bvh (it holds every frame)",
+            };
+            return Err(InputError::new(format!(
+                "reduce writes keys: csv, json, or glTF for a glTF input, not {name}"
+            ))
+            .into());
+        }
+    })
+}
+
+/// A track's kept keys as the input gave them (frame numbers or times, Euler angles,
+/// positions), with their velocities.
+pub(super) fn kept(d: &DocTrack, r: &Reduced) -> DocTrack {
+    DocTrack {
+        name: d.name.clone(),
+        keys: r.keys.iter().map(|&i| d.keys[i]).collect(),
+        start_velocity: None,
+        end_velocity: None,
+        origin: KeyOrigin::Frames,
+        euler: d
+            .euler
+            .as_ref()
+            .map(|(seq, a)| (*seq, r.keys.iter().map(|&i| a[i]).collect())),
+        velocities: r
+            .velocities
+            .as_ref()
+            .map(|w| w.iter().copied().map(Some).collect())
+            .unwrap_or_default(),
+        tcb: Vec::new(),
+        translations: if d.translations.is_empty() {
+            Vec::new()
+        } else {
+            r.keys.iter().map(|&i| d.translations[i]).collect()
+        },
+    }
+}
+
+/// Writes the kept keys `doc` in `format` and `style`, frame numbers at `frame_fps`; `input`
+/// is the input's format and whether its keys come from a BVH clip, for CSV's rate warning.
+pub(super) fn write(
+    args: &ReduceArgs,
+    doc: &Document,
+    (format, style, frame_fps): (Format, Style, Fps),
+    (input, skeleton): (Format, bool),
+    warn: &mut dyn FnMut(&str),
+) -> Result<(), Error> {
     if format == Format::Csv
-        && let Some(w) =
-            super::settings::csv_rate_warning(&out_doc, input.format, doc.skeleton.is_some())
+        && let Some(w) = super::settings::csv_rate_warning(doc, input, skeleton)
     {
         warn(&w);
     }
     let mut out = Output::open(args.output.output.as_deref())?;
-    write_keys(&mut out, &out_doc, format, style, frame_fps)?;
+    write_keys(&mut out, doc, format, style, frame_fps)?;
     out.commit()?;
     Ok(())
 }
@@ -116,7 +151,7 @@ pub fn run(
 /// The written keys' style. With `--path euler` a key's turns are in its Euler angles, so the
 /// keys are written as the input gave them: its sequence (`--to` may only name it), each key's
 /// own triple ([`EulerMode::AsGiven`]).
-fn keys_style(
+pub(super) fn keys_style(
     args: &ReduceArgs,
     path: PathMode,
     tracks: &[inbetween::Track],
@@ -182,48 +217,7 @@ fn reduce_tracks(
     float32_times: bool,
 ) -> Result<Vec<Reduced>, Error> {
     let (doc, tracks) = (&input.doc, &input.tracks);
-    let tolerance = match args.distance {
-        Some(_) => args.tolerance,
-        None => args.input.angles.to_rad(args.tolerance),
-    } - margin;
-    if tolerance <= 0.0 {
-        return Err(InputError::new(format!(
-            "--tolerance {}: too small for keys stored as float32; give more than {}",
-            args.tolerance,
-            match args.distance {
-                Some(_) => margin,
-                None => args.input.angles.from_rad(margin),
-            }
-        ))
-        .into());
-    }
-    let floor = MIN_TOLERANCE * args.distance.unwrap_or(1.0);
-    if tolerance < floor {
-        let (least, unit) = match args.distance {
-            Some(_) => (floor, "length units"),
-            None => (
-                args.input.angles.from_rad(floor),
-                args.input.angles.as_str(),
-            ),
-        };
-        return Err(InputError::new(format!(
-            "--tolerance {:e}: below what reduce can verify (rotations carry about 1e-15 rad of \
-             round-off); give at least {least:e} {unit}",
-            args.tolerance
-        ))
-        .into());
-    }
-    let opts = ReduceOptions {
-        curve: input.opts,
-        tolerance,
-        distance: args.distance,
-        translation_tolerance: args.translation_tolerance.filter(|_| translations),
-        velocities: !args.no_velocities,
-        method: match args.method {
-            MethodArg::Greedy => Method::Greedy,
-            MethodArg::Optimal => Method::Optimal,
-        },
-    };
+    let opts = reduce_options(args, input.opts, margin, translations)?;
     let located = |e: InputError| e.at(&doc.source);
     let written: Vec<Option<Vec<f64>>> = tracks
         .iter()
@@ -271,35 +265,94 @@ fn reduce_tracks(
     })?;
     if args.verbose {
         for (t, r) in tracks.iter().zip(&reduced) {
-            let unit = |x: f64| match args.distance {
-                Some(_) => x,
-                None => args.input.angles.from_rad(x),
-            };
-            let unit_name = match args.distance {
-                Some(_) => "length units",
-                None => args.input.angles.as_str(),
-            };
-            let position = r
-                .max_position_error
-                .map_or(String::new(), |p| format!(", max position error {p:.3e}"));
-            eprintln!(
-                "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
-                 {:.3e} ({unit_name}){position}",
-                inbetween::error::shorten(t.name().unwrap_or("-")),
-                t.len(),
-                r.keys.len(),
-                100.0 * r.keys.len() as f64 / t.len() as f64,
-                unit(r.max_error),
-                unit(r.mean_error)
-            );
+            report(args, t.name(), t.len(), r);
         }
     }
     Ok(reduced)
 }
 
+/// The options of the command line for curves `curve`, the tolerance tightened by `margin` (in
+/// the tolerance's own unit), translations reduced when `translations`; a tolerance that is too
+/// small is an input error.
+pub(super) fn reduce_options(
+    args: &ReduceArgs,
+    curve: CurveOptions,
+    margin: f64,
+    translations: bool,
+) -> Result<ReduceOptions, Error> {
+    let tolerance = match args.distance {
+        Some(_) => args.tolerance,
+        None => args.input.angles.to_rad(args.tolerance),
+    } - margin;
+    if tolerance <= 0.0 {
+        return Err(InputError::new(format!(
+            "--tolerance {}: too small for keys stored as float32; give more than {}",
+            args.tolerance,
+            match args.distance {
+                Some(_) => margin,
+                None => args.input.angles.from_rad(margin),
+            }
+        ))
+        .into());
+    }
+    let floor = MIN_TOLERANCE * args.distance.unwrap_or(1.0);
+    if tolerance < floor {
+        let (least, unit) = match args.distance {
+            Some(_) => (floor, "length units"),
+            None => (
+                args.input.angles.from_rad(floor),
+                args.input.angles.as_str(),
+            ),
+        };
+        return Err(InputError::new(format!(
+            "--tolerance {:e}: below what reduce can verify (rotations carry about 1e-15 rad of \
+             round-off); give at least {least:e} {unit}",
+            args.tolerance
+        ))
+        .into());
+    }
+    let opts = ReduceOptions {
+        curve,
+        tolerance,
+        distance: args.distance,
+        translation_tolerance: args.translation_tolerance.filter(|_| translations),
+        velocities: !args.no_velocities,
+        method: match args.method {
+            MethodArg::Greedy => Method::Greedy,
+            MethodArg::Optimal => Method::Optimal,
+        },
+    };
+    Ok(opts)
+}
+
+/// `-v`'s line for a track named `name` of `len` frames reduced to `r`.
+pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Reduced) {
+    let unit = |x: f64| match args.distance {
+        Some(_) => x,
+        None => args.input.angles.from_rad(x),
+    };
+    let unit_name = match args.distance {
+        Some(_) => "length units",
+        None => args.input.angles.as_str(),
+    };
+    let position = r
+        .max_position_error
+        .map_or(String::new(), |p| format!(", max position error {p:.3e}"));
+    eprintln!(
+        "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
+         {:.3e} ({unit_name}){position}",
+        inbetween::error::shorten(name.unwrap_or("-")),
+        len,
+        r.keys.len(),
+        100.0 * r.keys.len() as f64 / len as f64,
+        unit(r.max_error),
+        unit(r.mean_error)
+    );
+}
+
 /// The scheme of the keys: `--scheme`, else slerp for glTF output (its `LINEAR` samplers play
 /// by slerp), else bezier; `input` is the input's format, which glTF output needs.
-fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
+pub(super) fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
     match (args.scheme, output_format(&args.output, input)) {
         (Some(s), _) => s.into(),
         (None, OutputFormat::Gltf(_)) => Scheme::Slerp,

@@ -13,7 +13,7 @@ OFFSET 10 0 0\n    }\n  }\n}\n";
 
 /// A smooth clip of `frames` rows at 120 fps (`Frame Time: 0.008333`), every number written
 /// with 6 decimals, the middle angles away from ±90°, nothing wrapped at ±180°.
-fn clip(frames: usize) -> String {
+pub(super) fn clip(frames: usize) -> String {
     let mut text = format!("{HIERARCHY}MOTION\nFrames: {frames}\nFrame Time: 0.008333\n");
     for i in 0..frames {
         let t = i as f64 / 120.0;
@@ -37,9 +37,17 @@ fn clip(frames: usize) -> String {
     text
 }
 
+/// What a run gave: exit status, standard error (the input's name as `SRC`), the `-o` file.
+pub(super) type Run = (Option<i32>, String, Option<Vec<u8>>);
+
 /// Runs `interp` on a file (the lean path) and on standard input (the general path) with the
 /// same arguments; returns (status, stderr, output bytes) of each.
-fn both(text: &str, args: &[&str], out_name: &str) -> [(Option<i32>, String, Option<Vec<u8>>); 2] {
+fn both(text: &str, args: &[&str], out_name: &str) -> [Run; 2] {
+    both_of("interp", text, args, out_name)
+}
+
+/// [`both`] for the subcommand `command` (`interp`, `reduce`).
+pub(super) fn both_of(command: &str, text: &str, args: &[&str], out_name: &str) -> [Run; 2] {
     let dir = tempfile::tempdir().unwrap();
     let src = dir.path().join("clip.bvh");
     std::fs::write(&src, text).unwrap();
@@ -49,7 +57,7 @@ fn both(text: &str, args: &[&str], out_name: &str) -> [(Option<i32>, String, Opt
             if lean { "lean" } else { "general" }
         ));
         let mut cmd = crate::support::bin();
-        cmd.arg("interp");
+        cmd.arg(command);
         if lean {
             cmd.arg(&src);
         } else {

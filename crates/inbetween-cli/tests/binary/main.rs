@@ -20,6 +20,7 @@ mod output;
 mod plot;
 mod readers;
 mod reading;
+mod reduce_bvh;
 mod reduce_guarantee;
 mod reliability;
 mod roundtrip;

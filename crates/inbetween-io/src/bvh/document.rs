@@ -13,6 +13,8 @@
 use super::{Clip, Joint};
 use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use glam::{DQuat, DVec3};
+use inbetween::error::InputResult;
+use inbetween::{Tcb, Track};
 use std::sync::Arc;
 
 /// Angles beyond this many degrees are reduced exactly modulo 360° before anything else
@@ -92,4 +94,30 @@ pub fn joint_track(clip: &Clip, joint: &Joint) -> Option<DocTrack> {
         tcb: Vec::new(),
         translations,
     })
+}
+
+/// The track of one joint of `clip` both as the clip's [`document`] holds it ([`joint_track`])
+/// and validated exactly as [`Document::tracks_shaped`] validates it there (`source` names the
+/// file in errors, `tcb` as there): one joint at a time, for a caller that reads the joints
+/// apart and needs the keys as read beside the track. `Ok(None)` for a joint that is not a track.
+pub fn joint_tracks(
+    clip: &Clip,
+    joint: &Joint,
+    source: &str,
+    tcb: Tcb,
+) -> InputResult<Option<(DocTrack, Track)>> {
+    let Some(doc_track) = joint_track(clip, joint) else {
+        return Ok(None);
+    };
+    let mut doc = Document {
+        source: source.to_string(),
+        fps: Some(clip.fps()),
+        rotation: None,
+        tracks: vec![doc_track],
+        named_tracks: true,
+        warnings: Vec::new(),
+        skeleton: None,
+    };
+    let track = doc.tracks_shaped(clip.fps(), tcb)?.pop();
+    Ok(doc.tracks.pop().zip(track))
 }

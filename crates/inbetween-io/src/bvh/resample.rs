@@ -3,7 +3,7 @@
 //!
 //! [`resample`] takes a [`Clip`] (read with [`parse_reader`](super::parse_reader), which never
 //! holds the file's text) and, for each joint that is a track ([`track_joints`]), builds its
-//! [`Track`] exactly as [`Document::tracks_shaped`] builds it from [`document`](super::document)
+//! [`Track`] exactly as [`Document::tracks_shaped`](crate::document::Document::tracks_shaped) builds it from [`document`](super::document)
 //! ([`track`]), its [`Curve`], bakes the curve over the clip's span at the output rate into that
 //! joint's channels (rotations as continuous Euler angles in the joint's own order, from the
 //! first row's own angles; positions), and drops the track and the curve. Joints are shared
@@ -35,10 +35,9 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
-use super::document::joint_track;
+use super::document::joint_tracks;
 use super::write::BvhWriter;
 use super::{Clip, Joint};
-use crate::document::Document;
 use glam::{DQuat, DVec3};
 use inbetween::Tcb;
 use inbetween::bake::{BakeOptions, FrameSink, bake_over};
@@ -80,23 +79,11 @@ pub fn span(clip: &Clip) -> Option<(f64, f64)> {
     Some((fps.frame_to_time(0.0), fps.frame_to_time(last as f64)))
 }
 
-/// The track of joint `joint` of `clip`, exactly as [`Document::tracks_shaped`] makes it from
+/// The track of joint `joint` of `clip`, exactly as [`Document::tracks_shaped`](crate::document::Document::tracks_shaped) makes it from
 /// the clip's [`document`](super::document::document) (`source` names the file in errors);
 /// `Ok(None)` for a joint that is not a track.
 pub fn track(clip: &Clip, joint: &Joint, source: &str, tcb: Tcb) -> InputResult<Option<Track>> {
-    let Some(doc_track) = joint_track(clip, joint) else {
-        return Ok(None);
-    };
-    let doc = Document {
-        source: source.to_string(),
-        fps: Some(clip.fps()),
-        rotation: None,
-        tracks: vec![doc_track],
-        named_tracks: true,
-        warnings: Vec::new(),
-        skeleton: None,
-    };
-    Ok(doc.tracks_shaped(clip.fps(), tcb)?.pop())
+    Ok(joint_tracks(clip, joint, source, tcb)?.map(|(_, track)| track))
 }
 
 /// The frames of every joint, at the output rate, as BVH channel values: [`resample`]'s result.

@@ -421,6 +421,9 @@ impl<'a> Frames<'a> {
             return Ok(true);
         }
         let hint = self.hint.get();
+        let at_hint = hint > a && hint < b;
+        // Whether the rotation at the hint was probed (and met the tolerance).
+        let mut probed = false;
         let curve = match self.probe(a, b, opts) {
             // Most tests miss at the frame that missed last: that frame is evaluated on the
             // probe's one segment (the curve's value to the last bit) before any curve is built.
@@ -430,9 +433,10 @@ impl<'a> Frames<'a> {
                     let q = segment_rotation(&knots, c.scheme, c.blend, self.times[k]);
                     !self.threshold.within(opts, q, self.quats[k])
                 };
-                if hint > a && hint < b && miss(hint) {
+                if at_hint && miss(hint) {
                     return Ok(false);
                 }
+                probed = at_hint;
                 self.probe_curve(&knots, a, b, opts)
             }
             None => match self.segment_curve(a, b, opts)? {
@@ -443,19 +447,23 @@ impl<'a> Frames<'a> {
         // The segment's index in that curve: after the key before `a`, if it has one.
         let start = self.key_times.map_or(self.times[a], |t| t[a]);
         let piece = curve.key_times().partition_point(|&t| t < start);
-        let within = |k: usize, q: DQuat| {
-            if !self.threshold.within(opts, q, self.quats[k]) {
-                return false;
+        let placed = |k: usize| match (self.positions, opts.translation_tolerance) {
+            (Some(p), Some(tol)) => {
+                let d = (curve.position(self.times[k]).unwrap_or(DVec3::ZERO) - p[k]).length();
+                d <= tol
             }
-            match (self.positions, opts.translation_tolerance) {
-                (Some(p), Some(tol)) => {
-                    let d = (curve.position(self.times[k]).unwrap_or(DVec3::ZERO) - p[k]).length();
-                    d <= tol
-                }
-                _ => true,
-            }
+            _ => true,
         };
-        if hint > a && hint < b && !within(hint, curve.rotation(self.times[hint])) {
+        let within =
+            |k: usize, q: DQuat| self.threshold.within(opts, q, self.quats[k]) && placed(k);
+        // A probed rotation is the curve's to the bit: only the position is left to test.
+        if at_hint
+            && !(if probed {
+                placed(hint)
+            } else {
+                within(hint, curve.rotation(self.times[hint]))
+            })
+        {
             return Ok(false);
         }
         // The frames first: most segments tested miss a frame, and the antipode's search
