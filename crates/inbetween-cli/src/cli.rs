@@ -100,9 +100,15 @@ pub struct ReduceArgs {
     #[arg(long, value_name = "D", value_parser = parse_positive)]
     pub distance: Option<f64>,
 
-    /// Largest position error (length units) for tracks with translations (required for them).
+    /// Largest position error (length units) for tracks with translations (required for them;
+    /// glTF output: LINEAR translation channels are reduced under it, and kept without it).
     #[arg(long, value_name = "TOL", value_parser = parse_positive)]
     pub translation_tolerance: Option<f64>,
+
+    /// glTF output: largest error of the animation's LINEAR scale channels (the length of the
+    /// difference of the scale vectors), which are then reduced too; without it they are kept.
+    #[arg(long, value_name = "TOL", value_parser = parse_positive)]
+    pub scale_tolerance: Option<f64>,
 
     /// One set of key times for all tracks (pose keys), every track within the tolerance.
     #[arg(long)]

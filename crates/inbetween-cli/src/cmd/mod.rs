@@ -6,5 +6,6 @@ pub mod interp;
 pub mod plot;
 pub mod reduce;
 pub mod reduce_bvh;
+pub mod reduce_gltf;
 pub mod settings;
 pub mod skeleton;

@@ -7,8 +7,6 @@ use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{CurveOptions, Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
-use inbetween_io::gltf::ContainerFormat;
-use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
 use inbetween_io::{Format, OutputFormat};
@@ -33,10 +31,19 @@ pub fn run(
     let input = read_curves(&args.input, &args.curve, &|f| scheme(args, f), stdin, warn)?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match keys_format(args, input.format)? {
-        OutputFormat::Gltf(container) => return to_gltf(args, &input, container),
+        OutputFormat::Gltf(container) => {
+            return super::reduce_gltf::to_gltf(args, &input, container);
+        }
         OutputFormat::Doc(f) => f,
         _ => unreachable!("keys_format gives keys documents and glTF"),
     };
+    if let Some(s) = args.scale_tolerance {
+        return Err(InputError::new(format!(
+            "--scale-tolerance {s}: only glTF output (-o small.glb from a glTF input) has scale \
+             channels to reduce; csv and json keys carry rotations and translations"
+        ))
+        .into());
+    }
     if tracks.iter().any(|t| t.translations().is_some()) && args.translation_tolerance.is_none() {
         return Err(InputError::new(format!(
             "{}: the tracks have translations: give their tolerance with --translation-tolerance \
@@ -203,13 +210,13 @@ const MIN_TOLERANCE: f64 = 1e-9;
 
 /// How much a glTF output's tolerance is tightened (radians, or D times this with
 /// `--distance D`): the keys are stored as float32 (about 2.4e-7 rad at most).
-const FLOAT32_MARGIN: f64 = 1e-6;
+pub(super) const FLOAT32_MARGIN: f64 = 1e-6;
 
 /// Every track reduced with the tolerance tightened by `margin` (in the tolerance's own unit),
 /// translations reduced too when `translations`, and for glTF output (`float32_times`) verified
 /// on the key times as written (float32) at the frame times, as a player evaluates them; `-v`
 /// reports each track.
-fn reduce_tracks(
+pub(super) fn reduce_tracks(
     args: &ReduceArgs,
     input: &Curves,
     margin: f64,
@@ -358,41 +365,4 @@ pub(super) fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
         (None, OutputFormat::Gltf(_)) => Scheme::Slerp,
         (None, _) => Scheme::Bezier,
     }
-}
-
-/// `reduce anim.glb -o small.glb`: each rotation channel repointed to a `LINEAR`
-/// sampler with its kept keys, which a glTF player interpolates by slerp, as verified; the rest
-/// of the asset (translation channels included) as read.
-fn to_gltf(args: &ReduceArgs, input: &Curves, container: ContainerFormat) -> Result<(), Error> {
-    let Some(clip) = &input.gltf else {
-        return Err(InputError::new(
-            "glTF output writes keys into the input asset: the input must be glTF (.gltf or .glb)",
-        )
-        .into());
-    };
-    if input.opts.scheme != Scheme::Slerp {
-        return Err(InputError::new(
-            "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
-             play as reduced; use --scheme slerp, or write csv or json",
-        )
-        .into());
-    }
-    let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
-    let reduced = reduce_tracks(args, input, margin, false, true)?;
-    let keys: Vec<ChannelKeys> = input
-        .tracks
-        .iter()
-        .zip(&reduced)
-        .map(|(t, r)| ChannelKeys {
-            name: t.name().unwrap_or_default(),
-            times: r.keys.iter().map(|&i| t.times()[i]).collect(),
-            rotations: r.keys.iter().map(|&i| t.rotations()[i]).collect(),
-        })
-        .collect();
-    let container = super::settings::gltf_container(&args.output, container, clip);
-    let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
-    let mut out = Output::open(args.output.output.as_deref())?;
-    std::io::Write::write_all(&mut out, &bytes)?;
-    out.commit()?;
-    Ok(())
 }

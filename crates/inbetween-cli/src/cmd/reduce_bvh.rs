@@ -39,6 +39,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         || curve.start_velocity.is_some()
         || curve.end_velocity.is_some()
         || args.shared_keys
+        || args.scale_tolerance.is_some()
     {
         return None;
     }

@@ -1,0 +1,172 @@
+//! `reduce anim.glb -o small.glb`: the kept keys written back into the asset. Each rotation
+//! channel of a track is repointed to a `LINEAR` sampler with its kept keys, which a glTF player
+//! interpolates by slerp, as verified; with `--translation-tolerance` and `--scale-tolerance`
+//! the animations' `LINEAR` translation and scale channels are reduced too, played by lerp as
+//! glTF plays them (docs/spec.md §5a, glTF output).
+
+use super::reduce::{FLOAT32_MARGIN, reduce_options, reduce_tracks};
+use super::settings::Curves;
+use crate::cli::ReduceArgs;
+use crate::output::Output;
+use glam::DQuat;
+use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each};
+use inbetween::{Error, InputError, Scheme};
+use inbetween_io::gltf::document::{GltfClip, Mode};
+use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
+use inbetween_io::gltf::{ContainerFormat, Interpolation, TranslationChannel, Values};
+use std::collections::HashSet;
+
+/// Runs `reduce` for glTF output (see the module documentation).
+pub(super) fn to_gltf(
+    args: &ReduceArgs,
+    input: &Curves,
+    container: ContainerFormat,
+) -> Result<(), Error> {
+    let Some(clip) = &input.gltf else {
+        return Err(InputError::new(
+            "glTF output writes keys into the input asset: the input must be glTF (.gltf or .glb)",
+        )
+        .into());
+    };
+    if input.opts.scheme != Scheme::Slerp {
+        return Err(InputError::new(
+            "glTF output: a glTF LINEAR sampler plays keys by slerp, so only --scheme slerp's keys \
+             play as reduced; use --scheme slerp, or write csv or json",
+        )
+        .into());
+    }
+    let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
+    let reduced = reduce_tracks(args, input, margin, false, true)?;
+    let mut keys = Vec::with_capacity(reduced.len());
+    for (t, r) in input.tracks.iter().zip(&reduced) {
+        let name = t.name().unwrap_or_default();
+        let times = r.keys.iter().map(|&i| t.times()[i]).collect();
+        let rotations = r.keys.iter().map(|&i| t.rotations()[i]).collect();
+        keys.push(ChannelKeys::of_track(clip, name, times, rotations)?);
+    }
+    keys.extend(vector_keys(args, input, clip)?);
+    let container = super::settings::gltf_container(&args.output, container, clip);
+    let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
+    let mut out = Output::open(args.output.output.as_deref())?;
+    std::io::Write::write_all(&mut out, &bytes)?;
+    out.commit()?;
+    Ok(())
+}
+
+/// A translation or scale channel to reduce: the animation's position in the clip, the channel,
+/// and what it holds (for messages).
+type VectorChannel<'a> = (usize, &'a TranslationChannel, &'static str);
+
+/// The kept keys of the clip's `LINEAR` translation channels (with `--translation-tolerance`)
+/// and scale channels (with `--scale-tolerance`) of more than two keys, in the chosen animations
+/// and, with `--tracks`, on the nodes of the chosen tracks. Each is reduced as the positions of a
+/// slerp curve (linear between keys, as glTF's lerp) under its tolerance, verified at every key
+/// of the channel; both curves being linear between the channel's keys, the bound then holds at
+/// every time. The kept values and times are the channel's own float32 numbers, written back
+/// unchanged; a channel that keeps every key is left as it was.
+fn vector_keys(
+    args: &ReduceArgs,
+    input: &Curves,
+    clip: &GltfClip,
+) -> Result<Vec<ChannelKeys>, Error> {
+    let nodes = args
+        .input
+        .tracks
+        .is_some()
+        .then(|| track_nodes(input, clip));
+    let mut keys = Vec::new();
+    for (tolerance, what) in [
+        (args.translation_tolerance, "translation"),
+        (args.scale_tolerance, "scale"),
+    ] {
+        let Some(tolerance) = tolerance else { continue };
+        let mut channels: Vec<VectorChannel> = Vec::new();
+        for (a, anim) in clip.animations().iter().enumerate() {
+            let of_kind = match what {
+                "translation" => anim.translations(),
+                _ => anim.scales(),
+            };
+            channels.extend(
+                of_kind
+                    .iter()
+                    .filter(|c| c.interpolation() == Interpolation::Linear && c.times().len() > 2)
+                    .filter(|c| nodes.as_ref().is_none_or(|n| n.contains(&(a, c.node()))))
+                    .map(|c| (a, c, what)),
+            );
+        }
+        let opts = ReduceOptions {
+            translation_tolerance: Some(tolerance),
+            ..reduce_options(args, input.opts, 0.0, true)?
+        };
+        let reduced = reduce_vectors(&channels, &opts).map_err(|e| match e {
+            Error::Input(e) => Error::Input(e.at(clip.asset().source())),
+            other => other,
+        })?;
+        for (&(a, ch, what), r) in channels.iter().zip(&reduced) {
+            if args.verbose {
+                report(clip, a, ch, what, r);
+            }
+            if r.keys.len() == ch.times().len() {
+                continue; // every key kept: the channel stays as it was
+            }
+            keys.push(ChannelKeys {
+                animation: a,
+                channel: ch.index(),
+                times: r.keys.iter().map(|&i| ch.times()[i]).collect(),
+                values: Values::Vectors(r.keys.iter().map(|&i| ch.values()[i]).collect()),
+            });
+        }
+    }
+    Ok(keys)
+}
+
+/// Each channel's values reduced as the positions of a track that does not turn.
+fn reduce_vectors(
+    channels: &[VectorChannel<'_>],
+    opts: &ReduceOptions,
+) -> Result<Vec<Reduced>, Error> {
+    let still: Vec<Vec<DQuat>> = channels
+        .iter()
+        .map(|(_, c, _)| vec![DQuat::IDENTITY; c.times().len()])
+        .collect();
+    let frames: Vec<TrackFrames> = channels
+        .iter()
+        .zip(&still)
+        .map(|(&(_, c, _), rotations)| TrackFrames {
+            times: c.times(),
+            rotations,
+            positions: Some(c.values()),
+            euler: None,
+            key_times: None,
+        })
+        .collect();
+    reduce_each(&frames, opts)
+}
+
+/// `(animation position, node)` of every track of the input.
+fn track_nodes(input: &Curves, clip: &GltfClip) -> HashSet<(usize, usize)> {
+    input
+        .tracks
+        .iter()
+        .filter_map(|t| clip.source_of(t.name()?, Mode::Frames))
+        .filter_map(|s| {
+            let anim = &clip.animations()[s.animation];
+            let ch = anim.rotations().iter().find(|c| c.index() == s.channel)?;
+            Some((s.animation, ch.node()))
+        })
+        .collect()
+}
+
+/// `-v`'s line for a reduced translation or scale channel.
+fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Reduced) {
+    let len = ch.times().len();
+    eprintln!(
+        "inbetween: reduce: {} ({what} of node \"{}\"): {len} keys, {} kept ({:.1} %), max \
+         error {:.3e}",
+        clip.channel_label(a, ch.index()),
+        inbetween::error::shorten(ch.node_name()),
+        r.keys.len(),
+        100.0 * r.keys.len() as f64 / len as f64,
+        r.max_position_error.unwrap_or(0.0),
+    );
+}
