@@ -7,5 +7,6 @@ pub mod plot;
 pub mod reduce;
 pub mod reduce_bvh;
 pub mod reduce_gltf;
+pub mod reduce_rounded;
 pub mod settings;
 pub mod skeleton;

@@ -18,13 +18,6 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    if let Some(p) = args.output.precision {
-        return Err(InputError::new(format!(
-            "--precision {p}: reduce writes its keys with every digit, as its guarantee was \
-             checked on them; rounded keys can miss the tolerance"
-        ))
-        .into());
-    }
     if let Some(done) = super::reduce_bvh::lean(args, warn) {
         return done;
     }
@@ -52,24 +45,36 @@ pub fn run(
         ))
         .into());
     }
-    let reduced = reduce_tracks(args, &input, 0.0, true, false)?;
+    let (frame_fps, _) = rates(doc, args.curve.fps);
+    let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
     // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
-    let out_doc = Document {
+    let doc_of = |reduced: &[Reduced]| Document {
         source: doc.source.clone(),
         fps: doc.fps,
         rotation: doc.rotation,
         tracks: doc
             .tracks
             .iter()
-            .zip(&reduced)
+            .zip(reduced)
             .map(|(d, r)| kept(d, r))
             .collect(),
         named_tracks: doc.named_tracks,
         warnings: Vec::new(),
         skeleton: None,
     };
-    let (frame_fps, _) = rates(doc, args.curve.fps);
-    let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
+    let reduced = match args.output.precision {
+        None => reduce_tracks(args, &input, (0.0, 0.0), true, false)?,
+        Some(_) => {
+            let encode = |r: &[Reduced]| -> Result<Vec<u8>, Error> {
+                let mut bytes = Vec::new();
+                write_keys(&mut bytes, &doc_of(r), format, style, frame_fps)?;
+                Ok(bytes)
+            };
+            super::reduce_rounded::as_written(args, &input, (format, style, frame_fps), &encode)?
+        }
+    };
+    report_all(args, &input, &reduced);
+    let out_doc = doc_of(&reduced);
     let skeleton = doc.skeleton.is_some();
     write(
         args,
@@ -212,14 +217,14 @@ const MIN_TOLERANCE: f64 = 1e-9;
 /// `--distance D`): the keys are stored as float32 (about 2.4e-7 rad at most).
 pub(super) const FLOAT32_MARGIN: f64 = 1e-6;
 
-/// Every track reduced with the tolerance tightened by `margin` (in the tolerance's own unit),
-/// translations reduced too when `translations`, and for glTF output (`float32_times`) verified
-/// on the key times as written (float32) at the frame times, as a player evaluates them; `-v`
-/// reports each track.
+/// Every track reduced with the tolerances tightened by `margin` (rotation, in the tolerance's
+/// own unit; position, in length units), translations reduced too when `translations`, and for
+/// glTF output (`float32_times`) verified on the key times as written (float32) at the frame
+/// times, as a player evaluates them.
 pub(super) fn reduce_tracks(
     args: &ReduceArgs,
     input: &Curves,
-    margin: f64,
+    margin: (f64, f64),
     translations: bool,
     float32_times: bool,
 ) -> Result<Vec<Reduced>, Error> {
@@ -270,21 +275,25 @@ pub(super) fn reduce_tracks(
         Error::Input(e) => Error::Input(located(e)),
         other => other,
     })?;
-    if args.verbose {
-        for (t, r) in tracks.iter().zip(&reduced) {
-            report(args, t.name(), t.len(), r);
-        }
-    }
     Ok(reduced)
 }
 
-/// The options of the command line for curves `curve`, the tolerance tightened by `margin` (in
-/// the tolerance's own unit), translations reduced when `translations`; a tolerance that is too
-/// small is an input error.
+/// `-v`'s line for each track of `input` reduced to `reduced`.
+pub(super) fn report_all(args: &ReduceArgs, input: &Curves, reduced: &[Reduced]) {
+    if args.verbose {
+        for (t, r) in input.tracks.iter().zip(reduced) {
+            report(args, t.name(), t.len(), r);
+        }
+    }
+}
+
+/// The options of the command line for curves `curve`, the tolerances tightened by `margin`
+/// (rotation, in the tolerance's own unit; position, in length units), translations reduced
+/// when `translations`; a tolerance that is too small is an input error.
 pub(super) fn reduce_options(
     args: &ReduceArgs,
     curve: CurveOptions,
-    margin: f64,
+    (margin, position_margin): (f64, f64),
     translations: bool,
 ) -> Result<ReduceOptions, Error> {
     let tolerance = match args.distance {
@@ -322,7 +331,10 @@ pub(super) fn reduce_options(
         curve,
         tolerance,
         distance: args.distance,
-        translation_tolerance: args.translation_tolerance.filter(|_| translations),
+        translation_tolerance: args
+            .translation_tolerance
+            .filter(|_| translations)
+            .map(|t| t - position_margin),
         velocities: !args.no_velocities,
         method: match args.method {
             MethodArg::Greedy => Method::Greedy,

@@ -40,6 +40,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         || curve.end_velocity.is_some()
         || args.shared_keys
         || args.scale_tolerance.is_some()
+        || args.output.precision.is_some()
     {
         return None;
     }
@@ -65,7 +66,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
     let fps = curve.fps.unwrap_or(frame_fps);
     resample::span(&clip).filter(|(a, b)| fps.in_range(*a) && fps.in_range(*b))?;
     let curves = curve_options(curve, scheme(args, Format::Bvh), fps, args.input.angles);
-    let opts = reduce_options(args, curves, 0.0, true).ok()?;
+    let opts = reduce_options(args, curves, (0.0, 0.0), true).ok()?;
     let tcb = tcb_flags(curve);
     let done: Vec<JointDone> = inbetween::parallel::map(&joints, |&j| {
         let joint = &clip.joints()[j];

@@ -36,7 +36,8 @@ pub(super) fn to_gltf(
         .into());
     }
     let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
-    let reduced = reduce_tracks(args, input, margin, false, true)?;
+    let reduced = reduce_tracks(args, input, (margin, 0.0), false, true)?;
+    super::reduce::report_all(args, input, &reduced);
     let mut keys = Vec::with_capacity(reduced.len());
     for (t, r) in input.tracks.iter().zip(&reduced) {
         let name = t.name().unwrap_or_default();
@@ -96,7 +97,7 @@ fn vector_keys(
         }
         let opts = ReduceOptions {
             translation_tolerance: Some(tolerance),
-            ..reduce_options(args, input.opts, 0.0, true)?
+            ..reduce_options(args, input.opts, (0.0, 0.0), true)?
         };
         let reduced = reduce_vectors(&channels, &opts).map_err(|e| match e {
             Error::Input(e) => Error::Input(e.at(clip.asset().source())),

@@ -323,3 +323,86 @@ fn a_held_pose_with_a_half_turn_blip_reduces_promptly_under_minaccel() {
         assert!(rot_angle(*g, *w).to_degrees() <= 0.01, "frame {k}");
     }
 }
+
+/// A wobble about two axes at 60 fps, `n` frames, as CSV text, and its rotations.
+fn wobble_csv(n: usize) -> (String, Vec<DQuat>) {
+    let mut text = String::from("time,w,x,y,z\n");
+    let mut quats = Vec::with_capacity(n);
+    for k in 0..n {
+        let t = k as f64 / 60.0;
+        let q = DQuat::from_rotation_z(1.3 * (2.1 * t).sin())
+            * DQuat::from_rotation_x(0.7 * (3.4 * t + 0.5).sin());
+        text.push_str(&format!("{t:?},{:?},{:?},{:?},{:?}\n", q.w, q.x, q.y, q.z));
+        quats.push(q);
+    }
+    (text, quats)
+}
+
+/// `reduce --precision N`: the keys (rotations and velocities) are written with N digits after
+/// the point, and those numbers (read back by `interp`, at the frames' rate) give every frame
+/// back within the tolerance. With 4 digits the rounding alone (up to 5e-5 per quaternion
+/// component, about 0.01°) would push bezier's keys at 0.02° and slerp's at 0.1° over it: `-v`
+/// shows the tolerance was tightened. With 2 digits no tightening can help (the rounding alone
+/// misses), an input error saying so.
+#[test]
+fn rounded_keys_meet_the_tolerance_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (text, want) = wobble_csv(301);
+    let clip = dir.path().join("wobble.csv");
+    std::fs::write(&clip, text).unwrap();
+    let keys = dir.path().join("keys.csv");
+    for (scheme, tol) in [("bezier", 0.02), ("slerp", 0.1)] {
+        let o = bin()
+            .args([
+                "reduce",
+                "--tolerance",
+                &tol.to_string(),
+                "--precision",
+                "4",
+                "-v",
+            ])
+            .args(["--scheme", scheme])
+            .arg(&clip)
+            .arg("-o")
+            .arg(&keys)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{err}");
+        let tightened = err
+            .lines()
+            .find_map(|l| l.split("tightened by ").nth(1))
+            .unwrap_or_else(|| panic!("{err}"));
+        assert!(tightened.parse::<f64>().unwrap() > 0.0, "{err}");
+        let written = std::fs::read_to_string(&keys).unwrap();
+        // Every number but the time (always shortest round trip) has 4 digits at most.
+        for field in written.lines().skip(1).flat_map(|l| l.split(',').skip(1)) {
+            if let Some((_, decimals)) = field.split_once('.') {
+                assert!(decimals.len() <= 4, "{field}");
+            }
+        }
+        let mut interp = bin();
+        interp
+            .args(["interp", "--scheme", scheme, "--fps", "60"])
+            .arg(&keys);
+        let got = csv_rotations(&stdout_of(&mut interp));
+        assert_eq!(got.len(), want.len());
+        for (k, (g, w)) in got.iter().zip(&want).enumerate() {
+            let d = rot_angle(*g, *w).to_degrees();
+            assert!(d <= tol, "{scheme}: frame {k}: {d} deg");
+        }
+    }
+    let o = bin()
+        .args(["reduce", "--tolerance", "0.02", "--precision", "2"])
+        .arg(&clip)
+        .arg("-o")
+        .arg(&keys)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("--precision 2: too few digits for --tolerance 0.02"),
+        "{err}"
+    );
+}

@@ -149,7 +149,7 @@ pub fn write_keys<W: Write>(
                             Some(w) => {
                                 for x in w {
                                     buf.push(b',');
-                                    nums.shortest(&mut buf, x);
+                                    nums.float(&mut buf, x);
                                 }
                             }
                             None => buf.extend_from_slice(b",,,"),
@@ -240,7 +240,7 @@ pub fn write_keys<W: Write>(
                             if j > 0 {
                                 buf.extend_from_slice(b", ");
                             }
-                            nums.shortest(&mut buf, *x);
+                            nums.float(&mut buf, *x);
                         }
                         buf.push(b']');
                     }

@@ -65,6 +65,7 @@ use greedy::{farthest_by, greedy_keys};
 pub use optimal::optimal_window;
 use optimal::{Edge, SlerpSpeeds, optimal_keys, shortest_path};
 pub use shared::reduce_shared;
+pub use verify::curve_errors;
 use verify::{Errors, shared_verified};
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
