@@ -10,10 +10,11 @@ use crate::cli::ReduceArgs;
 use crate::output::Output;
 use glam::DQuat;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each};
+use inbetween::rotation::quat::rotation_angle_between;
 use inbetween::{Error, InputError, Scheme};
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
-use inbetween_io::gltf::{ContainerFormat, Interpolation, TranslationChannel, Values};
+use inbetween_io::gltf::{Asset, ContainerFormat, Interpolation, TranslationChannel, Values};
 use std::collections::HashSet;
 
 /// Runs `reduce` for glTF output (see the module documentation).
@@ -48,6 +49,7 @@ pub(super) fn to_gltf(
     keys.extend(vector_keys(args, input, clip)?);
     let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
+    check_written(args, input, clip, &keys, &bytes)?;
     let mut out = Output::open(args.output.output.as_deref())?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
@@ -170,4 +172,86 @@ fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Re
         100.0 * r.keys.len() as f64 / len as f64,
         r.max_position_error.unwrap_or(0.0),
     );
+}
+
+/// The guarantee checked on the asset as written (float32 times and values, normalised and
+/// sign-continuous rotations): the asset is read back as any input is, and each reduced
+/// channel sampled as glTF 2.0 Appendix C plays it — a track's rotation channel at every frame
+/// time, a translation or scale channel at every key time of the original — must meet its
+/// tolerance. A miss, or an asset that does not read back, is an internal error (the float32
+/// margin and the verification on float32 times are meant to make it impossible).
+fn check_written(
+    args: &ReduceArgs,
+    input: &Curves,
+    clip: &GltfClip,
+    keys: &[ChannelKeys],
+    bytes: &[u8],
+) -> Result<(), Error> {
+    let internal = |m: String| Error::Internal(format!("reduce to glTF: {m}"));
+    let base = args.output.folder().or(clip.asset().base_dir());
+    let back = Asset::from_slice(bytes, clip.asset().source(), base)
+        .and_then(|a| a.animations())
+        .map_err(|e| {
+            internal(format!(
+                "the asset written does not read back: {}",
+                e.message()
+            ))
+        })?;
+    let opts = reduce_options(args, input.opts, (0.0, 0.0), false)?;
+    let written = |k: &ChannelKeys| &back[clip.animations()[k.animation].index()];
+    for (t, k) in input.tracks.iter().zip(keys) {
+        let Some(ch) = written(k)
+            .rotations()
+            .iter()
+            .find(|c| c.index() == k.channel)
+        else {
+            return Err(internal(format!("channel {} is no rotation", k.channel)));
+        };
+        for (&time, &q) in t.times().iter().zip(t.rotations()) {
+            let theta = rotation_angle_between(ch.sample(time), q);
+            let e = match opts.distance {
+                Some(d) => 2.0 * d * (0.5 * theta).sin(),
+                None => theta,
+            };
+            if e.is_nan() || e > opts.tolerance {
+                return Err(internal(format!(
+                    "track {:?} as written misses its frame at {time} s by {e:e}, more than \
+                     {:e}",
+                    t.name().unwrap_or_default(),
+                    opts.tolerance
+                )));
+            }
+        }
+    }
+    for k in &keys[input.tracks.len()..] {
+        let anim = &clip.animations()[k.animation];
+        let (was, tolerance) = match anim.translations().iter().find(|c| c.index() == k.channel) {
+            Some(c) => (c, args.translation_tolerance),
+            None => (
+                anim.scales()
+                    .iter()
+                    .find(|c| c.index() == k.channel)
+                    .unwrap(),
+                args.scale_tolerance,
+            ),
+        };
+        let tolerance = tolerance.unwrap_or_default();
+        let now = written(k)
+            .translations()
+            .iter()
+            .chain(written(k).scales())
+            .find(|c| c.index() == k.channel)
+            .ok_or_else(|| internal(format!("channel {} is gone", k.channel)))?;
+        for (&time, v) in was.times().iter().zip(was.values()) {
+            let d = (now.sample(time) - *v).length();
+            if d.is_nan() || d > tolerance {
+                return Err(internal(format!(
+                    "channel {} as written misses its key at {time} s by {d:e}, more than \
+                     {tolerance:e}",
+                    k.channel
+                )));
+            }
+        }
+    }
+    Ok(())
 }

@@ -272,6 +272,11 @@ impl Asset {
         &self.source
     }
 
+    /// The folder its relative URIs were resolved in (`None`: read from bytes alone).
+    pub fn base_dir(&self) -> Option<&Path> {
+        self.base_dir.as_deref()
+    }
+
     /// Whether it was read from a `.glb` container or `.gltf` JSON.
     pub fn container(&self) -> ContainerFormat {
         self.container
