@@ -45,7 +45,7 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    let (doc, in_format, _) = read_input(&args.input, args.fps, Mode::Keys, stdin, warn)?;
+    let (doc, in_format, _) = read_input(&args.input, args.fps, (Mode::Keys, true), stdin, warn)?;
     let template = args
         .skeleton
         .as_deref()

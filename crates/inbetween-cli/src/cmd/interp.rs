@@ -58,8 +58,13 @@ pub fn run(
         }
         _ => &args.curve,
     };
+    // glTF output (the input is then glTF) bakes the translation channels itself.
+    let translations = !matches!(
+        output_format(&args.output, Format::Gltf),
+        OutputFormat::Gltf(_)
+    );
     let input = read_curves_in(
-        Mode::Sampled,
+        (Mode::Sampled, translations),
         &args.input,
         curve_args,
         &|f| scheme(args, f),

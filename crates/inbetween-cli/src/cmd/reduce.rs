@@ -1,12 +1,13 @@
 //! `inbetween reduce`: dense frames in, the fewest keys out that `interp` turns back into them
 //! (the library's [`inbetween::reduce`]).
 
-use super::settings::{Curves, output_format, rates, read_curves};
+use super::settings::{Curves, output_format, rates, read_curves_in};
 use crate::cli::{MethodArg, ReduceArgs};
 use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{CurveOptions, Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
+use inbetween_io::gltf::document::Mode;
 use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
 use inbetween_io::{Format, OutputFormat};
@@ -21,7 +22,19 @@ pub fn run(
     if let Some(done) = super::reduce_bvh::lean(args, warn) {
         return done;
     }
-    let input = read_curves(&args.input, &args.curve, &|f| scheme(args, f), stdin, warn)?;
+    // glTF output (the input is then glTF) keeps or reduces the translation channels itself.
+    let translations = !matches!(
+        output_format(&args.output, Format::Gltf),
+        OutputFormat::Gltf(_)
+    );
+    let input = read_curves_in(
+        (Mode::Frames, translations),
+        &args.input,
+        &args.curve,
+        &|f| scheme(args, f),
+        stdin,
+        warn,
+    )?;
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match keys_format(args, input.format)? {
         OutputFormat::Gltf(container) => {

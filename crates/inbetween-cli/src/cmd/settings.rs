@@ -86,11 +86,12 @@ pub fn csv_rate_warning(doc: &Document, input: Format, skeleton: bool) -> Option
 /// Reads the whole input (a file, or `stdin` for `-`/none) and parses it into a document.
 /// Warnings found while reading go to `warn`. A glTF input is read at `fps` (`--fps`, else 30:
 /// its keys snap to that rate's frames and, for [`Mode::Frames`], its `STEP` and `CUBICSPLINE`
-/// channels are baked at it), and its asset comes back for glTF output.
+/// channels are baked at it), and its asset comes back for glTF output; without `translations`
+/// (glTF output, which writes the translation channels itself) its tracks have none.
 pub fn read_input(
     args: &InputArgs,
     fps: Option<Fps>,
-    mode: Mode,
+    (mode, translations): (Mode, bool),
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(Document, Format, Option<Arc<GltfClip>>), InputError> {
@@ -118,7 +119,10 @@ pub fn read_input(
         let asset =
             Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
         crate::output::protect_inputs(asset.referenced_files());
-        let clip = GltfClip::new(asset, args.animation.as_deref())?;
+        let mut clip = GltfClip::new(asset, args.animation.as_deref())?;
+        if !translations {
+            clip = clip.without_translations();
+        }
         let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
         (doc, Format::Gltf, Some(Arc::new(clip)))
     } else {
@@ -251,12 +255,13 @@ pub fn read_curves(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<Curves, InputError> {
-    read_curves_in(Mode::Frames, input, curve, scheme, stdin, warn)
+    read_curves_in((Mode::Frames, true), input, curve, scheme, stdin, warn)
 }
 
-/// [`read_curves`], a glTF input's tracks read for `mode` (interp: [`Mode::Sampled`]).
+/// [`read_curves`], a glTF input's tracks read for `mode` (interp: [`Mode::Sampled`]), with
+/// their nodes' translations when `translations` (see [`read_input`]).
 pub fn read_curves_in(
-    mode: Mode,
+    mode: (Mode, bool),
     input: &InputArgs,
     curve: &CurveArgs,
     scheme: &dyn Fn(Format) -> Scheme,

@@ -1293,3 +1293,56 @@ fn reduce_to_glb_is_smaller_than_its_input() {
         assert!(after.len() <= before.len(), "{after:?}, before {before:?}");
     }
 }
+
+/// A translation channel on other key times than its node's rotation is sampled at the
+/// rotation keys for keys documents, with a warning; glTF output bakes (interp) or keeps and
+/// reduces (reduce) the translation channel itself, so the warning does not apply there and is
+/// not printed. The asset: walk.gltf with Arm (rotation keys at frames 5..=20) also translated
+/// on Hips' 31 times.
+#[test]
+fn translation_warnings_only_where_they_apply() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut json = walk_json();
+    let walk = &mut json["animations"][0];
+    let hips_translation = walk["samplers"][1].clone();
+    walk["samplers"]
+        .as_array_mut()
+        .unwrap()
+        .push(hips_translation);
+    let arm = json!({"sampler": 5, "target": {"node": 1, "path": "translation"}});
+    walk["channels"].as_array_mut().unwrap().push(arm);
+    let src = write_walk(dir.path(), &json);
+    let says = "translation channel 5 has other key times than the rotation";
+    let (json_out, glb, keys, small) = (
+        dir.path().join("out.json"),
+        dir.path().join("out.glb"),
+        dir.path().join("keys.json"),
+        dir.path().join("small.glb"),
+    );
+    let walk_only: &[&std::ffi::OsStr] = args!("--animation", "Walk", "--tolerance", "0.5");
+    let err = ok(args!(
+        "interp",
+        &src,
+        "--animation",
+        "Walk",
+        "-o",
+        &json_out
+    ));
+    assert!(err.contains(says), "{err}");
+    let err = ok(args!("interp", &src, "--animation", "Walk", "-o", &glb));
+    assert!(!err.contains("translation channel"), "{err}");
+    let tolerance: &[&std::ffi::OsStr] = args!("--translation-tolerance", "0.01");
+    let err = ok(&[
+        args!("reduce", &src),
+        walk_only,
+        tolerance,
+        args!("-o", &keys),
+    ]
+    .concat());
+    assert!(err.contains(says), "{err}");
+    let err = ok(&[args!("reduce", &src), walk_only, args!("-o", &small)].concat());
+    assert!(!err.contains("translation channel"), "{err}");
+    // The bake still carries Arm's translation, on the bake's times, as the asset plays it.
+    let back = Asset::read_path(&glb).unwrap();
+    assert_eq!(back.animations().unwrap()[0].translations().len(), 2);
+}

@@ -207,6 +207,14 @@ impl GltfClip {
         })
     }
 
+    /// The clip without its tracks' translations: for an output that writes the translation
+    /// channels themselves (glTF), so that [`GltfClip::document`] neither samples them at the
+    /// rotation keys nor warns that it does.
+    pub fn without_translations(mut self) -> GltfClip {
+        self.translations.fill(None);
+        self
+    }
+
     /// The asset as read.
     pub fn asset(&self) -> &Asset {
         &self.asset
