@@ -21,6 +21,7 @@ mod output;
 mod plot;
 mod readers;
 mod reading;
+mod readme;
 mod reduce_bvh;
 mod reduce_guarantee;
 mod reliability;
