@@ -1,6 +1,8 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 
-use super::settings::{curve_options, output_format, read_curves_in, tcb_flags};
+use super::settings::{
+    curve_options, output_format, read_curves_in, tcb_flags, tracks_take_translations,
+};
 use crate::cli::{CurveArgs, InterpArgs, PathArg, SpanArg};
 use crate::output::{Output, WriteBehind};
 use glam::DQuat;
@@ -58,13 +60,8 @@ pub fn run(
         }
         _ => &args.curve,
     };
-    // glTF output (the input is then glTF) bakes the translation channels itself.
-    let translations = !matches!(
-        output_format(&args.output, Format::Gltf),
-        OutputFormat::Gltf(_)
-    );
     let input = read_curves_in(
-        (Mode::Sampled, translations),
+        (Mode::Sampled, tracks_take_translations(&args.output)),
         &args.input,
         curve_args,
         &|f| scheme(args, f),

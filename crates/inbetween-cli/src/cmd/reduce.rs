@@ -1,7 +1,7 @@
 //! `inbetween reduce`: dense frames in, the fewest keys out that `interp` turns back into them
 //! (the library's [`inbetween::reduce`]).
 
-use super::settings::{Curves, output_format, rates, read_curves_in};
+use super::settings::{Curves, output_format, rates, read_curves_in, tracks_take_translations};
 use crate::cli::{MethodArg, ReduceArgs};
 use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
@@ -22,13 +22,8 @@ pub fn run(
     if let Some(done) = super::reduce_bvh::lean(args, warn) {
         return done;
     }
-    // glTF output (the input is then glTF) keeps or reduces the translation channels itself.
-    let translations = !matches!(
-        output_format(&args.output, Format::Gltf),
-        OutputFormat::Gltf(_)
-    );
     let input = read_curves_in(
-        (Mode::Frames, translations),
+        (Mode::Frames, tracks_take_translations(&args.output)),
         &args.input,
         &args.curve,
         &|f| scheme(args, f),

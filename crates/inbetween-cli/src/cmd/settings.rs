@@ -339,6 +339,12 @@ pub fn read_curves_in(
     })
 }
 
+/// Whether a glTF input's tracks take their nodes' translations ([`read_input`]): not for glTF
+/// output, which writes (bakes, keeps or reduces) the translation channels itself.
+pub fn tracks_take_translations(args: &OutputArgs) -> bool {
+    !matches!(output_format(args, Format::Gltf), OutputFormat::Gltf(_))
+}
+
 /// The output format: `--output-format`, else the extension of `-o` (`.csv`, `.json`, `.npy`,
 /// any case), else the input's format.
 pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {

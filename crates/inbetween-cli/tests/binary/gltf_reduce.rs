@@ -38,6 +38,20 @@ fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
 }
 
+/// `reduce SRC --animation spawn --tolerance 0.5 EXTRA -o OUT`, which must succeed; OUT read.
+fn reduce_spawn(src: &Path, extra: &[&str], out: &Path) -> Asset {
+    let o = bin()
+        .args(["reduce", "--animation", "spawn", "--tolerance", "0.5"])
+        .args(extra)
+        .arg(src)
+        .arg("-o")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    Asset::read_path(out).unwrap()
+}
+
 /// The `spawn` animation of the Blender-exported oak tree has 15-key LINEAR translation and
 /// scale channels at 25 fps. Reduced at each tolerance, each keeps fewer keys (more for a
 /// tighter one), stays LINEAR, and plays within the tolerance of the original at every key
@@ -53,16 +67,8 @@ fn translation_and_scale_channels_are_reduced_within_their_tolerances() {
     let mut kept_before = 0;
     for tol in ["0.05", "0.01", "0.002"] {
         let out = dir.path().join(format!("small{tol}.glb"));
-        let o = bin()
-            .args(["reduce", "--animation", "spawn", "--tolerance", "0.5"])
-            .args(["--translation-tolerance", tol, "--scale-tolerance", tol])
-            .arg(&src)
-            .arg("-o")
-            .arg(&out)
-            .output()
-            .unwrap();
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let back = Asset::read_path(&out).unwrap();
+        let tolerances = ["--translation-tolerance", tol, "--scale-tolerance", tol];
+        let back = reduce_spawn(&src, &tolerances, &out);
         let reduced = &back.animations().unwrap()[1];
         let tol: f64 = tol.parse().unwrap();
         for (ch, got) in [
@@ -98,15 +104,7 @@ fn translation_and_scale_channels_are_reduced_within_their_tolerances() {
     }
     // Without the flags, both channels keep their keys.
     let out = dir.path().join("rotations_only.glb");
-    let o = bin()
-        .args(["reduce", "--animation", "spawn", "--tolerance", "0.5"])
-        .arg(&src)
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let back = Asset::read_path(&out).unwrap();
+    let back = reduce_spawn(&src, &[], &out);
     let kept = &back.animations().unwrap()[1];
     assert_eq!(kept.translations()[0].values(), translation.values());
     assert_eq!(kept.scales()[0].values(), scale.values());
