@@ -239,6 +239,64 @@ fn npz_holds_the_documented_arrays() {
     }
 }
 
+/// A clip with positions on every joint (`cmu_01_01_positions.bvh`: each joint's position
+/// channels at its OFFSET, the root's captured): its npz marks every joint as translated, and
+/// each joint's translation on every frame is what the file says, read here from its text — the
+/// OFFSET of every joint but the root, and the root's first three numbers of each motion row.
+/// With the checkers' Python, the file is also what `make_all_positions.py` makes of
+/// `cmu_01_01.bvh`.
+#[test]
+fn npz_of_a_clip_with_positions_on_every_joint() {
+    if let Some(python) = checker_python("cmu_01_01_positions.bvh regeneration check") {
+        let script = crate::support::fixtures().join("bvh/make_all_positions.py");
+        let o = std::process::Command::new(python)
+            .arg(script)
+            .arg("--check")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let z = dir.path().join("f.npz");
+    let clip = "fixtures/bvh/cmu_01_01_positions.bvh";
+    interp_to(&[clip], &z);
+    let text =
+        std::fs::read_to_string(crate::support::fixtures().join("bvh/cmu_01_01_positions.bvh"))
+            .unwrap();
+    let (hierarchy, motion) = text.split_once("MOTION\n").unwrap();
+    let numbers =
+        |s: &str| -> Vec<f64> { s.split_whitespace().map(|x| x.parse().unwrap()).collect() };
+    // Each joint's name and OFFSET, in file order (an End Site's OFFSET follows "End Site").
+    let (mut joints, mut name, mut end_site) = (Vec::new(), String::new(), false);
+    for line in hierarchy.lines().map(str::trim) {
+        if let Some(n) = line.strip_prefix("ROOT ").or(line.strip_prefix("JOINT ")) {
+            name = n.to_string();
+        } else if line == "End Site" {
+            end_site = true;
+        } else if let Some(o) = line.strip_prefix("OFFSET ")
+            && !std::mem::take(&mut end_site)
+        {
+            joints.push((name.clone(), numbers(o)));
+        }
+    }
+    let rows: Vec<Vec<f64>> = motion.lines().skip(2).map(numbers).collect();
+    assert_eq!((joints.len(), rows.len()), (31, 61));
+    let arrays = npz(&std::fs::read(&z).unwrap());
+    let get: HashMap<&str, &Array> = arrays.iter().map(|(n, a)| (n.as_str(), a)).collect();
+    let names: Vec<String> = joints.iter().map(|(n, _)| n.clone()).collect();
+    assert_eq!(get["names"].strings(), names);
+    assert!(get["has_translation"].data.iter().all(|&b| b == 1));
+    assert_eq!(get["translations"].shape, [61, 31, 3]);
+    let pos = get["translations"].f64s();
+    for (t, row) in rows.iter().enumerate() {
+        for (j, (name, offset)) in joints.iter().enumerate() {
+            let want = if j == 0 { &row[..3] } else { &offset[..] };
+            let cell = 3 * (t * 31 + j);
+            assert_eq!(&pos[cell..cell + 3], want, "frame {t} {name}");
+        }
+    }
+}
+
 /// The rate as the tool spells it, the `--to` representation's values and names, an unnamed
 /// track's empty name, and no velocity or translation arrays when there are none.
 #[test]
@@ -298,9 +356,11 @@ fn npz_is_for_interp_only() {
 
 /// numpy's reading (`np.load`, no pickles; Python's zipfile checking every CRC) of the npz and
 /// the npy of one command, against its JSON output, value for value: a BVH clip (the root alone
-/// with positions) and a glTF asset (translations on one channel, STEP and CUBICSPLINE
-/// samplers), plain and with velocities in another representation and unit; and, so that the
-/// check cannot pass by reading nothing, a JSON of other digits (`--precision 6`) fails it.
+/// with positions), the same clip with positions on every joint (as Bandai Namco's captures and
+/// Blender's exports have them), glTF assets (translations on one channel, STEP and CUBICSPLINE
+/// samplers; RiggedSimple; CesiumMan at 30 fps, a translation on each of its 19 joints), plain
+/// and with velocities in another representation and unit; and, so that the check cannot pass
+/// by reading nothing, a JSON of other digits (`--precision 6`) fails it.
 #[test]
 fn numpy_reads_npz_and_npy_as_the_json_says() {
     let Some(python) = checker_python("npz/npy check against numpy") else {
@@ -316,10 +376,13 @@ fn numpy_reads_npz_and_npy_as_the_json_says() {
         let args = [j.as_os_str(), z.as_os_str(), y.as_os_str()];
         python_json(python, "fixtures/npz/check.py", &args)
     };
-    for input in [
-        "fixtures/bvh/cmu_01_01.bvh",
-        "fixtures/gltf/samplers.glb",
-        "fixtures/gltf/real/RiggedSimple.gltf",
+    // (input, its options, how many tracks have a translation on every frame)
+    for (input, options, translated) in [
+        ("fixtures/bvh/cmu_01_01.bvh", &[][..], 1),
+        ("fixtures/bvh/cmu_01_01_positions.bvh", &[], 31),
+        ("fixtures/gltf/samplers.glb", &[], 1),
+        ("fixtures/gltf/real/RiggedSimple.gltf", &[], 2),
+        ("fixtures/gltf/real/CesiumMan.glb", &["--fps", "30"], 19),
     ] {
         for extra in [
             &[][..],
@@ -327,13 +390,14 @@ fn numpy_reads_npz_and_npy_as_the_json_says() {
         ] {
             for path in [&j, &z, &y] {
                 let mut c = bin();
-                c.args(["interp", input]).args(extra).arg("-o").arg(path);
-                c.assert().success();
+                c.args(["interp", input]).args(options).args(extra);
+                c.arg("-o").arg(path).assert().success();
             }
             let summary = check(&python);
             assert_eq!(summary["translations"], true, "{input} {extra:?}");
             assert_eq!(summary["velocity"], !extra.is_empty(), "{input} {extra:?}");
             assert!(summary["frames"].as_u64().unwrap() > 10, "{summary}");
+            assert_eq!(summary["tracks_with_translation"], translated, "{summary}");
         }
     }
     // The control: rounded JSON digits differ from the arrays' exact values.

@@ -576,7 +576,7 @@ fn errors_exit_2_naming_the_file_and_the_channel() {
 /// validator are installed (`npm ci --prefix tools/gltf-validator`); otherwise skips with a
 /// note, unless INBETWEEN_REQUIRE_GLTF_VALIDATOR is set (CI), which makes it a failure.
 #[track_caller]
-fn validate(file: &Path) -> Option<Value> {
+pub(crate) fn validate(file: &Path) -> Option<Value> {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("tools/gltf-validator");
     let installed = dir.join("node_modules/gltf-validator").is_dir();
     let node = std::process::Command::new("node")
@@ -611,7 +611,7 @@ fn validate(file: &Path) -> Option<Value> {
 /// The JSON pointers of the objects the glTF Validator reports unused in `file`
 /// (`UNUSED_OBJECT`), when it is installed (see [`validate`]).
 #[track_caller]
-fn unused_objects(file: &Path) -> Option<Vec<String>> {
+pub(crate) fn unused_objects(file: &Path) -> Option<Vec<String>> {
     let report = validate(file)?;
     let messages = report["issues"]["messages"].as_array().unwrap().iter();
     let unused = messages.filter(|m| m["code"] == "UNUSED_OBJECT");
@@ -628,7 +628,7 @@ fn unused_objects(file: &Path) -> Option<Vec<String>> {
 /// pygltflib: LINEAR by Appendix C's slerp, STEP held, CUBICSPLINE by Appendix C through
 /// `cubicspline_ref.py`) at `times`, when the checkers' venv exists (CI builds it;
 /// INBETWEEN_REQUIRE_PYTHON_CHECKS makes its absence a failure).
-fn python_playback(
+pub(crate) fn python_playback(
     asset: &Path,
     animation: usize,
     channel: usize,
@@ -644,7 +644,7 @@ fn python_playback(
 }
 
 /// As [`python_playback`], for a translation or scale channel.
-fn python_vectors(
+pub(crate) fn python_vectors(
     asset: &Path,
     animation: usize,
     channel: usize,
@@ -951,7 +951,7 @@ fn a_gltf_on_standard_input_is_gltf() {
 /// its `bufferView`, and the bytes of its view from its offset on, read here from the `.glb`'s
 /// chunk, a `data:` URI or a file beside `path`): the objects, and the data they use, as they
 /// were.
-fn untouched(path: &Path) -> Value {
+pub(crate) fn untouched(path: &Path) -> Value {
     let json = asset_json(path);
     let bytes = std::fs::read(path).unwrap();
     let buffer = |b: usize| -> Vec<u8> {
@@ -1014,11 +1014,11 @@ fn untouched(path: &Path) -> Value {
     j
 }
 
-fn back_of(path: &Path) -> Asset {
+pub(crate) fn back_of(path: &Path) -> Asset {
     Asset::read_path(path).unwrap()
 }
 
-fn asset_json(path: &Path) -> Value {
+pub(crate) fn asset_json(path: &Path) -> Value {
     let bytes = std::fs::read(path).unwrap();
     if bytes.starts_with(b"glTF") {
         let n = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;

@@ -12,6 +12,7 @@ mod bvh_stream;
 mod bvh_untrusted;
 mod errors;
 mod gltf;
+mod gltf_real;
 mod gltf_reduce;
 mod gltf_tracks;
 mod gltf_untrusted;
