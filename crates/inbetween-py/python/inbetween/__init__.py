@@ -1,0 +1,153 @@
+"""Keyframe in-betweening of 3D orientations, vectorised over joints (docs/python.md).
+
+``Curve`` builds the library's curve (hermite, squad, bezier, slerp, minaccel) through keys
+(K, 4) or (K, J, 4) and evaluates rotations, angular velocities and accelerations at many times
+at once; ``resample`` puts dense frames at one exact rate onto another, as ``inbetween interp``
+writes them; ``frame_times`` gives that grid. Rates are exact: ``"30000/1001"``, ``29.97`` (the
+NTSC ratio, as on the command line), ``Fraction(120, 1)``, or a float taken as the decimal it
+prints as (``59.9999885559082``). Errors are ``InputError`` (a ``ValueError``).
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _inbetween
+from ._inbetween import InputError
+
+__all__ = ["Curve", "InputError", "frame_times", "resample"]
+
+Rate = Union[int, float, str, Any]
+
+
+def _array(x: Any, name: str) -> np.ndarray:
+    """``x`` as a C-contiguous float64 array (no copy when it already is one)."""
+    try:
+        a = np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{name}: expected an array of numbers ({e})") from None
+    # ascontiguousarray would make a number a (1,) array: a 0-d array stays one.
+    return np.ascontiguousarray(a) if a.ndim else a
+
+
+def _optional(x: Any, name: str) -> Optional[np.ndarray]:
+    return None if x is None else _array(x, name)
+
+
+def _rotations(x: Any, scalar_first: bool) -> np.ndarray:
+    """Quaternion rows in the caller's order; a scipy ``Rotation`` is turned into them."""
+    if hasattr(x, "as_quat") and hasattr(x, "apply"):  # scipy.spatial.transform.Rotation
+        q = np.asarray(x.as_quat(), dtype=np.float64)  # scalar last
+        if q.ndim == 1:
+            q = q[np.newaxis]
+        if scalar_first:
+            q = q[..., [3, 0, 1, 2]]
+        return np.ascontiguousarray(q)
+    return _array(x, "rotations")
+
+
+class Curve:
+    """A curve through keyframe rotations, one per joint on shared key times.
+
+    ``times`` (K,) seconds, strictly increasing; ``rotations`` (K, 4) or (K, J, 4) quaternions
+    (``scalar_first``: ``[w, x, y, z]`` rows, else ``[x, y, z, w]``), or a scipy ``Rotation``;
+    ``velocities`` (K, 3) or (K, J, 3) per-key angular velocities, rad/s, world frame (a row
+    of NaN: none at that key); ``tcb`` the same shape, each key's tension, continuity, bias;
+    ``start_velocity`` / ``end_velocity`` (3,) or (J, 3); ``ends`` ``"chord"``, ``"rest"`` or
+    ``"cyclic"``; ``path`` ``"shortest"`` or ``"as-given"``; ``grid_rate`` minaccel's grid
+    (points per second, default 30).
+    """
+
+    __slots__ = ("_curve",)
+
+    def __init__(
+        self,
+        times: Any,
+        rotations: Any,
+        scheme: str = "bezier",
+        *,
+        velocities: Any = None,
+        tcb: Any = None,
+        ends: str = "chord",
+        start_velocity: Any = None,
+        end_velocity: Any = None,
+        path: str = "shortest",
+        scalar_first: bool = True,
+        grid_rate: Optional[Rate] = None,
+    ) -> None:
+        self._curve = _inbetween.Curve(
+            _array(times, "times"),
+            _rotations(rotations, scalar_first),
+            scheme,
+            velocities=_optional(velocities, "velocities"),
+            tcb=_optional(tcb, "tcb"),
+            ends=ends,
+            start_velocity=_optional(start_velocity, "start_velocity"),
+            end_velocity=_optional(end_velocity, "end_velocity"),
+            path=path,
+            scalar_first=scalar_first,
+            grid_rate=grid_rate,
+        )
+
+    def __call__(self, t: Any, order: int = 0) -> np.ndarray:
+        """Rotations at ``t`` (a number or (N,) seconds): (N, 4) or (N, J, 4) unit
+        quaternions for ``order=0``; angular velocity (``order=1``, rad/s) or acceleration
+        (``order=2``, rad/s²), (N, 3) or (N, J, 3), world frame. A number gives one row."""
+        a = _array(t, "t")
+        if a.ndim == 0:
+            return self._curve(a.reshape(1), order)[0]
+        return self._curve(a, order)
+
+    @property
+    def span(self) -> Tuple[float, float]:
+        """The first and last key times, seconds."""
+        return self._curve.span
+
+    @property
+    def joints(self) -> Optional[int]:
+        """The number of joints, or ``None`` for keys of shape (K, 4)."""
+        return self._curve.joints
+
+    @property
+    def scheme(self) -> str:
+        """The scheme's name."""
+        return self._curve.scheme
+
+    def __repr__(self) -> str:
+        return repr(self._curve)
+
+
+def resample(
+    rotations: Any,
+    fps_in: Rate,
+    fps_out: Rate,
+    *,
+    scheme: str = "bezier",
+    ends: str = "chord",
+    path: str = "shortest",
+    scalar_first: bool = True,
+    velocity: bool = False,
+) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
+    """Frames ``rotations`` (T, 4) or (T, J, 4) at ``fps_in`` onto the exact grid of
+    ``fps_out``: (M, 4) or (M, J, 4) with M = ⌊(T − 1)/fps_in · fps_out⌋ + 1, at the times
+    ``frame_times(T, fps_in, fps_out)``, as ``inbetween interp --fps`` writes them (every input
+    frame a key). With ``velocity``, a pair: the rotations and the angular velocities (M, 3)
+    or (M, J, 3), rad/s, world frame."""
+    return _inbetween.resample(
+        _rotations(rotations, scalar_first),
+        fps_in,
+        fps_out,
+        scheme=scheme,
+        ends=ends,
+        path=path,
+        scalar_first=scalar_first,
+        velocity=velocity,
+    )
+
+
+def frame_times(n: int, fps_in: Rate, fps_out: Rate) -> np.ndarray:
+    """The times (M,) of the frames ``resample`` writes for ``n`` frames at ``fps_in``:
+    ``k/fps_out`` for k = 0 … ⌊(n − 1)/fps_in · fps_out⌋, each an exact ratio rounded once."""
+    return _inbetween.frame_times(n, fps_in, fps_out)

@@ -1,0 +1,44 @@
+"""Type stubs of the compiled module (the package's public names are in __init__.py)."""
+
+from typing import Any, Optional, Tuple, Union
+
+import numpy as np
+
+class InputError(ValueError): ...
+
+class Curve:
+    def __init__(
+        self,
+        times: np.ndarray,
+        rotations: np.ndarray,
+        scheme: str = ...,
+        *,
+        velocities: Optional[np.ndarray] = ...,
+        tcb: Optional[np.ndarray] = ...,
+        ends: str = ...,
+        start_velocity: Optional[np.ndarray] = ...,
+        end_velocity: Optional[np.ndarray] = ...,
+        path: str = ...,
+        scalar_first: bool = ...,
+        grid_rate: Any = ...,
+    ) -> None: ...
+    def __call__(self, t: np.ndarray, order: int = ...) -> np.ndarray: ...
+    @property
+    def span(self) -> Tuple[float, float]: ...
+    @property
+    def joints(self) -> Optional[int]: ...
+    @property
+    def scheme(self) -> str: ...
+
+def resample(
+    rotations: np.ndarray,
+    fps_in: Any,
+    fps_out: Any,
+    *,
+    scheme: str = ...,
+    ends: str = ...,
+    path: str = ...,
+    scalar_first: bool = ...,
+    velocity: bool = ...,
+) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]: ...
+def frame_times(n: int, fps_in: Any, fps_out: Any) -> np.ndarray: ...

@@ -1,0 +1,245 @@
+//! `Curve`: the library's [`inbetween::Curve`] through keys (K, 4), or one per joint through
+//! keys (K, J, 4) on shared key times; evaluated at many times at once, the GIL released.
+
+use crate::arrays::{self, Layout, quat_row};
+use crate::{input_error, options};
+use glam::DVec3;
+use inbetween::{CurveOptions, EndConditions, Tcb, Track};
+use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
+use pyo3::prelude::*;
+
+/// One curve per joint through keys at shared times (see `inbetween.Curve` in docs/python.md).
+#[pyclass(module = "inbetween._inbetween", frozen)]
+pub struct Curve {
+    curves: Vec<inbetween::Curve>,
+    layout: Layout,
+    scalar_first: bool,
+    opts: CurveOptions,
+}
+
+/// What `Curve.__init__` takes besides times, rotations and the scheme.
+pub struct Keywords<'py> {
+    velocities: Option<PyReadonlyArrayDyn<'py, f64>>,
+    tcb: Option<PyReadonlyArrayDyn<'py, f64>>,
+    start_velocity: Option<PyReadonlyArrayDyn<'py, f64>>,
+    end_velocity: Option<PyReadonlyArrayDyn<'py, f64>>,
+}
+
+#[pymethods]
+impl Curve {
+    #[new]
+    #[pyo3(signature = (
+        times, rotations, scheme = "bezier", *, velocities = None, tcb = None, ends = "chord",
+        start_velocity = None, end_velocity = None, path = "shortest", scalar_first = true,
+        grid_rate = None
+    ))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        py: Python<'_>,
+        times: PyReadonlyArrayDyn<'_, f64>,
+        rotations: PyReadonlyArrayDyn<'_, f64>,
+        scheme: &str,
+        velocities: Option<PyReadonlyArrayDyn<'_, f64>>,
+        tcb: Option<PyReadonlyArrayDyn<'_, f64>>,
+        ends: &str,
+        start_velocity: Option<PyReadonlyArrayDyn<'_, f64>>,
+        end_velocity: Option<PyReadonlyArrayDyn<'_, f64>>,
+        path: &str,
+        scalar_first: bool,
+        grid_rate: Option<Bound<'_, PyAny>>,
+    ) -> PyResult<Curve> {
+        let times = arrays::times(&times, "times")?;
+        let (layout, quats) = arrays::quats(&rotations, "rotations", scalar_first)?;
+        if times.len() != layout.rows {
+            return Err(input_error(format!(
+                "times: {} times for {} rotations",
+                times.len(),
+                layout.rows
+            )));
+        }
+        let keywords = Keywords {
+            velocities,
+            tcb,
+            start_velocity,
+            end_velocity,
+        };
+        let tracks = tracks(&times, quats, layout, &keywords)?;
+        let opts = CurveOptions {
+            scheme: options::scheme(scheme)?,
+            path: options::path(path)?,
+            ends: EndConditions::from(options::ends(ends)?),
+            grid_rate: match &grid_rate {
+                Some(r) => options::rate("grid_rate", r)?,
+                None => inbetween::Fps::DEFAULT,
+            },
+            ..CurveOptions::default()
+        };
+        let curves = build(py, &tracks, &opts, layout)?;
+        Ok(Curve {
+            curves,
+            layout,
+            scalar_first,
+            opts,
+        })
+    }
+
+    /// The rotations at times `t` (N,) with `order=0`, (N, 4) or (N, J, 4) unit quaternions;
+    /// `order=1` angular velocity and `order=2` angular acceleration, (N, 3) or (N, J, 3),
+    /// rad/s and rad/s², world frame.
+    #[pyo3(signature = (t, order = 0))]
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        t: PyReadonlyArrayDyn<'py, f64>,
+        order: u8,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let t = arrays::times(&t, "t")?;
+        if let Some(bad) = t.iter().find(|x| !x.is_finite()) {
+            return Err(input_error(format!(
+                "t: expected finite times, found {bad}"
+            )));
+        }
+        let joints = self.layout.joints;
+        match order {
+            0 => {
+                let sf = self.scalar_first;
+                let rows = py.detach(|| {
+                    inbetween::parallel::map(&self.curves, |c| {
+                        t.iter().map(|&x| quat_row(c.rotation(x), sf)).collect()
+                    })
+                });
+                arrays::output(py, &rows, joints)
+            }
+            1 | 2 => {
+                let rows = py.detach(|| {
+                    inbetween::parallel::map(&self.curves, |c| {
+                        t.iter()
+                            .map(|&x| match order {
+                                1 => c.angular_velocity(x).to_array(),
+                                _ => c.angular_acceleration(x).to_array(),
+                            })
+                            .collect()
+                    })
+                });
+                arrays::output(py, &rows, joints)
+            }
+            _ => Err(input_error(format!(
+                "order: expected 0 (rotation), 1 (angular velocity) or 2 (angular \
+                 acceleration), found {order}"
+            ))),
+        }
+    }
+
+    /// The first and last key times, seconds.
+    #[getter]
+    fn span(&self) -> (f64, f64) {
+        self.curves[0].span()
+    }
+
+    /// The number of joints, or `None` for keys of shape (K, 4).
+    #[getter]
+    fn joints(&self) -> Option<usize> {
+        self.layout.joints
+    }
+
+    /// The scheme's name.
+    #[getter]
+    fn scheme(&self) -> &'static str {
+        self.opts.scheme.name()
+    }
+
+    fn __repr__(&self) -> String {
+        let (t0, t1) = self.curves[0].span();
+        let joints = self
+            .layout
+            .joints
+            .map_or(String::new(), |j| format!(", joints={j}"));
+        format!(
+            "Curve(scheme={:?}, keys={}{joints}, span=({t0}, {t1}))",
+            self.opts.scheme.name(),
+            self.layout.rows
+        )
+    }
+}
+
+/// One track per joint: the keys, with the per-key velocities and TCB where given (a row of NaN
+/// means none at that key) and the end velocities.
+fn tracks(
+    times: &[f64],
+    quats: Vec<Vec<glam::DQuat>>,
+    layout: Layout,
+    kw: &Keywords<'_>,
+) -> PyResult<Vec<Track>> {
+    let per_key = |a: &Option<PyReadonlyArrayDyn<'_, f64>>, name: &str| {
+        a.as_ref()
+            .map(|a| arrays::vectors(a, name, layout, "rotations"))
+            .transpose()
+    };
+    let velocities = per_key(&kw.velocities, "velocities")?;
+    let tcb = per_key(&kw.tcb, "tcb")?;
+    let ends = |a: &Option<PyReadonlyArrayDyn<'_, f64>>, name: &str| {
+        a.as_ref()
+            .map(|a| arrays::end_vectors(a, name, layout.joints))
+            .transpose()
+    };
+    let start = ends(&kw.start_velocity, "start_velocity")?;
+    let end = ends(&kw.end_velocity, "end_velocity")?;
+    let given = |v: DVec3| (!v.is_nan()).then_some(v);
+    let mut tracks = Vec::with_capacity(quats.len());
+    for (j, q) in quats.into_iter().enumerate() {
+        let at = |what: &str| match layout.joints {
+            Some(_) => format!("{what} (joint {j})"),
+            None => what.to_string(),
+        };
+        let fail = |what: &str, e: inbetween::TrackError| input_error(format!("{}: {e}", at(what)));
+        let mut t = Track::new(times.to_vec(), q).map_err(|e| fail("rotations", e))?;
+        if let Some(v) = &velocities {
+            let v = v[j].iter().map(|&v| given(v)).collect();
+            t = t
+                .with_key_velocities(v)
+                .map_err(|e| fail("velocities", e))?;
+        }
+        if let Some(k) = &tcb {
+            let k = k[j]
+                .iter()
+                .map(|&v| {
+                    given(v).map(|v| Tcb {
+                        tension: v.x,
+                        continuity: v.y,
+                        bias: v.z,
+                    })
+                })
+                .collect();
+            t = t.with_key_tcb(k).map_err(|e| fail("tcb", e))?;
+        }
+        if start.is_some() || end.is_some() {
+            let (s, e) = (start.as_ref().map(|s| s[j]), end.as_ref().map(|e| e[j]));
+            t = t
+                .with_end_velocities(s, e)
+                .map_err(|e| fail("start_velocity/end_velocity", e))?;
+        }
+        tracks.push(t);
+    }
+    Ok(tracks)
+}
+
+/// The curve of each track, built in parallel without the GIL; the first error, located by
+/// joint.
+pub(crate) fn build(
+    py: Python<'_>,
+    tracks: &[Track],
+    opts: &CurveOptions,
+    layout: Layout,
+) -> PyResult<Vec<inbetween::Curve>> {
+    let built = py.detach(|| inbetween::parallel::map(tracks, |t| inbetween::Curve::new(t, opts)));
+    built
+        .into_iter()
+        .enumerate()
+        .map(|(j, c)| {
+            c.map_err(|e| match layout.joints {
+                Some(_) => input_error(format!("joint {j}: {}", e.message())),
+                None => input_error(e.message().to_string()),
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,37 @@
+//! `import inbetween`: the Python binding of the `inbetween` crate (docs/python.md). The
+//! extension module `inbetween._inbetween` holds the compiled functions and classes; the Python
+//! package `inbetween` (python/inbetween) turns its arguments into float64 arrays (scipy
+//! `Rotation` objects included) and gives the documented signatures.
+//!
+//! - [`curve`]: `Curve`, one curve per joint through keys (K, 4) or (K, J, 4).
+//! - [`resample`]: `resample` and `frame_times`, dense frames onto another exact rate.
+//! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
+//! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
+
+use pyo3::prelude::*;
+
+mod arrays;
+mod curve;
+mod options;
+mod resample;
+
+pyo3::create_exception!(
+    _inbetween,
+    InputError,
+    pyo3::exceptions::PyValueError,
+    "Input that inbetween refuses: a shape, a value or a rate, with the library's message."
+);
+
+/// An [`InputError`] with `message`.
+pub(crate) fn input_error(message: impl Into<String>) -> PyErr {
+    InputError::new_err(message.into())
+}
+
+#[pymodule]
+fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("InputError", m.py().get_type::<InputError>())?;
+    m.add_class::<curve::Curve>()?;
+    m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
+    m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,93 @@
+//! The curve options and rates from their Python spellings: the command line's names
+//! (`"bezier"`, `"rest"`, `"as-given"`), and rates as numbers, strings or fractions.
+
+use crate::input_error;
+use inbetween::{Ends, Fps, PathMode, Scheme};
+use pyo3::prelude::*;
+use pyo3::types::{PyFloat, PyInt, PyString};
+
+/// A scheme by name: hermite, squad, bezier, slerp, minaccel.
+pub fn scheme(name: &str) -> PyResult<Scheme> {
+    name.parse()
+        .map_err(|e: inbetween::InputError| input_error(format!("scheme: {}", e.message())))
+}
+
+/// An end rule by name: chord, rest, cyclic.
+pub fn ends(name: &str) -> PyResult<Ends> {
+    match name {
+        "chord" => Ok(Ends::Chord),
+        "rest" => Ok(Ends::Rest),
+        "cyclic" => Ok(Ends::Cyclic),
+        _ => Err(input_error(format!(
+            "ends: expected chord, rest or cyclic, found {name:?}"
+        ))),
+    }
+}
+
+/// A path rule by name: shortest, as-given (Euler-angle turns need the angles, which arrays of
+/// quaternions do not carry).
+pub fn path(name: &str) -> PyResult<PathMode> {
+    match name {
+        "shortest" => Ok(PathMode::Shortest),
+        "as-given" | "as_given" => Ok(PathMode::AsGiven),
+        _ => Err(input_error(format!(
+            "path: expected shortest or as-given, found {name:?}"
+        ))),
+    }
+}
+
+/// A frame rate: an int, a string the command line accepts (`"24"`, `"29.97"`, `"30000/1001"`),
+/// a `fractions.Fraction` (anything with integer `numerator` and `denominator`), or a float
+/// taken as the decimal it prints as (`59.9999885559082` is 599999885559082/10¹³ frames per
+/// second, exactly; the NTSC decimals 23.976, 29.97, 59.94 mean their /1001 ratios, as on the
+/// command line).
+pub fn rate(what: &str, x: &Bound<'_, PyAny>) -> PyResult<Fps> {
+    let located = |e: inbetween::InputError| input_error(format!("{what}: {}", e.message()));
+    if x.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(input_error(format!(
+            "{what}: expected a frame rate, found a bool"
+        )));
+    }
+    if let Ok(s) = x.cast::<PyString>() {
+        return Fps::parse(&s.to_cow()?).map_err(located);
+    }
+    if x.is_instance_of::<PyInt>() {
+        let n: i128 = x.extract()?;
+        let n = u64::try_from(n).map_err(|_| {
+            input_error(format!("{what}: expected a positive frame rate, found {n}"))
+        })?;
+        return Fps::new(n, 1).map_err(located);
+    }
+    if x.is_instance_of::<PyFloat>() {
+        return decimal_rate(x.extract()?).map_err(located);
+    }
+    if let (Ok(n), Ok(d)) = (x.getattr("numerator"), x.getattr("denominator"))
+        && let (Ok(n), Ok(d)) = (n.extract::<u64>(), d.extract::<u64>())
+    {
+        return Fps::new(n, d).map_err(located);
+    }
+    Err(input_error(format!(
+        "{what}: expected a frame rate (a number, a string such as \"30000/1001\", or a \
+         Fraction), found {}",
+        x.get_type().name()?
+    )))
+}
+
+/// The rate `x` denotes as the shortest decimal that reads back to it: [`Fps::from_f64`] where
+/// that decimal has at most 9 decimals (the command line's rule, NTSC included), else the
+/// decimal itself as a ratio over a power of ten.
+fn decimal_rate(x: f64) -> inbetween::error::InputResult<Fps> {
+    if let Ok(fps) = Fps::from_f64(x) {
+        return Ok(fps);
+    }
+    let text = format!("{x}");
+    let exact = text.split_once('.').and_then(|(int, frac)| {
+        let den = 10u64.checked_pow(u32::try_from(frac.len()).ok()?)?;
+        let num = format!("{int}{frac}").parse::<u64>().ok()?;
+        Some((num, den))
+    });
+    match exact {
+        Some((num, den)) if x > 0.0 => Fps::new(num, den),
+        _ => Fps::from_f64(x),
+    }
+}

@@ -1,0 +1,142 @@
+//! `resample` and `frame_times`: dense frames at one exact rate onto another, as `interp`
+//! writes them (every input frame a key, the output frames those of the exact output grid
+//! inside the clip's span, baked by the library's [`inbetween::bake`]).
+
+use crate::arrays::{self, Layout, quat_row};
+use crate::curve::build;
+use crate::{input_error, options};
+use glam::{DQuat, DVec3};
+use inbetween::{BakeOptions, CurveOptions, EndConditions, Fps, FrameSink, Track};
+use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
+use pyo3::prelude::*;
+
+/// The times of the frames `resample` writes for `n` input frames at `fps_in` onto `fps_out`:
+/// `k/fps_out` for every `k` from 0 to `⌊(n − 1)/fps_in · fps_out⌋` (within 1e-9 s, the frame
+/// clock's rule), exact rationals rounded once.
+#[pyfunction]
+pub fn frame_times<'py>(
+    py: Python<'py>,
+    n: usize,
+    fps_in: Bound<'py, PyAny>,
+    fps_out: Bound<'py, PyAny>,
+) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let (fps_in, fps_out) = (
+        options::rate("fps_in", &fps_in)?,
+        options::rate("fps_out", &fps_out)?,
+    );
+    let (a, b) = grid(n, fps_in, fps_out)?;
+    let times: Vec<f64> = (a..=b).map(|k| fps_out.time_of(k)).collect();
+    Ok(numpy::PyArray1::from_vec(py, times))
+}
+
+/// The output frames `(first, last)` for `n` input frames.
+fn grid(n: usize, fps_in: Fps, fps_out: Fps) -> PyResult<(i64, i64)> {
+    if n == 0 {
+        return Err(input_error("n: expected at least one frame, found 0"));
+    }
+    let last = i64::try_from(n - 1).unwrap_or(i64::MAX);
+    let end = fps_in.time_of(last);
+    if !fps_out.in_range(end) || !fps_in.in_range(end) {
+        return Err(input_error(format!(
+            "{n} frames at {fps_in} fps span {end} s, beyond what the frame clock supports"
+        )));
+    }
+    Ok(fps_out.frames_between(0.0, end))
+}
+
+/// Collects one track's baked rotations (and angular velocities).
+#[derive(Default)]
+struct Frames {
+    rotations: Vec<DQuat>,
+    velocities: Vec<DVec3>,
+}
+
+impl FrameSink for Frames {
+    fn frame(&mut self, _k: i64, _t: f64, q: DQuat, omega: Option<DVec3>) -> std::io::Result<()> {
+        self.rotations.push(q);
+        if let Some(w) = omega {
+            self.velocities.push(w);
+        }
+        Ok(())
+    }
+}
+
+/// Frames `rotations` (T, 4) or (T, J, 4) at `fps_in` resampled onto `fps_out`: (M, 4) or
+/// (M, J, 4), M = ⌊(T − 1)/fps_in · fps_out⌋ + 1 frames; with `velocity`, also the angular
+/// velocities (M, 3) or (M, J, 3), rad/s, world frame.
+#[pyfunction]
+#[pyo3(signature = (
+    rotations, fps_in, fps_out, *, scheme = "bezier", ends = "chord", path = "shortest",
+    scalar_first = true, velocity = false
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn resample<'py>(
+    py: Python<'py>,
+    rotations: PyReadonlyArrayDyn<'py, f64>,
+    fps_in: Bound<'py, PyAny>,
+    fps_out: Bound<'py, PyAny>,
+    scheme: &str,
+    ends: &str,
+    path: &str,
+    scalar_first: bool,
+    velocity: bool,
+) -> PyResult<Bound<'py, PyAny>> {
+    let (fps_in, fps_out) = (
+        options::rate("fps_in", &fps_in)?,
+        options::rate("fps_out", &fps_out)?,
+    );
+    let (layout, quats): (Layout, _) = arrays::quats(&rotations, "rotations", scalar_first)?;
+    grid(layout.rows, fps_in, fps_out)?;
+    let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
+    let tracks = quats
+        .into_iter()
+        .enumerate()
+        .map(|(j, q)| {
+            Track::new(times.clone(), q).map_err(|e| match layout.joints {
+                Some(_) => input_error(format!("rotations (joint {j}): {e}")),
+                None => input_error(format!("rotations: {e}")),
+            })
+        })
+        .collect::<PyResult<Vec<Track>>>()?;
+    let opts = CurveOptions {
+        scheme: options::scheme(scheme)?,
+        path: options::path(path)?,
+        ends: EndConditions::from(options::ends(ends)?),
+        grid_rate: fps_out,
+        ..CurveOptions::default()
+    };
+    let curves = build(py, &tracks, &opts, layout)?;
+    let bake = BakeOptions {
+        velocity,
+        parallel: false,
+    };
+    let baked = py.detach(|| {
+        inbetween::parallel::map(&curves, |c| {
+            let mut sink = Frames::default();
+            inbetween::bake(c, fps_out, bake, &mut sink, &mut |_| {}).map(|()| sink)
+        })
+    });
+    let baked = baked
+        .into_iter()
+        .collect::<std::io::Result<Vec<Frames>>>()
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    let rows: Vec<Vec<[f64; 4]>> = baked
+        .iter()
+        .map(|f| {
+            f.rotations
+                .iter()
+                .map(|&q| quat_row(q, scalar_first))
+                .collect()
+        })
+        .collect();
+    let out: Bound<'py, PyArrayDyn<f64>> = arrays::output(py, &rows, layout.joints)?;
+    if !velocity {
+        return Ok(out.into_any());
+    }
+    let w: Vec<Vec<[f64; 3]>> = baked
+        .iter()
+        .map(|f| f.velocities.iter().map(|v| v.to_array()).collect())
+        .collect();
+    let w = arrays::output(py, &w, layout.joints)?;
+    Ok((out, w).into_pyobject(py)?.into_any())
+}

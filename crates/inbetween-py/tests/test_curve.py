@@ -1,0 +1,180 @@
+"""`inbetween.Curve` against scipy and the command line, its shapes, its errors and the GIL."""
+
+import csv
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation, Slerp
+
+import inbetween
+from conftest import FIXTURES, angle
+
+SCHEMES = ["hermite", "squad", "bezier", "slerp", "minaccel"]
+
+
+def keys(k=12, joints=None, seed=7):
+    """K random key rotations (scalar first) at strictly increasing, uneven times."""
+    rng = np.random.default_rng(seed)
+    times = np.cumsum(rng.uniform(0.05, 0.4, k))
+    shape = (k, 4) if joints is None else (k, joints, 4)
+    q = rng.normal(size=shape)
+    return times - times[0], q / np.linalg.norm(q, axis=-1, keepdims=True)
+
+
+def test_slerp_is_scipy_slerp():
+    times, q = keys(30)
+    t = np.linspace(times[0], times[-1], 2001)
+    got = inbetween.Curve(times, q, "slerp")(t)
+    want = Slerp(times, Rotation.from_quat(q, scalar_first=True))(t).as_quat(scalar_first=True)
+    assert got.shape == (2001, 4)
+    assert np.max(angle(got, want)) < 1e-12
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+def test_every_scheme_passes_through_its_keys(scheme):
+    times, q = keys(9, joints=3)
+    c = inbetween.Curve(times, q, scheme, grid_rate=240)
+    got = c(times)
+    assert got.shape == (9, 3, 4)
+    assert np.max(angle(got, q)) < 1e-9
+    assert np.allclose(np.linalg.norm(got, axis=-1), 1.0, atol=1e-14)
+
+
+def test_joints_are_the_curves_of_each_joint_alone():
+    times, q = keys(10, joints=4)
+    t = np.linspace(-0.1, times[-1] + 0.1, 333)
+    together = inbetween.Curve(times, q, "squad", ends="rest")
+    for j in range(4):
+        alone = inbetween.Curve(times, q[:, j], "squad", ends="rest")
+        for order in (0, 1, 2):
+            assert np.array_equal(together(t, order)[:, j], alone(t, order))
+
+
+def test_shapes_orders_and_conventions():
+    times, q = keys(6)
+    c = inbetween.Curve(times, q)
+    assert c(0.3).shape == (4,)
+    assert c([0.1, 0.2]).shape == (2, 4)
+    assert c(np.array([0.1, 0.2]), order=1).shape == (2, 3)
+    assert c(np.array([0.1, 0.2]), order=2).shape == (2, 3)
+    out = c(np.linspace(0, 1, 5))
+    assert out.flags["C_CONTIGUOUS"] and out.dtype == np.float64
+    assert c.joints is None and c.scheme == "bezier" and c.span == (times[0], times[-1])
+    # Scalar last in and out: the same curve, the components moved.
+    last = inbetween.Curve(times, q[:, [1, 2, 3, 0]], scalar_first=False)
+    t = np.linspace(0, times[-1], 50)
+    assert np.array_equal(last(t), c(t)[:, [1, 2, 3, 0]])
+    # A scipy Rotation is its quaternions.
+    rot = inbetween.Curve(times, Rotation.from_quat(q, scalar_first=True))
+    assert np.max(angle(rot(t), c(t))) < 1e-15
+
+
+def test_angular_velocity_of_a_constant_spin():
+    # 90°/s about z, keyed every 0.25 s: every scheme's velocity is (0, 0, π/2) inside.
+    times = np.arange(9) * 0.25
+    a = np.pi / 2 * times
+    q = np.stack([np.cos(a / 2), 0 * a, 0 * a, np.sin(a / 2)], axis=1)
+    t = np.linspace(0.01, 1.99, 97)
+    for scheme in ["hermite", "squad", "bezier", "slerp"]:
+        w = inbetween.Curve(times, q, scheme)(t, order=1)
+        assert np.allclose(w, [0, 0, np.pi / 2], atol=1e-9), scheme
+        assert np.allclose(inbetween.Curve(times, q, scheme)(t, order=2), 0, atol=1e-7), scheme
+
+
+def read_frames(path):
+    """time, quaternion, angular velocity (rad/s) of interp's CSV output (--angles rad)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    t = np.array([float(r["time"]) for r in rows])
+    q = np.array([[float(r[c]) for c in "wxyz"] for r in rows])
+    w = np.array([[float(r[c]) for c in ("wx", "wy", "wz")] for r in rows])
+    return t, q, w
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+def test_agrees_with_interp(cli, tmp_path, scheme):
+    # fixtures/interp/nonuniform.csv: 5 keys at uneven times; interp at 30 fps.
+    src = FIXTURES / "interp" / "nonuniform.csv"
+    with open(src, newline="") as f:
+        rows = list(csv.DictReader(f))
+    times = np.array([float(r["time"]) for r in rows])
+    q = np.array([[float(r[c]) for c in "wxyz"] for r in rows])
+    out = tmp_path / "frames.csv"
+    subprocess.run(
+        [cli, "interp", str(src), "--fps", "30", "--scheme", scheme, "--velocity",
+         "--angles", "rad", "-o", str(out)],
+        check=True,
+    )
+    t, want_q, want_w = read_frames(out)
+    c = inbetween.Curve(times, q, scheme, grid_rate=30)
+    assert np.max(angle(c(t), want_q)) < 1e-12
+    got_w = c(t, order=1)
+    scale = np.maximum(np.linalg.norm(want_w, axis=1), 1e-300)
+    # interp's velocity at a key is the segment's leaving it, as Curve's.
+    assert np.max(np.linalg.norm(got_w - want_w, axis=1) / scale) < 1e-9
+
+
+def test_velocities_tcb_and_end_velocities():
+    times, q = keys(5)
+    v = np.full((5, 3), np.nan)
+    v[2] = [0.5, -1.0, 2.0]
+    c = inbetween.Curve(times, q, "bezier", velocities=v)
+    assert np.allclose(c(times[2], order=1), v[2], atol=1e-12)
+    start = inbetween.Curve(times, q, "hermite", start_velocity=[0, 0, 1.5])
+    assert np.allclose(start(times[0], order=1), [0, 0, 1.5], atol=1e-12)
+    tense = inbetween.Curve(times, q, "bezier", tcb=np.tile([1.0, 0.0, 0.0], (5, 1)))
+    # Tension 1 stops at every key.
+    assert np.allclose(tense(times[1:-1], order=1), 0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "call, says",
+    [
+        (lambda: inbetween.Curve([0, 1], np.zeros((2, 3))), "rotations: expected shape (K, 4) or (K, J, 4)"),
+        (lambda: inbetween.Curve([0, 1, 2], [[1, 0, 0, 0]] * 2), "times: 3 times for 2 rotations"),
+        (lambda: inbetween.Curve([0, 0], [[1, 0, 0, 0]] * 2), "rotations"),
+        (lambda: inbetween.Curve([0, 1], [[1, 0, 0, 0]] * 2, "cubic"), "scheme: expected a scheme"),
+        (lambda: inbetween.Curve([0, 1], [[1, 0, 0, 0]] * 2, ends="loose"), "ends: expected chord"),
+        (lambda: inbetween.Curve([0, 1], [[1, 0, 0, 0]] * 2)(0.5, order=3), "order: expected 0"),
+        (lambda: inbetween.Curve([0, 1], [[1, 0, 0, 0]] * 2)(np.nan), "t: expected finite times"),
+        (lambda: inbetween.Curve([0, 1], [["a", 0, 0, 0]] * 2), "rotations: expected an array of numbers"),
+        (lambda: inbetween.Curve([0, 1], [[1, 0, 0, 0]] * 2, velocities=np.zeros((3, 3))), "velocities: shape"),
+    ],
+)
+def test_errors_name_the_argument(call, says):
+    with pytest.raises(inbetween.InputError) as e:
+        call()
+    assert says in str(e.value)
+    assert isinstance(e.value, ValueError)
+    assert "--" not in str(e.value), "no command-line flag in a library message"
+
+
+def test_evaluation_releases_the_gil():
+    # While one thread evaluates a large curve, this thread runs Python. Were the GIL held by
+    # the call, this thread could run only for a switch interval (5 ms) or two at the call's
+    # start and end, and not in between (measured with `sorted` of 3·10⁷ ints, which holds it:
+    # ticks over 8 ms of a 0.78 s call): here no gap between its ticks is half the call.
+    times, q = keys(1001, seed=3)
+    c = inbetween.Curve(times, q)
+    t = np.linspace(times[0], times[-1], 1_000_000)
+    span = []
+
+    def work():
+        start = time.perf_counter()
+        c(t, order=1)
+        span.extend([start, time.perf_counter()])
+
+    worker = threading.Thread(target=work)
+    stamps = []
+    worker.start()
+    while worker.is_alive():
+        stamps.append(time.perf_counter())
+    worker.join()
+    start, end = span
+    assert end - start > 0.3, f"the call took {end - start:.3f} s: too short to tell"
+    ticks = [start] + [s for s in stamps if start < s < end] + [end]
+    gap = max(b - a for a, b in zip(ticks, ticks[1:]))
+    assert gap < 0.5 * (end - start), (gap, end - start)

@@ -1,0 +1,16 @@
+"""docs/python.md's examples run as written: every ```python block, in order, in one namespace."""
+
+import re
+
+from conftest import ROOT
+
+
+def test_python_md_examples_run():
+    text = (ROOT / "docs" / "python.md").read_text()
+    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
+    assert len(blocks) >= 2
+    namespace = {}
+    for block in blocks:
+        exec(compile(block, "docs/python.md", "exec"), namespace)
+    assert namespace["q"].shape == (61, 4) and namespace["w"].shape == (61, 3)
+    assert namespace["frames"].shape[1:] == (60, 4)
