@@ -100,25 +100,22 @@ impl Curve {
             )));
         }
         let joints = self.layout.joints;
+        let sf = self.scalar_first;
         match order {
             0 => {
-                let sf = self.scalar_first;
-                let rows = py.detach(|| {
-                    inbetween::parallel::map(&self.curves, |c| {
-                        t.iter().map(|&x| quat_row(c.rotation(x), sf)).collect()
-                    })
-                });
+                let rows =
+                    py.detach(|| evaluate(&self.curves, &t, |c, x| quat_row(c.rotation(x), sf)));
                 arrays::output(py, &rows, joints)
             }
-            1 | 2 => {
+            1 => {
+                let rows = py
+                    .detach(|| evaluate(&self.curves, &t, |c, x| c.angular_velocity(x).to_array()));
+                arrays::output(py, &rows, joints)
+            }
+            2 => {
                 let rows = py.detach(|| {
-                    inbetween::parallel::map(&self.curves, |c| {
-                        t.iter()
-                            .map(|&x| match order {
-                                1 => c.angular_velocity(x).to_array(),
-                                _ => c.angular_acceleration(x).to_array(),
-                            })
-                            .collect()
+                    evaluate(&self.curves, &t, |c, x| {
+                        c.angular_acceleration(x).to_array()
                     })
                 });
                 arrays::output(py, &rows, joints)
@@ -242,4 +239,28 @@ pub(crate) fn build(
             })
         })
         .collect()
+}
+
+/// Times per piece of work: a curve's times are cut into pieces of this many, so that one joint
+/// (or fewer joints than cores) still uses every core.
+const PIECE: usize = 16_384;
+
+/// `f(curve, t)` for every curve and time, per curve in time order; the (curve, piece of the
+/// times) pairs shared among the cores.
+fn evaluate<const C: usize>(
+    curves: &[inbetween::Curve],
+    t: &[f64],
+    f: impl Fn(&inbetween::Curve, f64) -> [f64; C] + Sync,
+) -> Vec<Vec<[f64; C]>> {
+    let pieces: Vec<(usize, &[f64])> = (0..curves.len())
+        .flat_map(|j| t.chunks(PIECE).map(move |p| (j, p)))
+        .collect();
+    let done = inbetween::parallel::map(&pieces, |&(j, p)| {
+        p.iter().map(|&x| f(&curves[j], x)).collect::<Vec<_>>()
+    });
+    let mut rows: Vec<Vec<[f64; C]>> = curves.iter().map(|_| Vec::with_capacity(t.len())).collect();
+    for (&(j, _), piece) in pieces.iter().zip(done) {
+        rows[j].extend(piece);
+    }
+    rows
 }

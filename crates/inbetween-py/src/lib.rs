@@ -5,6 +5,7 @@
 //!
 //! - [`curve`]: `Curve`, one curve per joint through keys (K, 4) or (K, J, 4).
 //! - [`resample`]: `resample` and `frame_times`, dense frames onto another exact rate.
+//! - [`reduce`]: `reduce`, the fewest keys within a tolerance, verified on every frame.
 //! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
 //! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
 
@@ -13,6 +14,7 @@ use pyo3::prelude::*;
 mod arrays;
 mod curve;
 mod options;
+mod reduce;
 mod resample;
 
 pyo3::create_exception!(
@@ -33,5 +35,6 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;
+    m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
     Ok(())
 }

@@ -14,3 +14,4 @@ def test_python_md_examples_run():
         exec(compile(block, "docs/python.md", "exec"), namespace)
     assert namespace["q"].shape == (61, 4) and namespace["w"].shape == (61, 3)
     assert namespace["frames"].shape[1:] == (60, 4)
+    assert namespace["err"].max() <= 0.5

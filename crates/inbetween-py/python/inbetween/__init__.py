@@ -3,7 +3,8 @@
 ``Curve`` builds the library's curve (hermite, squad, bezier, slerp, minaccel) through keys
 (K, 4) or (K, J, 4) and evaluates rotations, angular velocities and accelerations at many times
 at once; ``resample`` puts dense frames at one exact rate onto another, as ``inbetween interp``
-writes them; ``frame_times`` gives that grid. Rates are exact: ``"30000/1001"``, ``29.97`` (the
+writes them; ``frame_times`` gives that grid; ``reduce`` keeps the fewest frames as keys whose
+curve gives every frame back within a tolerance, verified. Rates are exact: ``"30000/1001"``, ``29.97`` (the
 NTSC ratio, as on the command line), ``Fraction(120, 1)``, or a float taken as the decimal it
 prints as (``59.9999885559082``). Errors are ``InputError`` (a ``ValueError``).
 """
@@ -17,7 +18,7 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Curve", "InputError", "frame_times", "resample"]
+__all__ = ["Curve", "InputError", "Reduction", "frame_times", "reduce", "resample"]
 
 Rate = Union[int, float, str, Any]
 
@@ -151,3 +152,91 @@ def frame_times(n: int, fps_in: Rate, fps_out: Rate) -> np.ndarray:
     """The times (M,) of the frames ``resample`` writes for ``n`` frames at ``fps_in``:
     ``k/fps_out`` for k = 0 … ⌊(n − 1)/fps_in · fps_out⌋, each an exact ratio rounded once."""
     return _inbetween.frame_times(n, fps_in, fps_out)
+
+
+class Reduction:
+    """What ``reduce`` kept, per joint (lists of one entry for (T, 4) frames).
+
+    ``keys``: the kept frames' indices (int64, increasing, first and last included);
+    ``velocities``: each key's angular velocity ((k, 3), rad/s, world frame) or ``None``;
+    ``max_error`` and ``mean_error`` (J,): over every frame, in the tolerance's unit (degrees
+    with ``degrees=True``, else radians; a length with ``distance``); ``max_position_error``
+    (J,) or ``None``. ``curve(rotations, joint)`` is the curve of a joint's keys, which gives
+    every frame back within the tolerance.
+    """
+
+    __slots__ = ("keys", "velocities", "max_error", "mean_error", "max_position_error",
+                 "joints", "fps", "_options")
+
+    def __init__(self, joints, per_joint, fps, to_unit, options):
+        self.joints = joints
+        self.fps = fps
+        self.keys = [d["keys"] for d in per_joint]
+        self.velocities = [d["velocities"] for d in per_joint]
+        self.max_error = np.array([to_unit(d["max_error"]) for d in per_joint])
+        self.mean_error = np.array([to_unit(d["mean_error"]) for d in per_joint])
+        p = [d["max_position_error"] for d in per_joint]
+        self.max_position_error = None if p[0] is None else np.array(p)
+        self._options = options
+
+    def key_times(self, joint: Optional[int] = None) -> np.ndarray:
+        """The key times (s) of ``joint`` (``None`` for (T, 4) frames): frame k at k/fps."""
+        keys = self.keys[joint or 0]
+        return frame_times(int(keys[-1]) + 1, self.fps, self.fps)[keys]
+
+    def curve(self, rotations: Any, joint: Optional[int] = None) -> "Curve":
+        """The ``Curve`` of ``joint``'s keys (with their velocities) through the frames
+        ``rotations`` that were reduced, with the scheme and options they were reduced for."""
+        q, scalar_first = _rotations(rotations, self._options["scalar_first"]), self._options["scalar_first"]
+        keys = self.keys[joint or 0]
+        q = q[keys] if joint is None else q[keys, joint]
+        return Curve(self.key_times(joint), q, self._options["scheme"],
+                     velocities=self.velocities[joint or 0], ends=self._options["ends"],
+                     path=self._options["path"], scalar_first=scalar_first,
+                     grid_rate=self.fps)
+
+    def __len__(self) -> int:
+        return len(self.keys)
+
+    def __repr__(self) -> str:
+        kept = sum(len(k) for k in self.keys)
+        return f"Reduction(joints={self.joints}, keys={kept}, max_error={self.max_error.max():.4g})"
+
+
+def reduce(
+    rotations: Any,
+    fps: Rate,
+    tolerance: float,
+    *,
+    degrees: bool = True,
+    scheme: str = "bezier",
+    method: str = "greedy",
+    distance: Optional[float] = None,
+    shared_keys: bool = False,
+    velocities: bool = True,
+    translations: Any = None,
+    translation_tolerance: Optional[float] = None,
+    ends: str = "chord",
+    path: str = "shortest",
+    scalar_first: bool = True,
+) -> Reduction:
+    """The fewest frames of ``rotations`` (T, 4) or (T, J, 4) at ``fps`` kept as keys such that
+    the curve of ``scheme`` through them (with each key's estimated angular velocity unless
+    ``velocities=False``) gives every frame back within ``tolerance``: the angle in degrees
+    (radians with ``degrees=False``), or with ``distance`` D the displacement 2·D·sin(θ/2) of a
+    point D from the joint (``tolerance`` a length). ``translations`` (T, 3) or (T, J, 3) within
+    ``translation_tolerance``; ``shared_keys``: one set of key frames for every joint. Verified
+    on every frame before it returns, as ``inbetween reduce`` does."""
+    q = _rotations(rotations, scalar_first)
+    rad = distance is None and degrees
+    tol = float(np.radians(tolerance)) if rad else float(tolerance)
+    per_joint = _inbetween.reduce(
+        q, fps, tol, scheme=scheme, method=method, distance=distance,
+        shared_keys=shared_keys, velocities=velocities,
+        translations=_optional(translations, "translations"),
+        translation_tolerance=translation_tolerance, ends=ends, path=path,
+        scalar_first=scalar_first,
+    )
+    to_unit = (lambda x: float(np.degrees(x))) if rad else float
+    options = {"scheme": scheme, "ends": ends, "path": path, "scalar_first": scalar_first}
+    return Reduction(None if q.ndim == 2 else q.shape[1], per_joint, fps, to_unit, options)

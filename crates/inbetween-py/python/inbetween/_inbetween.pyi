@@ -1,6 +1,6 @@
 """Type stubs of the compiled module (the package's public names are in __init__.py)."""
 
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -42,3 +42,19 @@ def resample(
     velocity: bool = ...,
 ) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]: ...
 def frame_times(n: int, fps_in: Any, fps_out: Any) -> np.ndarray: ...
+def reduce(
+    rotations: np.ndarray,
+    fps: Any,
+    tolerance: float,
+    *,
+    scheme: str = ...,
+    method: str = ...,
+    distance: Optional[float] = ...,
+    shared_keys: bool = ...,
+    velocities: bool = ...,
+    translations: Optional[np.ndarray] = ...,
+    translation_tolerance: Optional[float] = ...,
+    ends: str = ...,
+    path: str = ...,
+    scalar_first: bool = ...,
+) -> List[Dict[str, Any]]: ...
