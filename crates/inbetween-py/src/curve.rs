@@ -234,8 +234,8 @@ pub(crate) fn build(
         .enumerate()
         .map(|(j, c)| {
             c.map_err(|e| match layout.joints {
-                Some(_) => input_error(format!("joint {j}: {}", e.message())),
-                None => input_error(e.message().to_string()),
+                Some(_) => input_error(format!("joint {j}: {}", crate::message(&e))),
+                None => input_error(crate::message(&e).to_string()),
             })
         })
         .collect()

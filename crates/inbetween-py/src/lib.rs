@@ -6,6 +6,7 @@
 //! - [`curve`]: `Curve`, one curve per joint through keys (K, 4) or (K, J, 4).
 //! - [`resample`]: `resample` and `frame_times`, dense frames onto another exact rate.
 //! - [`reduce`]: `reduce`, the fewest keys within a tolerance, verified on every frame.
+//! - [`read`]: `read`, any file the command line reads, as tracks of arrays.
 //! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
 //! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
 
@@ -14,6 +15,7 @@ use pyo3::prelude::*;
 mod arrays;
 mod curve;
 mod options;
+mod read;
 mod reduce;
 mod resample;
 
@@ -23,6 +25,23 @@ pyo3::create_exception!(
     pyo3::exceptions::PyValueError,
     "Input that inbetween refuses: a shape, a value or a rate, with the library's message."
 );
+
+/// The library's message with each setting it names as this package's keyword (`rotation`,
+/// `key_fps`, …), never a command-line flag.
+pub(crate) fn message(e: &inbetween::InputError) -> String {
+    use inbetween::error::Setting;
+    e.parts().render(|s| match s {
+        Setting::Scheme => "scheme",
+        Setting::FrameRate => "fps_out",
+        Setting::KeyRate => "key_fps",
+        Setting::Rotation => "rotation",
+        Setting::InputAngles => "angles",
+        Setting::SharedKeys => "shared_keys",
+        Setting::Animation => "animation",
+        Setting::Skeleton => "skeleton",
+        Setting::MaxInputBytes => "max_bytes",
+    })
+}
 
 /// An [`InputError`] with `message`.
 pub(crate) fn input_error(message: impl Into<String>) -> PyErr {
@@ -36,5 +55,6 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
+    m.add_function(wrap_pyfunction!(read::read, m)?)?;
     Ok(())
 }

@@ -9,7 +9,7 @@ use pyo3::types::{PyFloat, PyInt, PyString};
 /// A scheme by name: hermite, squad, bezier, slerp, minaccel.
 pub fn scheme(name: &str) -> PyResult<Scheme> {
     name.parse()
-        .map_err(|e: inbetween::InputError| input_error(format!("scheme: {}", e.message())))
+        .map_err(|e: inbetween::InputError| input_error(format!("scheme: {}", crate::message(&e))))
 }
 
 /// An end rule by name: chord, rest, cyclic.
@@ -42,7 +42,7 @@ pub fn path(name: &str) -> PyResult<PathMode> {
 /// second, exactly; the NTSC decimals 23.976, 29.97, 59.94 mean their /1001 ratios, as on the
 /// command line).
 pub fn rate(what: &str, x: &Bound<'_, PyAny>) -> PyResult<Fps> {
-    let located = |e: inbetween::InputError| input_error(format!("{what}: {}", e.message()));
+    let located = |e: inbetween::InputError| input_error(format!("{what}: {}", crate::message(&e)));
     if x.is_instance_of::<pyo3::types::PyBool>() {
         return Err(input_error(format!(
             "{what}: expected a frame rate, found a bool"

@@ -113,7 +113,7 @@ pub fn reduce<'py>(
             false => reduce_each(&frames, &opts),
         })
         .map_err(|e| match e {
-            inbetween::Error::Input(e) => input_error(e.message()),
+            inbetween::Error::Input(e) => input_error(crate::message(&e)),
             other => pyo3::exceptions::PyRuntimeError::new_err(other.to_string()),
         })?;
     reduced.iter().map(|r| as_dict(py, r)).collect()

@@ -18,7 +18,7 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Curve", "InputError", "Reduction", "frame_times", "reduce", "resample"]
+__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "read", "reduce", "resample"]
 
 Rate = Union[int, float, str, Any]
 
@@ -240,3 +240,76 @@ def reduce(
     to_unit = (lambda x: float(np.degrees(x))) if rad else float
     options = {"scheme": scheme, "ends": ends, "path": path, "scalar_first": scalar_first}
     return Reduction(None if q.ndim == 2 else q.shape[1], per_joint, fps, to_unit, options)
+
+
+class Clip:
+    """The tracks of a file ``read`` read.
+
+    ``names`` (J tracks); ``tracks``: per track ``(times (K,), rotations (K, 4), translations
+    (K, 3) or None)``; ``fps``: the rate of the file's frames or frame numbers, as text
+    (``"120"``, ``"30000/1001"``) or ``None``; when every track has the same times (a BVH clip,
+    dense frames) also ``times`` (T,), ``rotations`` (T, J, 4) and ``translations`` (T, J, 3)
+    (zeros for a track without, as ``has_translation`` (J,) says; ``None`` when no track has
+    any), else those three are ``None``. A BVH file adds ``parents`` (J,) (each track's nearest
+    ancestor that is a track, −1 for none) and ``offsets`` (J, 3), its joints' OFFSETs.
+    """
+
+    __slots__ = ("source", "format", "fps", "names", "tracks", "parents", "offsets", "times",
+                 "rotations", "translations", "has_translation")
+
+    def __init__(self, d: dict) -> None:
+        self.source = d["source"]
+        self.format = d["format"]
+        self.fps = d["fps"]
+        self.names = list(d["names"])
+        self.tracks = list(d["tracks"])
+        self.parents = d.get("parents")
+        self.offsets = d.get("offsets")
+        self.has_translation = np.array([p is not None for _, _, p in self.tracks])
+        first = self.tracks[0][0]
+        shared = all(t.shape == first.shape and np.array_equal(t, first) for t, _, _ in self.tracks)
+        self.times = first if shared else None
+        self.rotations = np.stack([q for _, q, _ in self.tracks], axis=1) if shared else None
+        self.translations = None
+        if shared and self.has_translation.any():
+            zero = np.zeros((len(first), 3))
+            self.translations = np.stack(
+                [zero if p is None else p for _, _, p in self.tracks], axis=1)
+
+    def track(self, name: Union[str, int]) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
+        """One track's (times, rotations, translations), by name or position."""
+        if isinstance(name, str):
+            try:
+                name = self.names.index(name)
+            except ValueError:
+                raise InputError(f"{self.source}: no track {name!r}; tracks: "
+                                 f"{', '.join(self.names[:20])}") from None
+        return self.tracks[name]
+
+    def __len__(self) -> int:
+        return len(self.names)
+
+    def __repr__(self) -> str:
+        frames = "" if self.times is None else f", frames={len(self.times)}"
+        return f"Clip({self.source!r}, format={self.format!r}, tracks={len(self)}{frames}, fps={self.fps})"
+
+
+def read(
+    path: Any,
+    *,
+    rotation: Optional[str] = None,
+    angles: str = "deg",
+    key_fps: Optional[Rate] = None,
+    quat_order: str = "wxyz",
+    scalar_first: bool = True,
+) -> Clip:
+    """Reads a keyframe or motion file as the command line does — CSV, JSON, BVH or glTF
+    (.gltf, .glb), by extension or content — into a ``Clip``. ``rotation`` (``"euler:ZYX"``,
+    ``"matrix"``, …) says how CSV ``e1,e2,e3`` columns and JSON ``euler`` keys are written
+    when the file does not; ``angles`` the unit of undeclared angles; ``key_fps`` the rate of
+    frame numbers when the file declares none; ``quat_order`` the order of JSON quaternion
+    arrays. Rotations come out as unit quaternions (``scalar_first`` as elsewhere)."""
+    import os
+    return Clip(_inbetween.read(os.fspath(path), rotation=rotation, angles=angles,
+                                key_fps=key_fps, quat_order=quat_order,
+                                scalar_first=scalar_first))

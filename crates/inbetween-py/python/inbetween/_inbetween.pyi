@@ -58,3 +58,13 @@ def reduce(
     path: str = ...,
     scalar_first: bool = ...,
 ) -> List[Dict[str, Any]]: ...
+def read(
+    path: str,
+    *,
+    rotation: Optional[str] = ...,
+    angles: str = ...,
+    key_fps: Any = ...,
+    quat_order: str = ...,
+    scalar_first: bool = ...,
+    max_bytes: int = ...,
+) -> Dict[str, Any]: ...

@@ -1,0 +1,138 @@
+//! `read`: any file the command line reads (CSV, JSON, BVH, glTF) as tracks of numpy arrays,
+//! through the formats crate (`inbetween-io`): the same tracks, the same checks, the same
+//! located errors.
+
+use crate::arrays::quat_row;
+use crate::{input_error, options};
+use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+use inbetween::{Fps, Tcb};
+use inbetween_io::{Format, ReadOptions};
+use numpy::{PyArray1, PyArray2};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::Path;
+
+/// The file at `path` as a dict: `source`, `format`, `fps` (the rate its frames or frame numbers
+/// are at, as text, or None), `names`, `tracks` (per track: times (K,), rotations (K, 4),
+/// translations (K, 3) or None), and for BVH `parents` (each track's nearest ancestor that is
+/// a track, -1 for none) and `offsets` (J, 3). `rotation` says how CSV e1,e2,e3 columns and JSON
+/// `euler` keys are written when the file does not say (`"euler:ZYX"`, …); `angles` the unit of
+/// undeclared angles; `key_fps` the rate of frame numbers when the file declares none.
+#[pyfunction]
+#[pyo3(signature = (
+    path, *, rotation = None, angles = "deg", key_fps = None, quat_order = "wxyz",
+    scalar_first = true, max_bytes = inbetween_io::DEFAULT_MAX_INPUT_BYTES
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn read<'py>(
+    py: Python<'py>,
+    path: std::path::PathBuf,
+    rotation: Option<&str>,
+    angles: &str,
+    key_fps: Option<Bound<'py, PyAny>>,
+    quat_order: &str,
+    scalar_first: bool,
+    max_bytes: u64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let located = |e: inbetween::InputError| input_error(crate::message(&e));
+    let opts = ReadOptions {
+        from: rotation
+            .map(Repr::parse)
+            .transpose()
+            .map_err(|e| input_error(format!("rotation: {}", crate::message(&e))))?,
+        angles: AngleUnit::parse(angles)
+            .map_err(|e| input_error(format!("angles: {}", crate::message(&e))))?,
+        input_angles: None,
+        key_fps: key_fps
+            .as_ref()
+            .map(|r| options::rate("key_fps", r))
+            .transpose()?,
+        quat_order: QuatOrder::parse(quat_order)
+            .map_err(|e| input_error(format!("quat_order: {}", crate::message(&e))))?,
+        delimiter: None,
+    };
+    let (doc, format) = py
+        .detach(|| {
+            let bytes = inbetween_io::read_bytes_limited(&path, max_bytes)?;
+            let source = path.display().to_string();
+            inbetween_io::parse_bytes(bytes, &source, Some(Path::new(&path)), None, &opts)
+        })
+        .map_err(located)?;
+    let frame_fps = doc.fps.unwrap_or(Fps::DEFAULT);
+    let tracks = doc.tracks_shaped(frame_fps, Tcb::ZERO).map_err(located)?;
+    let d = PyDict::new(py);
+    d.set_item("source", &doc.source)?;
+    d.set_item("format", format_name(format))?;
+    d.set_item("fps", doc.fps.map(|f| f.to_string()))?;
+    let names: Vec<String> = tracks
+        .iter()
+        .enumerate()
+        .map(|(i, t)| t.name().map_or_else(|| format!("track{i}"), str::to_string))
+        .collect();
+    d.set_item("names", &names)?;
+    let mut out = Vec::with_capacity(tracks.len());
+    for t in &tracks {
+        let q: Vec<Vec<f64>> = t
+            .rotations()
+            .iter()
+            .map(|&q| quat_row(q, scalar_first).to_vec())
+            .collect();
+        let p = t.translations().map(|p| {
+            let rows: Vec<Vec<f64>> = p.iter().map(|v| v.to_array().to_vec()).collect();
+            PyArray2::from_vec2(py, &rows)
+        });
+        let q = PyArray2::from_vec2(py, &q).map_err(runtime)?;
+        let p = p.transpose().map_err(runtime)?;
+        out.push((PyArray1::from_slice(py, t.times()), q, p));
+    }
+    d.set_item("tracks", out)?;
+    if let Some(clip) = &doc.skeleton {
+        let joints = clip.joints();
+        let track_of: Vec<Option<usize>> = {
+            let mut n = 0;
+            joints
+                .iter()
+                .map(|j| {
+                    j.is_track().then(|| {
+                        n += 1;
+                        n - 1
+                    })
+                })
+                .collect()
+        };
+        let mut parents = Vec::new();
+        let mut offsets = Vec::new();
+        for (i, j) in joints.iter().enumerate() {
+            if track_of[i].is_none() {
+                continue;
+            }
+            let mut up = j.parent();
+            while let Some(p) = up.filter(|&p| track_of[p].is_none()) {
+                up = joints[p].parent();
+            }
+            parents.push(up.and_then(|p| track_of[p]).map_or(-1, |t| t as i64));
+            offsets.push(j.offset().to_vec());
+        }
+        if parents.len() == tracks.len() {
+            d.set_item("parents", PyArray1::from_vec(py, parents))?;
+            d.set_item(
+                "offsets",
+                PyArray2::from_vec2(py, &offsets).map_err(runtime)?,
+            )?;
+        }
+    }
+    Ok(d)
+}
+
+fn runtime(e: impl std::fmt::Display) -> PyErr {
+    pyo3::exceptions::PyRuntimeError::new_err(e.to_string())
+}
+
+fn format_name(f: Format) -> &'static str {
+    match f {
+        Format::Csv => "csv",
+        Format::Json => "json",
+        Format::Bvh => "bvh",
+        Format::Gltf => "gltf",
+    }
+}
