@@ -7,6 +7,7 @@
 //! - [`resample`]: `resample` and `frame_times`, dense frames onto another exact rate.
 //! - [`reduce`]: `reduce`, the fewest keys within a tolerance, verified on every frame.
 //! - [`read`]: `read`, any file the command line reads, as tracks of arrays.
+//! - [`write`]: `write`, tracks of arrays as CSV, JSON or BVH on a skeleton.
 //! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
 //! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
 
@@ -18,6 +19,7 @@ mod options;
 mod read;
 mod reduce;
 mod resample;
+mod write;
 
 pyo3::create_exception!(
     _inbetween,
@@ -56,5 +58,6 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
     m.add_function(wrap_pyfunction!(read::read, m)?)?;
+    m.add_function(wrap_pyfunction!(write::write, m)?)?;
     Ok(())
 }

@@ -1,13 +1,17 @@
 """docs/python.md's examples run as written: every ```python block, in order, in one namespace,
-from the repository's root."""
+in a folder with the repository's fixtures."""
 
 import re
 
 from conftest import ROOT
+from inbetween import read as inbetween_read
 
 
-def test_python_md_examples_run(monkeypatch):
-    monkeypatch.chdir(ROOT)  # the examples name files from the repository's root
+def test_python_md_examples_run(monkeypatch, tmp_path):
+    # The examples read files from the repository's root and write beside them: run them in a
+    # folder that has the fixtures.
+    (tmp_path / "fixtures").symlink_to(ROOT / "fixtures")
+    monkeypatch.chdir(tmp_path)
     text = (ROOT / "docs" / "python.md").read_text()
     blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
     assert len(blocks) >= 2
@@ -18,3 +22,5 @@ def test_python_md_examples_run(monkeypatch):
     assert namespace["frames"].shape[1:] == (60, 4)
     assert namespace["err"].max() <= 0.5
     assert namespace["clip"].rotations.shape == (61, 31, 4)
+    assert (tmp_path / "wheel.csv").read_text().splitlines()[2].endswith(",30.000,0.000,0.000")
+    assert inbetween_read(tmp_path / "cmu_copy.bvh").rotations.shape == (61, 31, 4)

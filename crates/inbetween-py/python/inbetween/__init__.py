@@ -18,7 +18,8 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "read", "reduce", "resample"]
+__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "read", "reduce", "resample",
+           "write"]
 
 Rate = Union[int, float, str, Any]
 
@@ -276,6 +277,30 @@ class Clip:
             self.translations = np.stack(
                 [zero if p is None else p for _, _, p in self.tracks], axis=1)
 
+    @classmethod
+    def from_arrays(cls, times: Any, rotations: Any, *, names: Any = None,
+                    translations: Any = None, fps: Optional[Rate] = None,
+                    scalar_first: bool = True) -> "Clip":
+        """A clip of J tracks on shared ``times`` (T,): ``rotations`` (T, J, 4) (or (T, 4), one
+        track), ``translations`` (T, J, 3) or ``None``, ``names`` (J strings; default
+        ``track0``, …), ``fps`` the frames' rate (BVH output needs the times on it)."""
+        t = _array(times, "times")
+        q = _rotations(rotations, scalar_first)
+        if q.ndim == 2:
+            q = q[:, np.newaxis]
+        p = _optional(translations, "translations")
+        if p is not None and p.ndim == 2:
+            p = p[:, np.newaxis]
+        j = q.shape[1] if q.ndim == 3 else 0
+        names = [f"track{i}" for i in range(j)] if names is None else [str(n) for n in names]
+        if len(names) != j:
+            raise InputError(f"names: {len(names)} names for {j} tracks")
+        tracks = [(t, np.ascontiguousarray(q[:, i]),
+                   None if p is None else np.ascontiguousarray(p[:, i])) for i in range(j)]
+        return cls({"source": "<arrays>", "format": None,
+                    "fps": None if fps is None else str(fps), "names": names,
+                    "tracks": tracks})
+
     def track(self, name: Union[str, int]) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
         """One track's (times, rotations, translations), by name or position."""
         if isinstance(name, str):
@@ -313,3 +338,33 @@ def read(
     return Clip(_inbetween.read(os.fspath(path), rotation=rotation, angles=angles,
                                 key_fps=key_fps, quat_order=quat_order,
                                 scalar_first=scalar_first))
+
+
+def write(
+    path: Any,
+    clip: Clip,
+    *,
+    fps: Optional[Rate] = None,
+    skeleton: Any = None,
+    to: str = "quat",
+    angles: str = "deg",
+    precision: Optional[int] = None,
+    euler: str = "continuous",
+    scalar_first: bool = True,
+) -> None:
+    """Writes ``clip``'s tracks to ``path`` as its extension says: ``.csv`` or ``.json`` keys
+    (the rotations as ``to``: ``"quat"``, ``"euler:ZYX"``, ``"matrix"``, …, angles in
+    ``angles``, ``precision`` digits after the point), or ``.bvh`` motion on ``skeleton`` (a BVH
+    file's hierarchy and channel orders; default the clip's own file when it was read from a
+    BVH), each joint's Euler angles continuous along the clip (``euler="wrapped"``: scipy's
+    ranges). ``fps`` the frames' rate (default the clip's, for BVH the skeleton's). The file is
+    replaced atomically; nothing is written on error."""
+    import os
+    if skeleton is None and clip.format == "bvh" and str(path).lower().endswith(".bvh"):
+        skeleton = clip.source
+    tracks = [(n, t, q, p) for n, (t, q, p) in zip(clip.names, clip.tracks)]
+    _inbetween.write(os.fspath(path), tracks,
+                     fps=fps if fps is not None else clip.fps,
+                     skeleton=None if skeleton is None else os.fspath(skeleton),
+                     to=to, angles=angles, precision=precision, euler=euler,
+                     scalar_first=scalar_first)

@@ -68,3 +68,15 @@ def read(
     scalar_first: bool = ...,
     max_bytes: int = ...,
 ) -> Dict[str, Any]: ...
+def write(
+    path: str,
+    tracks: List[Tuple[str, np.ndarray, np.ndarray, Optional[np.ndarray]]],
+    *,
+    fps: Any = ...,
+    skeleton: Optional[str] = ...,
+    to: str = ...,
+    angles: str = ...,
+    precision: Optional[int] = ...,
+    euler: str = ...,
+    scalar_first: bool = ...,
+) -> None: ...

@@ -1,0 +1,225 @@
+//! `write`: tracks of arrays as a keyframe document (CSV, JSON), or as BVH motion on a
+//! skeleton, through the formats crate's writers (the bytes `inbetween convert` writes), into
+//! the file atomically (nothing is left on error).
+
+use crate::arrays::{self, Layout};
+use crate::{input_error, options};
+use glam::DVec3;
+use inbetween::Fps;
+use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+use inbetween_io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
+use inbetween_io::num::NumFormat;
+use inbetween_io::write::{EulerMode, Style};
+use inbetween_io::{Format, OutputFormat};
+use numpy::PyReadonlyArrayDyn;
+use pyo3::prelude::*;
+use std::path::{Path, PathBuf};
+
+/// One track as the Python layer hands it over.
+type TrackArrays<'py> = (
+    String,
+    PyReadonlyArrayDyn<'py, f64>,
+    PyReadonlyArrayDyn<'py, f64>,
+    Option<PyReadonlyArrayDyn<'py, f64>>,
+);
+
+/// Writes `tracks` (name, times (K,), rotations (K, 4), translations (K, 3) or None) to `path`
+/// in the format its extension names (csv, json, bvh); `fps` is the rate of the frames (BVH:
+/// the skeleton's when None), `skeleton` the BVH file whose hierarchy BVH output is written
+/// on; `to`, `angles`, `precision` and `euler` as `inbetween convert`'s options.
+#[pyfunction]
+#[pyo3(signature = (
+    path, tracks, *, fps = None, skeleton = None, to = "quat", angles = "deg",
+    precision = None, euler = "continuous", scalar_first = true
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn write<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    tracks: Vec<TrackArrays<'py>>,
+    fps: Option<Bound<'py, PyAny>>,
+    skeleton: Option<PathBuf>,
+    to: &str,
+    angles: &str,
+    precision: Option<usize>,
+    euler: &str,
+    scalar_first: bool,
+) -> PyResult<()> {
+    let located = |e: inbetween::InputError| input_error(crate::message(&e));
+    let source = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let format = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
+        Some(OutputFormat::Doc(f)) => f,
+        Some(OutputFormat::Bvh) => Format::Bvh,
+        _ => {
+            return Err(input_error(format!(
+                "path: {source}: write takes .csv, .json or .bvh (npy, npz and glTF from the \
+                 command line: inbetween interp)"
+            )));
+        }
+    };
+    if precision.is_some_and(|p| p > 17) {
+        return Err(input_error("precision: expected 0 to 17 digits"));
+    }
+    let style = Style {
+        repr: Repr::parse(to).map_err(|e| input_error(format!("to: {}", crate::message(&e))))?,
+        angles: AngleUnit::parse(angles)
+            .map_err(|e| input_error(format!("angles: {}", crate::message(&e))))?,
+        quat_order: QuatOrder::Wxyz,
+        num: precision.map_or(NumFormat::Shortest, NumFormat::Fixed),
+        euler: match euler {
+            "continuous" => EulerMode::Continuous,
+            "wrapped" => EulerMode::Wrapped,
+            _ => {
+                return Err(input_error(format!(
+                    "euler: expected continuous or wrapped, found {euler:?}"
+                )));
+            }
+        },
+    };
+    let fps = fps.as_ref().map(|r| options::rate("fps", r)).transpose()?;
+    let skeleton = match (format, skeleton) {
+        (Format::Bvh, Some(s)) => Some(read_skeleton(&s).map_err(located)?),
+        (Format::Bvh, None) => {
+            return Err(input_error(
+                "skeleton: BVH output is written on a skeleton: give the BVH file whose \
+                 hierarchy and channels the motion is for",
+            ));
+        }
+        (_, Some(_)) => {
+            return Err(input_error(
+                "skeleton: only BVH output is written on a skeleton",
+            ));
+        }
+        _ => None,
+    };
+    let rate = fps.or(skeleton.as_ref().map(|s| s.fps()));
+    let doc = document(&source, &tracks, rate, format, scalar_first)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let io = |e: std::io::Error| input_error(format!("{source}: cannot write: {e}"));
+    let mut file = tempfile::NamedTempFile::new_in(&dir).map_err(io)?;
+    py.detach(|| -> PyResult<()> {
+        let out = std::io::BufWriter::new(file.as_file_mut());
+        match &skeleton {
+            Some(s) => inbetween_io::bvh::keys::write_keys(
+                out,
+                &doc,
+                s,
+                rate.unwrap_or(Fps::DEFAULT),
+                style.euler,
+            )
+            .map_err(located),
+            None => inbetween_io::write::write_keys(
+                out,
+                &doc,
+                format,
+                style,
+                rate.unwrap_or(Fps::DEFAULT),
+            )
+            .map_err(io),
+        }
+    })?;
+    file.persist(&path).map_err(|e| io(e.error))?;
+    Ok(())
+}
+
+/// The skeleton of a BVH file (its hierarchy, channels and rate).
+fn read_skeleton(path: &Path) -> inbetween::error::InputResult<inbetween_io::clip::Clip> {
+    let bytes = inbetween_io::read_bytes_limited(path, inbetween_io::DEFAULT_MAX_INPUT_BYTES)?;
+    let source = path.display().to_string();
+    let text = String::from_utf8(bytes)
+        .map_err(|_| inbetween::InputError::new(format!("{source}: not UTF-8 text")))?;
+    inbetween_io::bvh::read::parse(&text, &source).map(|(clip, _)| clip)
+}
+
+/// The tracks as a document: keys at their times, or for BVH at frame numbers of `fps`
+/// (each time must be a frame of that rate within 1e-9 s).
+fn document(
+    source: &str,
+    tracks: &[TrackArrays<'_>],
+    fps: Option<Fps>,
+    format: Format,
+    scalar_first: bool,
+) -> PyResult<Document> {
+    let mut doc_tracks = Vec::with_capacity(tracks.len());
+    for (i, (name, times, rotations, translations)) in tracks.iter().enumerate() {
+        let what = |field: &str| format!("tracks[{i}] ({name:?}) {field}");
+        let times = arrays::times(times, &what("times"))?;
+        let (layout, quats) = arrays::quats(rotations, &what("rotations"), scalar_first)?;
+        if layout.joints.is_some() || layout.rows != times.len() {
+            return Err(input_error(format!(
+                "{}: expected ({}, 4) rotations for {} times",
+                what("rotations"),
+                times.len(),
+                times.len()
+            )));
+        }
+        let positions: Vec<Option<DVec3>> = match translations {
+            Some(p) => {
+                let like = Layout {
+                    rows: times.len(),
+                    joints: None,
+                };
+                let v = arrays::vectors(p, &what("translations"), like, "times")?;
+                v.into_iter()
+                    .next()
+                    .unwrap_or_default()
+                    .into_iter()
+                    .map(Some)
+                    .collect()
+            }
+            None => Vec::new(),
+        };
+        let mut keys = Vec::with_capacity(times.len());
+        for (k, (&t, q)) in times.iter().zip(&quats[0]).enumerate() {
+            let when = match (format, fps) {
+                (Format::Bvh, Some(f)) => {
+                    let n = f.nearest_frame(t);
+                    if (f.time_of(n) - t).abs() > inbetween::clock::TIME_TOL {
+                        return Err(input_error(format!(
+                            "{}[{k}]: {t} s is not a frame at {f} fps (BVH rows are frames)",
+                            what("times")
+                        )));
+                    }
+                    KeyTime::Frame(n as f64)
+                }
+                _ => KeyTime::Seconds(t),
+            };
+            let norm = q.length();
+            if (norm - 1.0).abs() > 1e-6 || norm.is_nan() {
+                return Err(input_error(format!(
+                    "{}[{k}]: expected a unit quaternion (norm within 1e-6 of 1), found norm \
+                     {norm}",
+                    what("rotations")
+                )));
+            }
+            keys.push(Key { when, rot: *q });
+        }
+        doc_tracks.push(DocTrack {
+            name: Some(name.clone()),
+            keys,
+            start_velocity: None,
+            end_velocity: None,
+            origin: KeyOrigin::Frames,
+            euler: None,
+            velocities: Vec::new(),
+            tcb: Vec::new(),
+            translations: positions,
+        });
+    }
+    Ok(Document {
+        source: source.to_string(),
+        fps,
+        rotation: Some(Repr::Quat),
+        tracks: doc_tracks,
+        named_tracks: true,
+        warnings: Vec::new(),
+        skeleton: None,
+    })
+}

@@ -1,0 +1,66 @@
+"""`inbetween.write`: keys documents and BVH, the bytes the command line writes."""
+
+import subprocess
+
+import numpy as np
+import pytest
+
+import inbetween
+from conftest import FIXTURES, angle
+
+
+def test_bvh_on_its_skeleton_is_what_convert_writes(cli, tmp_path):
+    src = FIXTURES / "bvh" / "cmu_01_01.bvh"
+    ours = tmp_path / "ours.bvh"
+    inbetween.write(ours, inbetween.read(src))
+    keys, theirs = tmp_path / "keys.json", tmp_path / "theirs.bvh"
+    subprocess.run([cli, "convert", str(src), "-o", str(keys)], check=True)
+    subprocess.run([cli, "convert", str(keys), "--skeleton", str(src), "-o", str(theirs)],
+                   check=True)
+    assert ours.read_bytes() == theirs.read_bytes()
+    back = inbetween.read(ours)
+    assert np.max(angle(back.rotations, inbetween.read(src).rotations)) < 1e-6
+
+
+@pytest.mark.parametrize("ext", ["csv", "json"])
+@pytest.mark.parametrize("name", ["gltf/real/RiggedSimple.gltf", "bvh/cmu_01_01.bvh",
+                                  "interp/multitrack.json"])
+def test_keys_read_back_to_the_same_numbers(tmp_path, ext, name):
+    clip = inbetween.read(FIXTURES / name)
+    out = tmp_path / f"keys.{ext}"
+    inbetween.write(out, clip)
+    back = inbetween.read(out)
+    assert back.names == clip.names
+    for (t0, q0, p0), (t1, q1, p1) in zip(clip.tracks, back.tracks):
+        assert np.array_equal(t0, t1)
+        # The reader normalises every quaternion it reads: the last bit may move (2.2e-16).
+        assert np.max(np.abs(q0 - q1)) <= 4.5e-16
+        assert (p0 is None and p1 is None) or np.array_equal(p0, p1)
+
+
+def test_arrays_in_euler_angles_with_few_digits(tmp_path):
+    t = np.arange(5) / 24
+    a = np.radians(30) * np.arange(5)
+    q = np.stack([np.cos(a / 2), 0 * a, 0 * a, np.sin(a / 2)], axis=1)
+    out = tmp_path / "spin.csv"
+    inbetween.write(out, inbetween.Clip.from_arrays(t, q, names=["wheel"]), to="euler:ZYX",
+                    precision=3)
+    lines = out.read_text().splitlines()
+    assert lines[0] == "track,time,e1,e2,e3"
+    assert lines[2] == f"wheel,{1 / 24!r},30.000,0.000,0.000"
+
+
+@pytest.mark.parametrize(
+    "call, says",
+    [
+        (lambda d: inbetween.write(d / "x.glb", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "path:"),
+        (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "skeleton: BVH output is written on a skeleton"),
+        (lambda d: inbetween.write(d / "x.csv", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), to="euler:QQQ"), "to:"),
+        (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), skeleton=FIXTURES / "bvh" / "cmu_01_01.bvh"), "skeleton"),
+    ],
+)
+def test_errors_write_nothing(tmp_path, call, says):
+    with pytest.raises(inbetween.InputError) as e:
+        call(tmp_path)
+    assert says in str(e.value), str(e.value)
+    assert list(tmp_path.iterdir()) == []
