@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 
 mod arrays;
 mod curve;
+mod frames;
 mod options;
 mod read;
 mod reduce;

@@ -51,15 +51,20 @@ pub fn write<'py>(
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    let format = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
-        Some(OutputFormat::Doc(f)) => f,
-        Some(OutputFormat::Bvh) => Format::Bvh,
+    let target = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
+        Some(
+            t @ (OutputFormat::Doc(_) | OutputFormat::Bvh | OutputFormat::Npy | OutputFormat::Npz),
+        ) => t,
         _ => {
             return Err(input_error(format!(
-                "path: {source}: write takes .csv, .json or .bvh (npy, npz and glTF from the \
-                 command line: inbetween interp)"
+                "path: {source}: write takes .csv, .json, .npy, .npz or .bvh (glTF from the \
+                 command line: inbetween interp anim.glb -o out.glb)"
             )));
         }
+    };
+    let format = match target {
+        OutputFormat::Doc(f) => f,
+        _ => Format::Bvh, // frames on a grid
     };
     if precision.is_some_and(|p| p > 17) {
         return Err(input_error("precision: expected 0 to 17 digits"));
@@ -81,9 +86,9 @@ pub fn write<'py>(
         },
     };
     let fps = fps.as_ref().map(|r| options::rate("fps", r)).transpose()?;
-    let skeleton = match (format, skeleton) {
-        (Format::Bvh, Some(s)) => Some(read_skeleton(&s).map_err(located)?),
-        (Format::Bvh, None) => {
+    let skeleton = match (target, skeleton) {
+        (OutputFormat::Bvh, Some(s)) => Some(read_skeleton(&s).map_err(located)?),
+        (OutputFormat::Bvh, None) => {
             return Err(input_error(
                 "skeleton: BVH output is written on a skeleton: give the BVH file whose \
                  hierarchy and channels the motion is for",
@@ -97,6 +102,11 @@ pub fn write<'py>(
         _ => None,
     };
     let rate = fps.or(skeleton.as_ref().map(|s| s.fps()));
+    if matches!(target, OutputFormat::Npy | OutputFormat::Npz) && rate.is_none() {
+        return Err(input_error(
+            "fps: npy and npz hold frames: give the rate the times are frames of",
+        ));
+    }
     let doc = document(&source, &tracks, rate, format, scalar_first)?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
@@ -106,16 +116,14 @@ pub fn write<'py>(
     let mut file = tempfile::NamedTempFile::new_in(&dir).map_err(io)?;
     py.detach(|| -> PyResult<()> {
         let out = std::io::BufWriter::new(file.as_file_mut());
-        match &skeleton {
-            Some(s) => inbetween_io::bvh::keys::write_keys(
-                out,
-                &doc,
-                s,
-                rate.unwrap_or(Fps::DEFAULT),
-                style.euler,
-            )
-            .map_err(located),
-            None => inbetween_io::write::write_keys(
+        let frames = rate.unwrap_or(Fps::DEFAULT);
+        match (&skeleton, target) {
+            (_, OutputFormat::Npy | OutputFormat::Npz) => {
+                crate::frames::write(out, &doc, target, style, frames)
+            }
+            (Some(s), _) => inbetween_io::bvh::keys::write_keys(out, &doc, s, frames, style.euler)
+                .map_err(located),
+            (None, _) => inbetween_io::write::write_keys(
                 out,
                 &doc,
                 format,

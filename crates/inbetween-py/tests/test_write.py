@@ -54,6 +54,7 @@ def test_arrays_in_euler_angles_with_few_digits(tmp_path):
     "call, says",
     [
         (lambda d: inbetween.write(d / "x.glb", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "path:"),
+        (lambda d: inbetween.write(d / "x.txt", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "write takes .csv, .json, .npy, .npz or .bvh"),
         (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "skeleton: BVH output is written on a skeleton"),
         (lambda d: inbetween.write(d / "x.csv", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), to="euler:QQQ"), "to:"),
         (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), skeleton=FIXTURES / "bvh" / "cmu_01_01.bvh"), "skeleton"),
@@ -63,4 +64,29 @@ def test_errors_write_nothing(tmp_path, call, says):
     with pytest.raises(inbetween.InputError) as e:
         call(tmp_path)
     assert says in str(e.value), str(e.value)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("ext", ["npz", "npy"])
+def test_frames_are_the_arrays_interp_writes(cli, tmp_path, ext):
+    # A BVH clip at its own rate: interp's frames are its frames, so the files are equal.
+    src = FIXTURES / "bvh" / "cmu_01_01.bvh"
+    ours, theirs = tmp_path / f"ours.{ext}", tmp_path / f"theirs.{ext}"
+    inbetween.write(ours, inbetween.read(src))
+    subprocess.run([cli, "interp", str(src), "-o", str(theirs)], check=True)
+    assert ours.read_bytes() == theirs.read_bytes()
+    if ext == "npz":
+        z = np.load(ours)
+        assert z["rotations"].shape == (61, 31, 4) and str(z["fps"]) == "120"
+
+
+def test_npz_needs_one_grid_and_a_rate(tmp_path):
+    multi = inbetween.read(FIXTURES / "interp" / "multitrack.json")
+    with pytest.raises(inbetween.InputError) as e:
+        inbetween.write(tmp_path / "x.npz", multi)
+    assert "npz holds every track on the same frames" in str(e.value)
+    t = np.array([0.0, 0.1])
+    with pytest.raises(inbetween.InputError) as e:
+        inbetween.write(tmp_path / "y.npz", inbetween.Clip.from_arrays(t, [[1, 0, 0, 0]] * 2))
+    assert "fps: npy and npz hold frames" in str(e.value)
     assert list(tmp_path.iterdir()) == []
