@@ -1,5 +1,7 @@
-"""Shared helpers: the CLI binary the tests compare with, and rotation distances."""
+"""Shared helpers: the CLI binary the tests compare with, rotation distances, and frames as
+CSV for the command line."""
 
+import csv
 import os
 import pathlib
 import shutil
@@ -39,3 +41,14 @@ def angle(a, b):
     n = np.linalg.norm(np.asarray(a) - np.sign(np.sum(a * b, axis=-1))[..., None] * b, axis=-1)
     # 4·asin(|a − b|/2) is accurate near zero, where 2·acos(|a·b|) is not.
     return np.where(d > 0.9, 4.0 * np.arcsin(np.minimum(n / 2.0, 1.0)), 2.0 * np.arccos(np.minimum(d, 1.0)))
+
+
+def frames_csv(path, q):
+    """Frames q (T, J, 4) written as a CSV of frame numbers, tracks j0, j1, …; returns path."""
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["track", "frame", "w", "x", "y", "z"])
+        for j in range(q.shape[1]):
+            for k in range(q.shape[0]):
+                w.writerow([f"j{j}", k, *(repr(float(x)) for x in q[k, j])])
+    return path

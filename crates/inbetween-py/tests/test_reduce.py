@@ -1,6 +1,5 @@
 """`inbetween.reduce`: the guarantee as a user checks it, and the command line's keys."""
 
-import csv
 import json
 import subprocess
 
@@ -8,7 +7,7 @@ import numpy as np
 import pytest
 
 import inbetween
-from conftest import angle
+from conftest import angle, frames_csv
 from test_resample import motion
 
 
@@ -45,13 +44,7 @@ def test_one_joint_radians_shared_keys_and_translations():
 
 def test_agrees_with_the_command_line(cli, tmp_path):
     q = motion(361, 3, 120)
-    src = tmp_path / "frames.csv"
-    with open(src, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["track", "frame", "w", "x", "y", "z"])
-        for j in range(3):
-            for k in range(361):
-                w.writerow([f"j{j}", k, *(repr(float(x)) for x in q[k, j])])
+    src = frames_csv(tmp_path / "frames.csv", q)
     for extra, kwargs in [([], {}), (["--method", "optimal", "--scheme", "squad"],
                                      {"method": "optimal", "scheme": "squad"})]:
         out = tmp_path / "keys.json"

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import inbetween
-from conftest import angle
+from conftest import angle, frames_csv
 
 
 def motion(frames, joints, fps):
@@ -60,13 +60,7 @@ def test_resample_shapes_and_keys():
 def test_resample_agrees_with_interp(cli, tmp_path):
     # Three joints at 120 fps written as a CSV of frame numbers, interp at 100 fps.
     q = motion(241, 3, 120)
-    src = tmp_path / "frames.csv"
-    with open(src, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["track", "frame", "w", "x", "y", "z"])
-        for j in range(3):
-            for k in range(241):
-                w.writerow([f"j{j}", k, *(repr(float(x)) for x in q[k, j])])
+    src = frames_csv(tmp_path / "frames.csv", q)
     for scheme in ["bezier", "squad", "slerp"]:
         out = tmp_path / f"{scheme}.csv"
         subprocess.run(
