@@ -248,13 +248,16 @@ pub(crate) fn build(
     built
         .into_iter()
         .enumerate()
-        .map(|(j, c)| {
-            c.map_err(|e| match layout.joints {
-                Some(_) => input_error(format!("joint {j}: {}", e.message())),
-                None => input_error(e.message().to_string()),
-            })
-        })
+        .map(|(j, c)| c.map_err(|e| curve_error(j, &e, layout)))
         .collect()
+}
+
+/// Joint `j`'s curve refused: the message, located by joint when there are joints.
+pub(crate) fn curve_error(j: usize, e: &inbetween::InputError, layout: Layout) -> PyErr {
+    match layout.joints {
+        Some(_) => input_error(format!("joint {j}: {}", e.message())),
+        None => input_error(e.message().to_string()),
+    }
 }
 
 /// Rows (times × joints) per piece of work: the times are cut into pieces of about this many
