@@ -157,6 +157,25 @@ pub fn output<'py, const C: usize>(
     Ok(array.into_pyarray(py))
 }
 
+/// A C-contiguous float64 array of shape (N, C) or (N, J, C) from its data, already in that
+/// layout (`data.len() = N·J·C`, J = 1 for `joints = None`), without a copy.
+pub fn output_flat<'py>(
+    py: Python<'py>,
+    data: Vec<f64>,
+    width: usize,
+    joints: Option<usize>,
+) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+    let j = joints.unwrap_or(1);
+    let n = data.len() / (j * width).max(1);
+    let shape: Vec<usize> = match joints {
+        None => vec![n, width],
+        Some(_) => vec![n, j, width],
+    };
+    let array = numpy::ndarray::ArrayD::from_shape_vec(IxDyn(&shape), data)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    Ok(array.into_pyarray(py))
+}
+
 /// A quaternion as `C = 4` numbers in the caller's order.
 pub fn quat_row(q: DQuat, scalar_first: bool) -> [f64; 4] {
     match scalar_first {

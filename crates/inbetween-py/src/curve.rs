@@ -101,24 +101,40 @@ impl Curve {
         }
         let joints = self.layout.joints;
         let sf = self.scalar_first;
+        let curves = &self.curves;
         match order {
             0 => {
-                let rows =
-                    py.detach(|| evaluate(&self.curves, &t, |c, x| quat_row(c.rotation(x), sf)));
-                arrays::output(py, &rows, joints)
-            }
-            1 => {
-                let rows = py
-                    .detach(|| evaluate(&self.curves, &t, |c, x| c.angular_velocity(x).to_array()));
-                arrays::output(py, &rows, joints)
-            }
-            2 => {
-                let rows = py.detach(|| {
-                    evaluate(&self.curves, &t, |c, x| {
-                        c.angular_acceleration(x).to_array()
+                let data = py.detach(|| {
+                    evaluate::<4>(curves, &t, |c, t, out| {
+                        let mut q = [glam::DQuat::IDENTITY; SUB];
+                        let q = &mut q[..t.len()];
+                        c.rotations(t, q);
+                        for (row, &q) in out.iter_mut().zip(q.iter()) {
+                            *row = quat_row(q, sf);
+                        }
                     })
                 });
-                arrays::output(py, &rows, joints)
+                arrays::output_flat(py, data, 4, joints)
+            }
+            1 => {
+                let data = py.detach(|| {
+                    evaluate::<3>(curves, &t, |c, t, out| {
+                        for (row, &x) in out.iter_mut().zip(t) {
+                            *row = c.angular_velocity(x).to_array();
+                        }
+                    })
+                });
+                arrays::output_flat(py, data, 3, joints)
+            }
+            2 => {
+                let data = py.detach(|| {
+                    evaluate::<3>(curves, &t, |c, t, out| {
+                        for (row, &x) in out.iter_mut().zip(t) {
+                            *row = c.angular_acceleration(x).to_array();
+                        }
+                    })
+                });
+                arrays::output_flat(py, data, 3, joints)
             }
             _ => Err(input_error(format!(
                 "order: expected 0 (rotation), 1 (angular velocity) or 2 (angular \
@@ -232,35 +248,58 @@ pub(crate) fn build(
     built
         .into_iter()
         .enumerate()
-        .map(|(j, c)| {
-            c.map_err(|e| match layout.joints {
-                Some(_) => input_error(format!("joint {j}: {}", crate::message(&e))),
-                None => input_error(crate::message(&e).to_string()),
-            })
-        })
+        .map(|(j, c)| c.map_err(|e| curve_error(j, &e, layout)))
         .collect()
 }
 
-/// Times per piece of work: a curve's times are cut into pieces of this many, so that one joint
-/// (or fewer joints than cores) still uses every core.
+/// Joint `j`'s curve refused: the message, located by joint when there are joints.
+pub(crate) fn curve_error(j: usize, e: &inbetween::InputError, layout: Layout) -> PyErr {
+    match layout.joints {
+        Some(_) => input_error(format!("joint {j}: {}", crate::message(e))),
+        None => input_error(crate::message(e).to_string()),
+    }
+}
+
+/// Rows (times × joints) per piece of work: the times are cut into pieces of about this many
+/// rows, so that one joint (or fewer joints than cores) still uses every core.
 const PIECE: usize = 16_384;
 
-/// `f(curve, t)` for every curve and time, per curve in time order; the (curve, piece of the
-/// times) pairs shared among the cores.
+/// Times handed to `f` at once (a buffer on the stack).
+const SUB: usize = 256;
+
+/// `f(curve, times, rows)` for every curve and run of at most [`SUB`] times, writing the rows
+/// of `C` numbers straight into the (N, J, C) layout: the pieces of consecutive times (each a
+/// contiguous stretch of the output, every joint of those times) shared among the cores.
 fn evaluate<const C: usize>(
     curves: &[inbetween::Curve],
     t: &[f64],
-    f: impl Fn(&inbetween::Curve, f64) -> [f64; C] + Sync,
-) -> Vec<Vec<[f64; C]>> {
-    let pieces: Vec<(usize, &[f64])> = (0..curves.len())
-        .flat_map(|j| t.chunks(PIECE).map(move |p| (j, p)))
-        .collect();
-    let done = inbetween::parallel::map(&pieces, |&(j, p)| {
-        p.iter().map(|&x| f(&curves[j], x)).collect::<Vec<_>>()
-    });
-    let mut rows: Vec<Vec<[f64; C]>> = curves.iter().map(|_| Vec::with_capacity(t.len())).collect();
-    for (&(j, _), piece) in pieces.iter().zip(done) {
-        rows[j].extend(piece);
+    f: impl Fn(&inbetween::Curve, &[f64], &mut [[f64; C]]) + Sync,
+) -> Vec<f64> {
+    let joints = curves.len();
+    let mut data = vec![0.0; t.len() * joints * C];
+    if t.is_empty() || joints == 0 {
+        return data;
     }
-    rows
+    let per_piece = (PIECE / joints).max(SUB);
+    let pieces: Vec<std::sync::Mutex<(&[f64], &mut [f64])>> = t
+        .chunks(per_piece)
+        .zip(data.chunks_mut(per_piece * joints * C))
+        .map(std::sync::Mutex::new)
+        .collect();
+    inbetween::parallel::map(&pieces, |piece| {
+        let mut piece = piece.lock().unwrap_or_else(|e| e.into_inner());
+        let (times, out) = &mut *piece;
+        let mut rows = [[0.0; C]; SUB];
+        for (s, sub) in times.chunks(SUB).enumerate() {
+            for (j, c) in curves.iter().enumerate() {
+                let rows = &mut rows[..sub.len()];
+                f(c, sub, rows);
+                for (r, row) in rows.iter().enumerate() {
+                    let at = ((s * SUB + r) * joints + j) * C;
+                    out[at..at + C].copy_from_slice(row);
+                }
+            }
+        }
+    });
+    data
 }

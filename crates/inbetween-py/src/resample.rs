@@ -3,7 +3,7 @@
 //! inside the clip's span, baked by the library's [`inbetween::bake`]).
 
 use crate::arrays::{self, Layout, quat_row};
-use crate::curve::build;
+use crate::curve::curve_error;
 use crate::{input_error, options};
 use glam::{DQuat, DVec3};
 use inbetween::{BakeOptions, CurveOptions, EndConditions, Fps, FrameSink, Track};
@@ -44,18 +44,20 @@ fn grid(n: usize, fps_in: Fps, fps_out: Fps) -> PyResult<(i64, i64)> {
     Ok(fps_out.frames_between(0.0, end))
 }
 
-/// Collects one track's baked rotations (and angular velocities).
-#[derive(Default)]
+/// Collects one track's baked rotations (and angular velocities) as output rows, in the
+/// caller's quaternion order, sized for the frames to come.
 struct Frames {
-    rotations: Vec<DQuat>,
-    velocities: Vec<DVec3>,
+    rotations: Vec<[f64; 4]>,
+    velocities: Vec<[f64; 3]>,
+    scalar_first: bool,
 }
 
 impl FrameSink for Frames {
+    #[inline]
     fn frame(&mut self, _k: i64, _t: f64, q: DQuat, omega: Option<DVec3>) -> std::io::Result<()> {
-        self.rotations.push(q);
+        self.rotations.push(quat_row(q, self.scalar_first));
         if let Some(w) = omega {
-            self.velocities.push(w);
+            self.velocities.push(w.to_array());
         }
         Ok(())
     }
@@ -86,18 +88,9 @@ pub fn resample<'py>(
         options::rate("fps_out", &fps_out)?,
     );
     let (layout, quats): (Layout, _) = arrays::quats(&rotations, "rotations", scalar_first)?;
-    grid(layout.rows, fps_in, fps_out)?;
+    let (first, last) = grid(layout.rows, fps_in, fps_out)?;
+    let frames = usize::try_from(last - first + 1).unwrap_or(0);
     let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
-    let tracks = quats
-        .into_iter()
-        .enumerate()
-        .map(|(j, q)| {
-            Track::new(times.clone(), q).map_err(|e| match layout.joints {
-                Some(_) => input_error(format!("rotations (joint {j}): {e}")),
-                None => input_error(format!("rotations: {e}")),
-            })
-        })
-        .collect::<PyResult<Vec<Track>>>()?;
     let opts = CurveOptions {
         scheme: options::scheme(scheme)?,
         path: options::path(path)?,
@@ -105,14 +98,42 @@ pub fn resample<'py>(
         grid_rate: fps_out,
         ..CurveOptions::default()
     };
-    let curves = build(py, &tracks, &opts, layout)?;
+    // Each joint's track and curve built on the cores without the GIL; errors as before: the
+    // first joint whose keys are refused, else the first whose curve is.
+    let per_joint: Vec<(usize, &[DQuat])> = quats.iter().map(Vec::as_slice).enumerate().collect();
+    let built = py.detach(|| {
+        inbetween::parallel::map(&per_joint, |&(_, q)| {
+            Track::new(times.clone(), q.to_vec()).map(|t| inbetween::Curve::new(&t, &opts))
+        })
+    });
+    drop(quats);
+    let located = |j: usize, what: &str| match layout.joints {
+        Some(_) => format!("{what} (joint {j})"),
+        None => what.to_string(),
+    };
+    if let Some((j, Err(e))) = built.iter().enumerate().find(|(_, b)| b.is_err()) {
+        return Err(input_error(format!("{}: {e}", located(j, "rotations"))));
+    }
+    let curves = built
+        .into_iter()
+        .enumerate()
+        .map(|(j, b)| match b {
+            Ok(Ok(c)) => Ok(c),
+            Ok(Err(e)) => Err(curve_error(j, &e, layout)),
+            Err(_) => unreachable!("track errors were reported above"),
+        })
+        .collect::<PyResult<Vec<inbetween::Curve>>>()?;
     let bake = BakeOptions {
         velocity,
         parallel: false,
     };
     let baked = py.detach(|| {
         inbetween::parallel::map(&curves, |c| {
-            let mut sink = Frames::default();
+            let mut sink = Frames {
+                rotations: Vec::with_capacity(frames),
+                velocities: Vec::with_capacity(if velocity { frames } else { 0 }),
+                scalar_first,
+            };
             inbetween::bake(c, fps_out, bake, &mut sink, &mut |_| {}).map(|()| sink)
         })
     });
@@ -120,23 +141,14 @@ pub fn resample<'py>(
         .into_iter()
         .collect::<std::io::Result<Vec<Frames>>>()
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    let rows: Vec<Vec<[f64; 4]>> = baked
-        .iter()
-        .map(|f| {
-            f.rotations
-                .iter()
-                .map(|&q| quat_row(q, scalar_first))
-                .collect()
-        })
-        .collect();
+    let (rows, w): (Vec<_>, Vec<_>) = baked
+        .into_iter()
+        .map(|f| (f.rotations, f.velocities))
+        .unzip();
     let out: Bound<'py, PyArrayDyn<f64>> = arrays::output(py, &rows, layout.joints)?;
     if !velocity {
         return Ok(out.into_any());
     }
-    let w: Vec<Vec<[f64; 3]>> = baked
-        .iter()
-        .map(|f| f.velocities.iter().map(|v| v.to_array()).collect())
-        .collect();
     let w = arrays::output(py, &w, layout.joints)?;
     Ok((out, w).into_pyobject(py)?.into_any())
 }

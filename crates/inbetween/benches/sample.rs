@@ -1,5 +1,6 @@
 //! Sampling a `Curve` at arbitrary times, as a game engine does: `rotation` and
-//! `angular_velocity` at 10⁵ times off every key, on 10³ segments. `cargo bench --bench sample`
+//! `angular_velocity` at 10⁵ times off every key, on 10³ segments; and `rotations` of the same
+//! times sorted, against `rotation` one by one. `cargo bench --bench sample`
 
 mod support;
 
@@ -38,6 +39,25 @@ fn bench(c: &mut Criterion) {
                     acc += curve.rotation(black_box(t));
                 }
                 black_box(acc)
+            })
+        });
+        // Sorted times: one by one, and all at once (`Curve::rotations`, four at a time).
+        let mut sorted = times.clone();
+        sorted.sort_by(f64::total_cmp);
+        g.bench_function(format!("{scheme}_rotation_sorted"), |b| {
+            b.iter(|| {
+                let mut acc = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+                for &t in &sorted {
+                    acc += curve.rotation(black_box(t));
+                }
+                black_box(acc)
+            })
+        });
+        let mut out = vec![DQuat::IDENTITY; SAMPLES];
+        g.bench_function(format!("{scheme}_rotations_sorted"), |b| {
+            b.iter(|| {
+                curve.rotations(black_box(&sorted), &mut out);
+                black_box(out[SAMPLES / 2])
             })
         });
         g.bench_function(format!("{scheme}_angular_velocity"), |b| {

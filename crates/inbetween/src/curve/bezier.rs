@@ -17,12 +17,13 @@
 //! - Continuity: C¹ at keys, C^∞ inside.
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
-use super::blend4::{Block4, geodesic4, params4, steps4};
+use super::blend4::{ArcLanes, Block4, Lanes4, Quat4, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::geodesic;
 use crate::tangent::Knots;
 use glam::DQuat;
+use wide::f64x4;
 
 /// One Bézier segment.
 #[derive(Debug, Clone, Copy)]
@@ -71,6 +72,30 @@ impl Iterator for BezierFrames {
             let (s0, s1) = (geodesic4(a, b, u), geodesic4(b, c, u));
             geodesic4(s0, s1, u).to_quats()
         }))
+    }
+}
+
+/// A Bézier segment's arcs as lanes ([`crate::Curve::rotations`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct BezierLanes([ArcLanes; 3]);
+
+impl Bezier {
+    /// The segment as lanes: `r0` and `r1` start at their first point, `r2` ends at `q_{i+1}`.
+    pub(crate) fn lanes(&self) -> BezierLanes {
+        BezierLanes([
+            ArcLanes::starting(&self.r0),
+            ArcLanes::starting(&self.r1),
+            ArcLanes::ending(&self.r2),
+        ])
+    }
+}
+
+impl Lanes4 for BezierLanes {
+    #[inline]
+    fn eval4(&self, u: f64x4) -> Quat4 {
+        let [r0, r1, r2] = &self.0;
+        let (a, b, c) = (r0.eval4(u), r1.eval4(u), r2.eval4(u));
+        geodesic4(geodesic4(a, b, u), geodesic4(b, c, u), u)
     }
 }
 

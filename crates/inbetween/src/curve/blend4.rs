@@ -8,6 +8,7 @@
 //! which any pair is degenerate (`|b − (a·b)a| < 1e-300`: identical or antipodal points) is done
 //! by the scalar function, which handles those cases. The two agree to a few ulp (test below).
 
+use crate::rotation::arc::Arc;
 use crate::rotation::quat::geodesic;
 use glam::DQuat;
 use wide::f64x4;
@@ -22,6 +23,17 @@ pub(crate) struct Quat4 {
 }
 
 impl Quat4 {
+    /// The same quaternion in every lane.
+    #[inline]
+    pub(crate) fn splat(q: DQuat) -> Quat4 {
+        Quat4 {
+            w: f64x4::splat(q.w),
+            x: f64x4::splat(q.x),
+            y: f64x4::splat(q.y),
+            z: f64x4::splat(q.z),
+        }
+    }
+
     #[inline]
     pub(crate) fn from_quats(q: &[DQuat; 4]) -> Quat4 {
         Quat4 {
@@ -104,6 +116,101 @@ pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
         x: a.x * cs + px * k,
         y: a.y * cs + py * k,
         z: a.z * cs + pz * k,
+    }
+}
+
+/// A great arc `C(u) = cos(α + βu)·p + sin(α + βu)·e` ([`Arc`]) evaluated at four `u` at once,
+/// for [`crate::Curve::rotations`].
+///
+/// `Arc`'s fields are private to `rotation::arc`, so the lanes are read back from its public
+/// evaluation where the phase `α + βu` is exactly zero: `p` is `C` there to the bit (`sin 0`,
+/// `cos 0` are exact) and `e = C′/β` there, within an ulp of the arc's own. An arc that starts
+/// at its `p` (`α = 0`: [`Arc::leaving`], [`Arc::between`], [`Arc::near`]) is read at `u = 0`,
+/// one that ends there (`α = −β`: [`Arc::arriving`]) at `u = 1`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ArcLanes {
+    p: DQuat,
+    e: DQuat,
+    alpha: f64,
+    beta: f64,
+}
+
+impl ArcLanes {
+    /// An arc with `α = 0`.
+    pub(crate) fn starting(arc: &Arc) -> ArcLanes {
+        ArcLanes::read(arc, 0.0, false)
+    }
+
+    /// An arc with `α = −β`.
+    pub(crate) fn ending(arc: &Arc) -> ArcLanes {
+        ArcLanes::read(arc, 1.0, true)
+    }
+
+    fn read(arc: &Arc, at: f64, ending: bool) -> ArcLanes {
+        let beta = arc.span();
+        let e = if beta > 0.0 {
+            arc.deriv(at) / beta
+        } else {
+            DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0)
+        };
+        ArcLanes {
+            p: arc.eval(at),
+            e,
+            alpha: if ending { -beta } else { 0.0 },
+            beta,
+        }
+    }
+
+    /// `C(u[i])` for the four lanes.
+    #[inline]
+    pub(crate) fn eval4(&self, u: f64x4) -> Quat4 {
+        let phase = f64x4::splat(self.alpha) + f64x4::splat(self.beta) * u;
+        let (s, c) = phase.sin_cos();
+        let (p, e) = (self.p, self.e);
+        let at = |a: f64, b: f64| f64x4::splat(a) * c + f64x4::splat(b) * s;
+        Quat4 {
+            w: at(p.w, e.w),
+            x: at(p.x, e.x),
+            y: at(p.y, e.y),
+            z: at(p.z, e.z),
+        }
+    }
+}
+
+/// A piece of a curve evaluated at four parameters of it at once ([`crate::Curve::rotations`]):
+/// the scheme's direct evaluation with its arcs and blends as lanes, within a few ulp of the
+/// piece's scalar evaluation.
+pub(crate) trait Lanes4 {
+    /// The piece at `u[i]` for the four lanes.
+    fn eval4(&self, u: f64x4) -> Quat4;
+}
+
+/// `f(u[i])` for the four lanes, each by the scalar expression (the same bits as the scalar
+/// evaluation's weight).
+#[inline]
+pub(crate) fn map4(u: f64x4, f: impl Fn(f64) -> f64) -> f64x4 {
+    f64x4::new(u.to_array().map(f))
+}
+
+/// A great arc between two points as a piece ([`crate::rotation::quat::geodesic`]): minaccel's
+/// grid intervals.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GeodesicLanes {
+    pub a: DQuat,
+    pub b: DQuat,
+}
+
+impl Lanes4 for GeodesicLanes {
+    #[inline]
+    fn eval4(&self, u: f64x4) -> Quat4 {
+        geodesic4(Quat4::splat(self.a), Quat4::splat(self.b), u)
+    }
+}
+
+impl Lanes4 for ArcLanes {
+    #[inline]
+    fn eval4(&self, u: f64x4) -> Quat4 {
+        ArcLanes::eval4(self, u)
     }
 }
 

@@ -100,6 +100,34 @@ impl Iterator for HermiteFrames {
     }
 }
 
+/// A hermite segment's arcs as lanes ([`crate::Curve::rotations`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct HermiteLanes {
+    c1: super::blend4::ArcLanes,
+    c2: super::blend4::ArcLanes,
+    blend: Blend,
+}
+
+impl Hermite {
+    /// The segment as lanes (`C₁` starts at `q_i`, `C₂` ends at `q_{i+1}`); `None` with
+    /// `--path euler`, whose blend picks a branch of a log per point.
+    pub(crate) fn lanes(&self) -> Option<HermiteLanes> {
+        self.spin.is_none().then(|| HermiteLanes {
+            c1: super::blend4::ArcLanes::starting(&self.c1),
+            c2: super::blend4::ArcLanes::ending(&self.c2),
+            blend: self.blend,
+        })
+    }
+}
+
+impl super::blend4::Lanes4 for HermiteLanes {
+    #[inline]
+    fn eval4(&self, u: wide::f64x4) -> super::blend4::Quat4 {
+        let f = super::blend4::map4(u, |u| self.blend.f(u));
+        geodesic4(self.c1.eval4(u), self.c2.eval4(u), f)
+    }
+}
+
 impl Segment for Hermite {
     type Frames = HermiteFrames;
 

@@ -29,6 +29,8 @@ use crate::track::Track;
 use glam::{DQuat, DVec3};
 use std::sync::OnceLock;
 
+mod batch;
+
 /// Which piece to use at a piece boundary.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Side {

@@ -19,6 +19,13 @@ pub struct Slerp {
     arc: Arc,
 }
 
+impl Slerp {
+    /// The segment's arc as lanes ([`crate::Curve::rotations`]); it starts at `q_i`.
+    pub(crate) fn lanes(&self) -> super::blend4::ArcLanes {
+        super::blend4::ArcLanes::starting(&self.arc)
+    }
+}
+
 impl Segment for Slerp {
     type Frames = ArcSteps;
 

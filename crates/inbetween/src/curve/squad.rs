@@ -148,6 +148,31 @@ impl Iterator for SquadFrames {
     }
 }
 
+/// A squad segment's arcs as lanes ([`crate::Curve::rotations`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SquadLanes {
+    outer: super::blend4::ArcLanes,
+    inner: super::blend4::ArcLanes,
+}
+
+impl Squad {
+    /// The segment as lanes: both arcs start at their first point.
+    pub(crate) fn lanes(&self) -> SquadLanes {
+        SquadLanes {
+            outer: super::blend4::ArcLanes::starting(&self.outer),
+            inner: super::blend4::ArcLanes::starting(&self.inner),
+        }
+    }
+}
+
+impl super::blend4::Lanes4 for SquadLanes {
+    #[inline]
+    fn eval4(&self, u: wide::f64x4) -> super::blend4::Quat4 {
+        let f = super::blend4::map4(u, |u| 2.0 * u * (1.0 - u));
+        geodesic4(self.outer.eval4(u), self.inner.eval4(u), f)
+    }
+}
+
 impl Segment for Squad {
     type Frames = SquadFrames;
 
