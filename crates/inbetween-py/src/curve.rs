@@ -4,7 +4,7 @@
 use crate::arrays::{self, Layout, quat_row};
 use crate::{input_error, options};
 use glam::DVec3;
-use inbetween::{CurveOptions, EndConditions, Tcb, Track};
+use inbetween::{CurveOptions, Tcb, Track};
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 
@@ -64,16 +64,11 @@ impl Curve {
             end_velocity,
         };
         let tracks = tracks(&times, quats, layout, &keywords)?;
-        let opts = CurveOptions {
-            scheme: options::scheme(scheme)?,
-            path: options::path(path)?,
-            ends: EndConditions::from(options::ends(ends)?),
-            grid_rate: match &grid_rate {
-                Some(r) => options::rate("grid_rate", r)?,
-                None => inbetween::Fps::DEFAULT,
-            },
-            ..CurveOptions::default()
+        let grid_rate = match &grid_rate {
+            Some(r) => options::rate("grid_rate", r)?,
+            None => inbetween::Fps::DEFAULT,
         };
+        let opts = options::curve(scheme, ends, path, grid_rate)?;
         let curves = build(py, &tracks, &opts, layout)?;
         Ok(Curve {
             curves,

@@ -2,9 +2,20 @@
 //! (`"bezier"`, `"rest"`, `"as-given"`), and rates as numbers, strings or fractions.
 
 use crate::input_error;
-use inbetween::{Ends, Fps, PathMode, Scheme};
+use inbetween::{CurveOptions, EndConditions, Ends, Fps, PathMode, Scheme};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyString};
+
+/// The curve options of a scheme, end rule and path by name, on minaccel's grid `grid_rate`.
+pub fn curve(scheme: &str, ends: &str, path: &str, grid_rate: Fps) -> PyResult<CurveOptions> {
+    Ok(CurveOptions {
+        scheme: self::scheme(scheme)?,
+        path: self::path(path)?,
+        ends: EndConditions::from(self::ends(ends)?),
+        grid_rate,
+        ..CurveOptions::default()
+    })
+}
 
 /// A scheme by name: hermite, squad, bezier, slerp, minaccel.
 pub fn scheme(name: &str) -> PyResult<Scheme> {

@@ -5,7 +5,6 @@
 use crate::arrays::{self, Layout};
 use crate::{input_error, options};
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
-use inbetween::{CurveOptions, EndConditions};
 use numpy::{PyArray1, PyArray2, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -74,13 +73,7 @@ pub fn reduce<'py>(
         _ => {}
     }
     let opts = ReduceOptions {
-        curve: CurveOptions {
-            scheme: options::scheme(scheme)?,
-            path: options::path(path)?,
-            ends: EndConditions::from(options::ends(ends)?),
-            grid_rate: fps,
-            ..CurveOptions::default()
-        },
+        curve: options::curve(scheme, ends, path, fps)?,
         tolerance,
         distance,
         translation_tolerance: translation_tolerance.filter(|_| positions.is_some()),

@@ -6,7 +6,7 @@ use crate::arrays::{self, Layout, quat_row};
 use crate::curve::curve_error;
 use crate::{input_error, options};
 use glam::{DQuat, DVec3};
-use inbetween::{BakeOptions, CurveOptions, EndConditions, Fps, FrameSink, Track};
+use inbetween::{BakeOptions, Fps, FrameSink, Track};
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 
@@ -91,13 +91,7 @@ pub fn resample<'py>(
     let (first, last) = grid(layout.rows, fps_in, fps_out)?;
     let frames = usize::try_from(last - first + 1).unwrap_or(0);
     let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
-    let opts = CurveOptions {
-        scheme: options::scheme(scheme)?,
-        path: options::path(path)?,
-        ends: EndConditions::from(options::ends(ends)?),
-        grid_rate: fps_out,
-        ..CurveOptions::default()
-    };
+    let opts = options::curve(scheme, ends, path, fps_out)?;
     // Each joint's track and curve built on the cores without the GIL; errors as before: the
     // first joint whose keys are refused, else the first whose curve is.
     let per_joint: Vec<(usize, &[DQuat])> = quats.iter().map(Vec::as_slice).enumerate().collect();

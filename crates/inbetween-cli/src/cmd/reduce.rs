@@ -352,16 +352,27 @@ pub(super) fn reduce_options(
     Ok(opts)
 }
 
-/// `-v`'s line for a track named `name` of `len` frames reduced to `r`.
-pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Reduced) {
-    let unit = |x: f64| match args.distance {
+/// An error `x` of the tolerance's measure (rad, or a length with `--distance`) in the unit the
+/// command line shows it in: `--angles`, or length units.
+pub(super) fn unit(args: &ReduceArgs, x: f64) -> f64 {
+    match args.distance {
         Some(_) => x,
         None => args.input.angles.from_rad(x),
-    };
-    let unit_name = match args.distance {
+    }
+}
+
+/// The name of [`unit`]'s unit.
+pub(super) fn unit_name(args: &ReduceArgs) -> &'static str {
+    match args.distance {
         Some(_) => "length units",
         None => args.input.angles.as_str(),
-    };
+    }
+}
+
+/// `-v`'s line for a track named `name` of `len` frames reduced to `r`.
+pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Reduced) {
+    let unit = |x: f64| unit(args, x);
+    let unit_name = unit_name(args);
     let position = r
         .max_position_error
         .map_or(String::new(), |p| format!(", max position error {p:.3e}"));

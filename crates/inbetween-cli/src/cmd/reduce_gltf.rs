@@ -9,8 +9,7 @@ use super::settings::Curves;
 use crate::cli::ReduceArgs;
 use crate::output::Output;
 use glam::DQuat;
-use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each};
-use inbetween::rotation::quat::rotation_angle_between;
+use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each, rotation_error};
 use inbetween::{Error, InputError, Scheme};
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
@@ -46,10 +45,11 @@ pub(super) fn to_gltf(
         let rotations = r.keys.iter().map(|&i| t.rotations()[i]).collect();
         keys.push(ChannelKeys::of_track(clip, name, times, rotations)?);
     }
-    keys.extend(vector_keys(args, input, clip)?);
+    let (vector_keys, originals) = vector_keys(args, input, clip)?;
+    keys.extend(vector_keys);
     let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
-    check_written(args, input, clip, &keys, &bytes)?;
+    check_written(args, input, clip, &keys, &originals, &bytes)?;
     let mut out = Output::open(args.output.output.as_deref())?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
@@ -60,24 +60,28 @@ pub(super) fn to_gltf(
 /// and what it holds (for messages).
 type VectorChannel<'a> = (usize, &'a TranslationChannel, &'static str);
 
+/// A reduced translation or scale channel as read, and its tolerance.
+type Original<'a> = (&'a TranslationChannel, f64);
+
 /// The kept keys of the clip's `LINEAR` translation channels (with `--translation-tolerance`)
 /// and scale channels (with `--scale-tolerance`) of more than two keys, in the chosen animations
 /// and, with `--tracks`, on the nodes of the chosen tracks. Each is reduced as the positions of a
 /// slerp curve (linear between keys, as glTF's lerp) under its tolerance, verified at every key
 /// of the channel; both curves being linear between the channel's keys, the bound then holds at
 /// every time. The kept values and times are the channel's own float32 numbers, written back
-/// unchanged; a channel that keeps every key is left as it was.
-fn vector_keys(
+/// unchanged; a channel that keeps every key is left as it was. Beside the keys, each reduced
+/// channel as read and its tolerance, for [`check_written`].
+fn vector_keys<'c>(
     args: &ReduceArgs,
     input: &Curves,
-    clip: &GltfClip,
-) -> Result<Vec<ChannelKeys>, Error> {
+    clip: &'c GltfClip,
+) -> Result<(Vec<ChannelKeys>, Vec<Original<'c>>), Error> {
     let nodes = args
         .input
         .tracks
         .is_some()
         .then(|| track_nodes(input, clip));
-    let mut keys = Vec::new();
+    let (mut keys, mut originals) = (Vec::new(), Vec::new());
     for (tolerance, what) in [
         (args.translation_tolerance, "translation"),
         (args.scale_tolerance, "scale"),
@@ -118,9 +122,10 @@ fn vector_keys(
                 times: r.keys.iter().map(|&i| ch.times()[i]).collect(),
                 values: Values::Vectors(r.keys.iter().map(|&i| ch.values()[i]).collect()),
             });
+            originals.push((ch, tolerance));
         }
     }
-    Ok(keys)
+    Ok((keys, originals))
 }
 
 /// Each channel's values reduced as the positions of a track that does not turn.
@@ -179,12 +184,14 @@ fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Re
 /// channel sampled as glTF 2.0 Appendix C plays it — a track's rotation channel at every frame
 /// time, a translation or scale channel at every key time of the original — must meet its
 /// tolerance. A miss, or an asset that does not read back, is an internal error (the float32
-/// margin and the verification on float32 times are meant to make it impossible).
+/// margin and the verification on float32 times are meant to make it impossible). `keys` are
+/// the tracks' keys, then the vector channels' whose originals and tolerances `originals` has.
 fn check_written(
     args: &ReduceArgs,
     input: &Curves,
     clip: &GltfClip,
     keys: &[ChannelKeys],
+    originals: &[Original<'_>],
     bytes: &[u8],
 ) -> Result<(), Error> {
     let internal = |m: String| Error::Internal(format!("reduce to glTF: {m}"));
@@ -208,11 +215,7 @@ fn check_written(
             return Err(internal(format!("channel {} is no rotation", k.channel)));
         };
         for (&time, &q) in t.times().iter().zip(t.rotations()) {
-            let theta = rotation_angle_between(ch.sample(time), q);
-            let e = match opts.distance {
-                Some(d) => 2.0 * d * (0.5 * theta).sin(),
-                None => theta,
-            };
+            let e = rotation_error(&opts, ch.sample(time), q);
             if e.is_nan() || e > opts.tolerance {
                 return Err(internal(format!(
                     "track {:?} as written misses its frame at {time} s by {e:e}, more than \
@@ -223,19 +226,7 @@ fn check_written(
             }
         }
     }
-    for k in &keys[input.tracks.len()..] {
-        let anim = &clip.animations()[k.animation];
-        let (was, tolerance) = match anim.translations().iter().find(|c| c.index() == k.channel) {
-            Some(c) => (c, args.translation_tolerance),
-            None => (
-                anim.scales()
-                    .iter()
-                    .find(|c| c.index() == k.channel)
-                    .unwrap(),
-                args.scale_tolerance,
-            ),
-        };
-        let tolerance = tolerance.unwrap_or_default();
+    for (k, &(was, tolerance)) in keys[input.tracks.len()..].iter().zip(originals) {
         let now = written(k)
             .translations()
             .iter()

@@ -4,7 +4,7 @@
 //! tightened by twice the miss and the tracks are reduced again, until the written keys meet it
 //! (docs/spec.md §4.7).
 
-use super::reduce::{reduce_options, reduce_tracks};
+use super::reduce::{reduce_options, reduce_tracks, unit, unit_name};
 use super::settings::{Curves, read_curves};
 use crate::cli::{InputArgs, ReduceArgs};
 use inbetween::reduce::{Reduced, TrackFrames, curve_errors};
@@ -137,18 +137,4 @@ fn written_errors(args: &ReduceArgs, input: &Curves, back: &Curves) -> Result<(f
         worst = (worst.0.max(r), worst.1.max(p.unwrap_or(0.0)));
     }
     Ok(worst)
-}
-
-fn unit(args: &ReduceArgs, x: f64) -> f64 {
-    match args.distance {
-        Some(_) => x,
-        None => args.input.angles.from_rad(x),
-    }
-}
-
-fn unit_name(args: &ReduceArgs) -> &'static str {
-    match args.distance {
-        Some(_) => "length units",
-        None => args.input.angles.as_str(),
-    }
 }

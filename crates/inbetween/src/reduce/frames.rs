@@ -4,8 +4,10 @@
 
 use super::*;
 
-/// The error measure: the angle, or the displacement at `distance`.
-pub(super) fn error(opts: &ReduceOptions, a: DQuat, b: DQuat) -> f64 {
+/// The error measure of reduce between rotations `a` and `b` (exported as
+/// [`rotation_error`](super::rotation_error)): the geodesic angle (rad), or with
+/// `opts.distance` D the displacement `2·D·sin(θ/2)` of a point D from the joint.
+pub fn error(opts: &ReduceOptions, a: DQuat, b: DQuat) -> f64 {
     let theta = rotation_angle_between(a, b);
     match opts.distance {
         Some(d) => 2.0 * d * (0.5 * theta).sin(),

@@ -61,6 +61,7 @@ pub use estimates::{ESTIMATES, frame_velocities, velocity_estimates};
 pub use frames::ANTIPODE_MARGIN;
 use frames::Frames;
 use frames::error;
+pub use frames::error as rotation_error;
 use greedy::{farthest_by, greedy_keys};
 pub use optimal::optimal_window;
 use optimal::{Edge, SlerpSpeeds, optimal_keys, shortest_path};
