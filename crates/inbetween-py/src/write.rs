@@ -57,8 +57,8 @@ pub fn write<'py>(
         ) => t,
         _ => {
             return Err(input_error(format!(
-                "path: {source}: write takes .csv, .json, .npy, .npz or .bvh (glTF from the \
-                 command line: inbetween interp anim.glb -o out.glb)"
+                "path: {source}: write takes .csv, .json, .npy, .npz or .bvh (glTF output is \
+                 written into the input asset, by the command line's interp)"
             )));
         }
     };

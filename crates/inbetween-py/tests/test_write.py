@@ -64,6 +64,7 @@ def test_errors_write_nothing(tmp_path, call, says):
     with pytest.raises(inbetween.InputError) as e:
         call(tmp_path)
     assert says in str(e.value), str(e.value)
+    assert "--" not in str(e.value) and " -o " not in str(e.value), "no command-line flag"
     assert list(tmp_path.iterdir()) == []
 
 
