@@ -30,6 +30,16 @@ pub enum Command {
     #[command(verbatim_doc_comment)]
     Analyze(AnalyzeArgs),
 
+    /// Compare two motions with the same tracks: per track the largest and mean angle between
+    /// them, and with a skeleton the largest world-space displacement of each joint.
+    ///
+    /// Examples:
+    ///   inbetween diff clip.bvh small.json
+    ///   inbetween diff golden.csv out.csv --max-angle 0.001
+    ///   inbetween diff clip.bvh back.bvh --shell 3 --max-position 0.5 --output-format json
+    #[command(verbatim_doc_comment)]
+    Diff(DiffArgs),
+
     /// SVG chart of angular speed (or velocity components, or accumulated energy) over time,
     /// schemes side by side, keys marked.
     ///
@@ -137,8 +147,56 @@ fn parse_positive(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Where the keys come from and how to read them.
+/// `inbetween diff A B`.
 #[derive(Debug, Args)]
+#[command(mut_arg("input", |a| a.required(true).index(1).value_name("A")
+    .help("Motion A, the reference: CSV, JSON, BVH or glTF; `-` reads standard input")))]
+pub struct DiffArgs {
+    /// Motion A, the reference (its options are those below; `-` reads standard input).
+    #[command(flatten)]
+    pub input: InputArgs,
+
+    /// Motion B: CSV, JSON, BVH or glTF, read with the same options as A.
+    #[arg(value_name = "B", index = 2)]
+    pub other: PathBuf,
+
+    /// The scheme B is interpolated with at A's frame times (default bezier).
+    #[arg(long, value_enum)]
+    pub scheme: Option<SchemeArg>,
+
+    #[command(flatten)]
+    pub curve: CurveArgs,
+
+    /// Compare only at the times where both have a key (within 1e-9 s), without interpolating.
+    #[arg(long)]
+    pub common_frames: bool,
+
+    /// With a skeleton, also measure three points this far from each joint along its own axes
+    /// (so that a twist about a bone counts).
+    #[arg(long, value_name = "D", value_parser = parse_positive)]
+    pub shell: Option<f64>,
+
+    /// Exit 1 when any angle exceeds this (--angles units).
+    #[arg(long, value_name = "ANGLE", value_parser = parse_positive)]
+    pub max_angle: Option<f64>,
+
+    /// Exit 1 when any world-space displacement, or any translation difference, exceeds this
+    /// (length units).
+    #[arg(long, value_name = "LEN", value_parser = parse_positive)]
+    pub max_position: Option<f64>,
+
+    /// text (an aligned table), csv or json; by default from the extension of -o (.csv,
+    /// .json), else text.
+    #[arg(long, value_enum)]
+    pub output_format: Option<ReportFormat>,
+
+    /// Output file, replaced atomically; default standard output.
+    #[arg(short = 'o', long = "output", value_name = "PATH")]
+    pub output: Option<PathBuf>,
+}
+
+/// Where the keys come from and how to read them.
+#[derive(Debug, Clone, Args)]
 pub struct InputArgs {
     /// Input file: CSV, JSON, BVH or glTF (.gltf, .glb); `-` or nothing reads standard input.
     #[arg(value_name = "INPUT")]
@@ -577,6 +635,7 @@ impl Command {
             Command::Interp(a) => &mut a.output.output,
             Command::Reduce(a) => &mut a.output.output,
             Command::Analyze(a) => &mut a.output,
+            Command::Diff(a) => &mut a.output,
             Command::Plot(_) => return,
         };
         if output.as_deref().is_some_and(|p| p.as_os_str() == "-") {

@@ -45,18 +45,29 @@ fn main() -> ExitCode {
             eprintln!("{line}");
         }
     };
+    // `diff --max-angle/--max-position`: the limit a difference exceeds (exit 1, as diff(1)).
+    let mut exceeds: Option<String> = None;
     let result = match &cli.command {
         Command::Convert(args) => cmd::convert::run(args, &mut stdin, &mut warn),
         Command::Interp(args) => cmd::interp::run(args, &mut stdin, &mut warn),
         Command::Analyze(args) => cmd::analyze::run(args, &mut stdin, &mut warn),
         Command::Plot(args) => cmd::plot::run(args, &mut stdin, &mut warn),
         Command::Reduce(args) => cmd::reduce::run(args, &mut stdin, &mut warn),
+        Command::Diff(args) => cmd::diff::run(args, &mut stdin, &mut warn).map(|exceeded| {
+            exceeds = exceeded;
+        }),
     };
     for line in warnings.summary() {
         eprintln!("{line}");
     }
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => match exceeds {
+            Some(what) => {
+                eprintln!("inbetween: {what}");
+                ExitCode::from(1)
+            }
+            None => ExitCode::SUCCESS,
+        },
         Err(e) => {
             let io = match &e {
                 Error::Io(io) => Some(io),

@@ -306,3 +306,28 @@ impl Clip {
         self.fps.time_of(i as i64)
     }
 }
+
+impl Clip {
+    /// The hierarchy as an [`inbetween::skeleton::Skeleton`], for world-space measures: every
+    /// joint in file order at its `OFFSET`, unrotated at rest, its `End Site` as its end point;
+    /// the joints with channels are the tracks, in file order (the tracks of the clip's
+    /// document). A joint's position channels replace its `OFFSET` (the skeleton's rule).
+    pub fn skeleton(&self) -> inbetween::skeleton::Skeleton {
+        use inbetween::skeleton::{Joint as SkelJoint, Skeleton};
+        let mut track = 0;
+        let joints = self
+            .joints
+            .iter()
+            .map(|j| {
+                let mut s = SkelJoint::new(&j.track_name, j.parent, j.offset.into());
+                if j.is_track() {
+                    s = s.with_track(track);
+                    track += 1;
+                }
+                s.with_ends(j.end_site.iter().map(|&e| e.into()).collect())
+            })
+            .collect();
+        // Parents come first and offsets are finite (the parser's invariants); each track once.
+        Skeleton::new(joints).expect("a parsed BVH hierarchy is a skeleton")
+    }
+}

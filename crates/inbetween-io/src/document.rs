@@ -262,6 +262,9 @@ pub struct Document {
     pub warnings: Vec<String>,
     /// The skeleton of a BVH input: what BVH output is written against.
     pub skeleton: Option<std::sync::Arc<crate::clip::Clip>>,
+    /// The joints' hierarchy and rest pose, for world-space measures (a BVH clip's, a glTF
+    /// animation's nodes): the tracks are its tracks, by index.
+    pub hierarchy: Option<std::sync::Arc<inbetween::skeleton::Skeleton>>,
 }
 
 impl Document {

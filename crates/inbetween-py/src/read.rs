@@ -14,7 +14,7 @@ use std::path::Path;
 
 /// The file at `path` as a dict: `source`, `format`, `fps` (the rate its frames or frame numbers
 /// are at, as text, or None), `names`, `tracks` (per track: times (K,), rotations (K, 4),
-/// translations (K, 3) or None), and for BVH `parents` (each track's nearest ancestor that is
+/// translations (K, 3) or None), and for BVH and glTF `parents` (each track's nearest ancestor that is
 /// a track, -1 for none) and `offsets` (J, 3). `rotation` says how CSV e1,e2,e3 columns and JSON
 /// `euler` keys are written when the file does not say (`"euler:ZYX"`, …); `angles` the unit of
 /// undeclared angles; `key_fps` the rate of frame numbers when the file declares none.
@@ -86,34 +86,25 @@ pub fn read<'py>(
         out.push((PyArray1::from_slice(py, t.times()), q, p));
     }
     d.set_item("tracks", out)?;
-    if let Some(clip) = &doc.skeleton {
-        let joints = clip.joints();
-        let track_of: Vec<Option<usize>> = {
-            let mut n = 0;
-            joints
+    if let Some(skeleton) = doc
+        .hierarchy
+        .as_deref()
+        .filter(|s| s.track_count() == tracks.len())
+    {
+        // Each track's nearest animated ancestor and its joint's rest translation (BVH OFFSET,
+        // glTF node translation).
+        let parents: Vec<i64> = skeleton
+            .track_parents()
+            .iter()
+            .map(|p| p.map_or(-1, |t| t as i64))
+            .collect();
+        let joints = skeleton.track_joints();
+        if joints.iter().all(Option::is_some) {
+            let offsets: Vec<Vec<f64>> = joints
                 .iter()
-                .map(|j| {
-                    j.is_track().then(|| {
-                        n += 1;
-                        n - 1
-                    })
-                })
-                .collect()
-        };
-        let mut parents = Vec::new();
-        let mut offsets = Vec::new();
-        for (i, j) in joints.iter().enumerate() {
-            if track_of[i].is_none() {
-                continue;
-            }
-            let mut up = j.parent();
-            while let Some(p) = up.filter(|&p| track_of[p].is_none()) {
-                up = joints[p].parent();
-            }
-            parents.push(up.and_then(|p| track_of[p]).map_or(-1, |t| t as i64));
-            offsets.push(j.offset().to_vec());
-        }
-        if parents.len() == tracks.len() {
+                .flatten()
+                .map(|&j| skeleton.joints()[j].translation.to_array().to_vec())
+                .collect();
             d.set_item("parents", PyArray1::from_vec(py, parents))?;
             d.set_item(
                 "offsets",

@@ -229,5 +229,6 @@ fn document(
         named_tracks: true,
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     })
 }

@@ -45,12 +45,14 @@
 pub mod bake;
 pub mod clock;
 pub mod curve;
+pub mod diff;
 pub mod error;
 pub mod metrics;
 pub mod parallel;
 pub mod position;
 pub mod reduce;
 pub mod rotation;
+pub mod skeleton;
 pub mod tangent;
 pub mod track;
 

@@ -287,20 +287,27 @@ pub fn text_table(rows: &[Metrics], unit: AngleUnit) -> String {
         row.extend(r.values(unit).iter().map(|x| format_sig(*x)));
         cells.push(row);
     }
-    let widths: Vec<usize> = (0..header.len())
+    aligned(&cells, 2)
+}
+
+/// `cells` (a header row first) as an aligned text table: the first `left` columns padded on
+/// the right, the others (numbers) on the left, two spaces apart, one line per row.
+pub fn aligned(cells: &[Vec<String>], left: usize) -> String {
+    let columns = cells.first().map_or(0, Vec::len);
+    let widths: Vec<usize> = (0..columns)
         .map(|c| {
             cells
                 .iter()
-                .map(|r| r[c].chars().count())
+                .map(|r| r.get(c).map_or(0, |s| s.chars().count()))
                 .max()
                 .unwrap_or(0)
         })
         .collect();
     let mut out = String::new();
-    for row in &cells {
+    for row in cells {
         for (c, cell) in row.iter().enumerate() {
-            let pad = widths[c] - cell.chars().count();
-            if c < 2 {
+            let pad = widths[c].saturating_sub(cell.chars().count());
+            if c < left {
                 let _ = write!(out, "{cell}{}", " ".repeat(pad));
             } else {
                 let _ = write!(out, "{}{cell}", " ".repeat(pad));
@@ -312,7 +319,7 @@ pub fn text_table(rows: &[Metrics], unit: AngleUnit) -> String {
 }
 
 /// Six significant digits, without exponent for ordinary magnitudes.
-fn format_sig(x: f64) -> String {
+pub fn format_sig(x: f64) -> String {
     if x == 0.0 {
         return "0".into();
     }

@@ -2,6 +2,7 @@
 
 pub mod analyze;
 pub mod convert;
+pub mod diff;
 pub mod interp;
 pub mod plot;
 pub mod reduce;

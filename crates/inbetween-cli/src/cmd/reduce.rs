@@ -69,6 +69,7 @@ pub fn run(
         named_tracks: doc.named_tracks,
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     };
     let reduced = match args.output.precision {
         None => reduce_tracks(args, &input, (0.0, 0.0), true, false)?,

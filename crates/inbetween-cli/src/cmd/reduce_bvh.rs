@@ -98,6 +98,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         named_tracks: true,
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     };
     for w in &warnings {
         warn(w);

@@ -196,6 +196,17 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
         .iter()
         .map(|n| patterns.iter().any(|p| glob(p, n)))
         .collect();
+    if let Some(h) = &doc.hierarchy {
+        let mut next = 0;
+        let map: Vec<Option<usize>> = keep
+            .iter()
+            .map(|&k| {
+                next += usize::from(k);
+                k.then(|| next - 1)
+            })
+            .collect();
+        doc.hierarchy = Some(Arc::new(h.retracked(&map)));
+    }
     let mut i = 0;
     doc.tracks.retain(|_| {
         i += 1;

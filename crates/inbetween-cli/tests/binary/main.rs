@@ -10,6 +10,7 @@ mod arrays;
 mod bvh;
 mod bvh_stream;
 mod bvh_untrusted;
+mod diff;
 mod errors;
 mod gltf;
 mod gltf_real;

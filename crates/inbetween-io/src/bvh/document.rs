@@ -48,6 +48,7 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
         tracks,
         named_tracks: true,
         warnings,
+        hierarchy: Some(Arc::new(clip.skeleton())),
         skeleton: Some(Arc::new(clip)),
     }
 }
@@ -117,6 +118,7 @@ pub fn joint_tracks(
         named_tracks: true,
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     };
     let track = doc.tracks_shaped(clip.fps(), tcb)?.pop();
     Ok(doc.tracks.pop().zip(track))

@@ -45,6 +45,8 @@ use inbetween::message;
 use inbetween::rotation::Repr;
 use std::collections::HashMap;
 
+mod skeleton;
+
 /// What the tracks are for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Mode {
@@ -398,6 +400,7 @@ impl GltfClip {
             named_tracks: true,
             warnings,
             skeleton: None,
+            hierarchy: self.skeleton().map(std::sync::Arc::new),
         })
     }
 }

@@ -163,6 +163,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         named_tracks: track_col.is_some(),
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     };
     let mut values = [0.0; MAX_WIDTH];
     let mut track_index: HashMap<String, usize> = HashMap::new();

@@ -299,6 +299,7 @@ mod tests {
             named_tracks: true,
             warnings: Vec::new(),
             skeleton: None,
+            hierarchy: None,
         }
     }
 

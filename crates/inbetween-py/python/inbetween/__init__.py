@@ -251,8 +251,9 @@ class Clip:
     (``"120"``, ``"30000/1001"``) or ``None``; when every track has the same times (a BVH clip,
     dense frames) also ``times`` (T,), ``rotations`` (T, J, 4) and ``translations`` (T, J, 3)
     (zeros for a track without, as ``has_translation`` (J,) says; ``None`` when no track has
-    any), else those three are ``None``. A BVH file adds ``parents`` (J,) (each track's nearest
-    ancestor that is a track, −1 for none) and ``offsets`` (J, 3), its joints' OFFSETs.
+    any), else those three are ``None``. A BVH file or a glTF animation adds ``parents`` (J,) (each
+    track's nearest ancestor that is a track, −1 for none) and ``offsets`` (J, 3): the joints'
+    OFFSETs, the glTF nodes' rest translations.
     """
 
     __slots__ = ("source", "format", "fps", "names", "tracks", "parents", "offsets", "times",

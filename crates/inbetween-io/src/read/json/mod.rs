@@ -229,6 +229,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         named_tracks: wire.tracks.is_some(),
         warnings: Vec::new(),
         skeleton: None,
+        hierarchy: None,
     };
     let ctx = KeyContext {
         source,

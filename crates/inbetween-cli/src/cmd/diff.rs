@@ -1,0 +1,410 @@
+//! `inbetween diff A B`: how far motion B is from motion A, per track and, with a skeleton, in
+//! world space (the library's [`inbetween::diff`]; docs/spec.md §5b).
+
+use super::settings::read_curves;
+use crate::cli::{DiffArgs, ReportFormat};
+use crate::output::Output;
+use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
+use inbetween::metrics::{aligned, format_sig};
+use inbetween::rotation::AngleUnit;
+use inbetween::skeleton::Skeleton;
+use inbetween::{Curve, CurveOptions, Error, InputError, Scheme, Track};
+use inbetween_io::num::{NumFormat, NumWriter};
+use std::collections::HashMap;
+use std::io::{Read, Write};
+
+/// Times closer than this are the same frame (`--common-frames`).
+const SAME_TIME: f64 = 1e-9;
+
+/// One track's row: its name, A's compared times, and the differences.
+struct Row {
+    name: String,
+    times: Vec<f64>,
+    diff: TrackDiff,
+    world: Option<Extent>,
+}
+
+/// Runs `diff`; `Ok(Some(message))` when a `--max-angle`/`--max-position` limit is exceeded
+/// (the report is written all the same).
+pub fn run(
+    args: &DiffArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Option<String>, Error> {
+    let scheme: Scheme = args.scheme.map_or(Scheme::Bezier, Into::into);
+    let a_stdin = args
+        .input
+        .input
+        .as_deref()
+        .is_none_or(|p| p.as_os_str() == "-");
+    if a_stdin && args.other.as_os_str() == "-" {
+        return Err(InputError::new("diff: A and B cannot both be standard input").into());
+    }
+    let a = read_curves(&args.input, &args.curve, &|_| scheme, stdin, warn)?;
+    let mut b_input = args.input.clone();
+    b_input.input = Some(args.other.clone());
+    let b = read_curves(&b_input, &args.curve, &|_| scheme, stdin, warn)?;
+    let names = |tracks: &[Track]| -> Vec<String> {
+        tracks
+            .iter()
+            .enumerate()
+            .map(|(i, t)| t.name().map_or_else(|| format!("track{i}"), str::to_string))
+            .collect()
+    };
+    let (a_names, b_names) = (names(&a.tracks), names(&b.tracks));
+    let b_of: HashMap<&str, usize> = b_names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (n.as_str(), i))
+        .collect();
+    let missing = |names: &[String], other: &[String], source: &str, other_source: &str| {
+        let have: std::collections::HashSet<&str> = other.iter().map(String::as_str).collect();
+        names.iter().find(|n| !have.contains(n.as_str())).map(|n| {
+            InputError::new(format!(
+                "diff: track \"{}\" of {source} is not a track of {other_source}; compare the \
+                 same tracks (--tracks selects some)",
+                inbetween::error::shorten(n)
+            ))
+        })
+    };
+    let (sa, sb) = (&a.doc.source, &b.doc.source);
+    if let Some(e) = missing(&a_names, &b_names, sa, sb).or(missing(&b_names, &a_names, sb, sa)) {
+        return Err(e.into());
+    }
+    let opts = CurveOptions { scheme, ..b.opts };
+    let curves: Vec<Result<Curve, Error>> = inbetween::parallel::map(&b.tracks, |t| {
+        Curve::new(t, &opts).map_err(|e| e.at(&b.doc.source).into())
+    });
+    let curves = curves.into_iter().collect::<Result<Vec<Curve>, Error>>()?;
+    // Per track of A: the compared key indices and B's rotation and translation there.
+    let mut compared: Vec<Vec<usize>> = Vec::with_capacity(a.tracks.len());
+    let mut b_poses = Vec::with_capacity(a.tracks.len());
+    let mut rows = Vec::with_capacity(a.tracks.len());
+    for (ta, name) in a.tracks.iter().zip(&a_names) {
+        let j = b_of[name.as_str()];
+        let (tb, cb) = (&b.tracks[j], &curves[j]);
+        let (keys, poses) = at_a_times(ta, tb, cb, args.common_frames);
+        if keys.is_empty() {
+            return Err(InputError::new(format!(
+                "diff: track \"{}\": no key time of {sa} is a key time of {sb} (within 1e-9 \
+                 s); without --common-frames B is interpolated at A's times",
+                inbetween::error::shorten(name)
+            ))
+            .into());
+        }
+        let rot: Vec<_> = keys.iter().map(|&k| ta.rotations()[k]).collect();
+        let pos: Option<Vec<_>> = ta
+            .translations()
+            .map(|p| keys.iter().map(|&k| p[k]).collect());
+        let diff = track_diff(&rot, pos.as_deref(), |k| poses[k]);
+        rows.push(Row {
+            name: name.clone(),
+            times: keys.iter().map(|&k| ta.times()[k]).collect(),
+            diff,
+            world: None,
+        });
+        compared.push(keys);
+        b_poses.push(poses);
+    }
+    if let Some(world) = world(
+        &a,
+        b.doc.hierarchy.as_deref(),
+        &compared,
+        &b_poses,
+        args,
+        warn,
+    )? {
+        for (row, w) in rows.iter_mut().zip(world.tracks) {
+            row.world = w;
+        }
+    }
+    let unit = args.input.angles;
+    let bytes = match report_format(args) {
+        ReportFormat::Text => text(&rows, unit).into_bytes(),
+        ReportFormat::Csv => csv(&rows, unit),
+        ReportFormat::Json => json(&rows, unit),
+    };
+    let mut out = Output::open(args.output.as_deref())?;
+    out.write_all(&bytes)?;
+    out.commit()?;
+    Ok(exceeded(&rows, args, unit))
+}
+
+/// The key indices of `a` compared and B's rotation and translation at each: every key of A,
+/// B's curve there; with `common`, the keys of A with a key of B at the same time, B's key.
+#[allow(clippy::type_complexity)]
+fn at_a_times(
+    a: &Track,
+    b: &Track,
+    curve: &Curve,
+    common: bool,
+) -> (Vec<usize>, Vec<(glam::DQuat, Option<glam::DVec3>)>) {
+    let mut keys = Vec::new();
+    let mut poses = Vec::new();
+    for (k, &t) in a.times().iter().enumerate() {
+        if !common {
+            keys.push(k);
+            poses.push((curve.rotation(t), curve.position(t)));
+            continue;
+        }
+        let bt = b.times();
+        let i = bt.partition_point(|&x| x < t - SAME_TIME);
+        if i < bt.len() && (bt[i] - t).abs() <= SAME_TIME {
+            keys.push(k);
+            poses.push((b.rotations()[i], b.translations().map(|p| p[i])));
+        }
+    }
+    (keys, poses)
+}
+
+/// The world-space displacement per track, when A has a skeleton and every track of A is
+/// compared at the same times; `None` otherwise (an error with `--max-position` if nothing else
+/// measures positions).
+fn world(
+    a: &super::settings::Curves,
+    b_skeleton: Option<&Skeleton>,
+    compared: &[Vec<usize>],
+    b_poses: &[Vec<(glam::DQuat, Option<glam::DVec3>)>],
+    args: &DiffArgs,
+    warn: &mut dyn FnMut(&str),
+) -> Result<Option<WorldDiff>, Error> {
+    let Some(skeleton) = a.doc.hierarchy.as_deref() else {
+        return Ok(None);
+    };
+    let first = &a.tracks[0];
+    let same_frames = a
+        .tracks
+        .iter()
+        .zip(compared)
+        .all(|(t, k)| t.times() == first.times() && k.as_slice() == compared[0].as_slice());
+    if skeleton.track_count() != a.tracks.len() || !same_frames {
+        if args.shell.is_some() || args.max_position.is_some() {
+            warn(&format!(
+                "{}: world positions are not measured: they need every track compared at the \
+                 same frames",
+                a.doc.source
+            ));
+        }
+        return Ok(None);
+    }
+    if b_skeleton.is_some_and(|s| s.joints() != skeleton.joints()) {
+        warn("diff: B's skeleton differs from A's; world positions are measured on A's");
+    }
+    let frames = &compared[0];
+    let pose_a = |f: usize, t: usize| {
+        let k = frames[f];
+        let tr = &a.tracks[t];
+        (tr.rotations()[k], tr.translations().map(|p| p[k]))
+    };
+    let pose_b = |f: usize, t: usize| b_poses[t][f];
+    Ok(Some(world_diff(
+        skeleton,
+        frames.len(),
+        &pose_a,
+        &pose_b,
+        args.shell,
+    )))
+}
+
+fn report_format(args: &DiffArgs) -> ReportFormat {
+    let by_extension = || {
+        let ext = args.output.as_deref()?.extension()?.to_str()?;
+        match ext.to_ascii_lowercase().as_str() {
+            "csv" => Some(ReportFormat::Csv),
+            "json" => Some(ReportFormat::Json),
+            _ => None,
+        }
+    };
+    args.output_format
+        .or_else(by_extension)
+        .unwrap_or(ReportFormat::Text)
+}
+
+/// The largest of one measure over the tracks: (value, track, time).
+fn largest(rows: &[Row], pick: impl Fn(&Row) -> Option<Extent>) -> Option<(f64, &Row, f64)> {
+    let mut best: Option<(f64, &Row, f64)> = None;
+    for r in rows {
+        if let Some(e) = pick(r)
+            && best.is_none_or(|(m, _, _)| e.max > m)
+        {
+            best = Some((e.max, r, r.times[e.at]));
+        }
+    }
+    best
+}
+
+/// The message for a limit exceeded, if one is.
+fn exceeded(rows: &[Row], args: &DiffArgs, unit: AngleUnit) -> Option<String> {
+    let u = unit.as_str();
+    if let (Some(limit), Some((m, r, t))) = (args.max_angle, largest(rows, |r| Some(r.diff.angle)))
+        && unit.from_rad(m) > limit
+    {
+        return Some(format!(
+            "diff: the largest angle, {} {u} (track \"{}\", {t} s), exceeds --max-angle {limit}",
+            format_sig(unit.from_rad(m)),
+            inbetween::error::shorten(&r.name)
+        ));
+    }
+    let limit = args.max_position?;
+    for (what, pick) in [
+        (
+            "world displacement",
+            &(|r: &Row| r.world) as &dyn Fn(&Row) -> Option<Extent>,
+        ),
+        ("translation difference", &|r: &Row| r.diff.translation),
+    ] {
+        if let Some((m, r, t)) = largest(rows, pick)
+            && m > limit
+        {
+            return Some(format!(
+                "diff: the largest {what}, {} (track \"{}\", {t} s), exceeds --max-position \
+                 {limit}",
+                format_sig(m),
+                inbetween::error::shorten(&r.name)
+            ));
+        }
+    }
+    None
+}
+
+/// The columns of a row (angles in `unit`); `None` for a measure the row does not have.
+fn values(r: &Row, unit: AngleUnit) -> [Option<f64>; 8] {
+    let at = |e: Option<Extent>| e.map(|e| r.times[e.at]);
+    let a = r.diff.angle;
+    let t = r.diff.translation;
+    [
+        Some(unit.from_rad(a.max)),
+        Some(r.times[a.at]),
+        Some(unit.from_rad(a.mean)),
+        t.map(|e| e.max),
+        at(t),
+        r.world.map(|e| e.max),
+        at(r.world),
+        r.world.map(|e| e.mean),
+    ]
+}
+
+const FIELDS: [&str; 8] = [
+    "max_angle",
+    "max_angle_time",
+    "mean_angle",
+    "max_translation",
+    "max_translation_time",
+    "max_world",
+    "max_world_time",
+    "mean_world",
+];
+
+/// The total row: the largest of each measure (and when), means over every compared time.
+fn total(rows: &[Row], unit: AngleUnit) -> (usize, [Option<f64>; 8], Option<String>) {
+    let count: usize = rows.iter().map(|r| r.diff.angle.count).sum();
+    let mean = |pick: &dyn Fn(&Row) -> Option<Extent>| -> Option<f64> {
+        let (mut sum, mut n) = (0.0, 0usize);
+        for e in rows.iter().filter_map(pick) {
+            sum += e.mean * e.count as f64;
+            n += e.count;
+        }
+        (n > 0).then(|| sum / n as f64)
+    };
+    let angle = largest(rows, |r| Some(r.diff.angle));
+    let tr = largest(rows, |r| r.diff.translation);
+    let wo = largest(rows, |r| r.world);
+    let v = [
+        angle.map(|(m, _, _)| unit.from_rad(m)),
+        angle.map(|(_, _, t)| t),
+        mean(&|r| Some(r.diff.angle)).map(|m| unit.from_rad(m)),
+        tr.map(|(m, _, _)| m),
+        tr.map(|(_, _, t)| t),
+        wo.map(|(m, _, _)| m),
+        wo.map(|(_, _, t)| t),
+        mean(&|r| r.world),
+    ];
+    (count, v, angle.map(|(_, r, _)| r.name.clone()))
+}
+
+fn text(rows: &[Row], unit: AngleUnit) -> String {
+    let u = unit.as_str();
+    let header = [
+        "track".to_string(),
+        "frames".into(),
+        format!("max angle {u}"),
+        "at s".into(),
+        format!("mean angle {u}"),
+        "max translation".into(),
+        "at s".into(),
+        "max world".into(),
+        "at s".into(),
+        "mean world".into(),
+    ];
+    let cell = |v: Option<f64>| v.map_or_else(|| "-".to_string(), format_sig);
+    let mut cells = vec![header.to_vec()];
+    for r in rows {
+        let mut row = vec![r.name.clone(), r.diff.angle.count.to_string()];
+        row.extend(values(r, unit).map(cell));
+        cells.push(row);
+    }
+    let (count, v, _) = total(rows, unit);
+    let mut row = vec!["total".to_string(), count.to_string()];
+    row.extend(v.map(cell));
+    cells.push(row);
+    aligned(&cells, 1)
+}
+
+fn csv(rows: &[Row], unit: AngleUnit) -> Vec<u8> {
+    let mut nums = NumWriter::new(NumFormat::Shortest);
+    let mut out = format!("kind,track,frames,{}\n", FIELDS.join(",")).into_bytes();
+    let mut line = |out: &mut Vec<u8>, kind: &str, name: &str, n: usize, v: [Option<f64>; 8]| {
+        let quoted = if name.contains([',', '"', '\n', '\r']) {
+            format!("\"{}\"", name.replace('"', "\"\""))
+        } else {
+            name.to_string()
+        };
+        out.extend_from_slice(format!("{kind},{quoted},{n}").as_bytes());
+        for x in v {
+            out.push(b',');
+            if let Some(x) = x {
+                nums.float(out, x);
+            }
+        }
+        out.push(b'\n');
+    };
+    for r in rows {
+        line(
+            &mut out,
+            "track",
+            &r.name,
+            r.diff.angle.count,
+            values(r, unit),
+        );
+    }
+    let (count, v, worst) = total(rows, unit);
+    line(&mut out, "total", worst.as_deref().unwrap_or(""), count, v);
+    out
+}
+
+fn json(rows: &[Row], unit: AngleUnit) -> Vec<u8> {
+    let object = |name: Option<&str>, n: usize, v: [Option<f64>; 8]| {
+        let mut m = serde_json::Map::new();
+        if let Some(name) = name {
+            m.insert("track".into(), name.into());
+        }
+        m.insert("frames".into(), n.into());
+        for (k, x) in FIELDS.iter().zip(v) {
+            m.insert((*k).into(), x.map_or(serde_json::Value::Null, Into::into));
+        }
+        serde_json::Value::Object(m)
+    };
+    let tracks: Vec<_> = rows
+        .iter()
+        .map(|r| object(Some(&r.name), r.diff.angle.count, values(r, unit)))
+        .collect();
+    let (count, v, worst) = total(rows, unit);
+    let mut total = object(None, count, v);
+    if let (serde_json::Value::Object(m), Some(w)) = (&mut total, worst) {
+        m.insert("max_angle_track".into(), w.into());
+    }
+    let doc = serde_json::json!({"angles": unit.as_str(), "tracks": tracks, "total": total});
+    let mut out = serde_json::to_vec_pretty(&doc).unwrap_or_default();
+    out.push(b'\n');
+    out
+}

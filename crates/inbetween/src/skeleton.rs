@@ -1,0 +1,319 @@
+//! A skeleton: joints in a hierarchy with their rest transforms, some of them animated by
+//! tracks, and the points a viewer sees — each joint's origin, its bone ends (BVH `End Site`s)
+//! and, optionally, three points around it (ACL's *virtual vertices*) — composed from the root
+//! into world space (docs/spec.md §5a, *World space*).
+//!
+//! A joint's world transform is its parent's world transform times its local transform
+//! `T(t)·R(q)·S(s)`: `t` the track's translation at that frame where the track has
+//! translations (BVH position channels, glTF translation channels), else the rest translation
+//! (BVH `OFFSET`, glTF node `translation`); `q` the track's rotation, else the rest rotation
+//! (identity in BVH); `s` the rest scale (1 in BVH). BVH position channels therefore replace
+//! the `OFFSET` of their joint, as bvhio and Blender's importer read them.
+//!
+//! ```
+//! use inbetween::skeleton::{Joint, Skeleton};
+//! use glam::{DQuat, DVec3};
+//!
+//! // A root turned by a track, and a bone of length 2 along x ending in an end point.
+//! let skeleton = Skeleton::new(vec![
+//!     Joint::new("root", None, DVec3::ZERO).with_track(0),
+//!     Joint::new("bone", Some(0), DVec3::X).with_ends(vec![DVec3::new(2.0, 0.0, 0.0)]),
+//! ])?;
+//! let mut points = Vec::new();
+//! let quarter = DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2);
+//! skeleton.points(|_| (quarter, None), None, &mut points);
+//! // root origin, bone origin, bone end: (0,0,0), (0,1,0), (0,3,0)
+//! assert!((points[2] - DVec3::new(0.0, 3.0, 0.0)).length() < 1e-15);
+//! # Ok::<(), inbetween::InputError>(())
+//! ```
+
+use crate::error::{InputError, input_err};
+use glam::{DAffine3, DQuat, DVec3};
+
+/// One joint of a [`Skeleton`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// The joint's name (a BVH joint's track name, a glTF node's).
+    pub name: String,
+    /// The parent's index in [`Skeleton::joints`], always before the joint; `None` for a root.
+    pub parent: Option<usize>,
+    /// The rest translation in the parent's frame (BVH `OFFSET`).
+    pub translation: DVec3,
+    /// The rest rotation (identity for BVH).
+    pub rotation: DQuat,
+    /// The rest scale (one for BVH).
+    pub scale: DVec3,
+    /// The track that animates the joint, by its index among the tracks.
+    pub track: Option<usize>,
+    /// Further points in the joint's own frame: bone ends (a BVH `End Site`).
+    pub ends: Vec<DVec3>,
+}
+
+impl Joint {
+    /// A joint at `translation` from its parent, unrotated, unscaled, not animated.
+    pub fn new(name: impl Into<String>, parent: Option<usize>, translation: DVec3) -> Joint {
+        Joint {
+            name: name.into(),
+            parent,
+            translation,
+            rotation: DQuat::IDENTITY,
+            scale: DVec3::ONE,
+            track: None,
+            ends: Vec::new(),
+        }
+    }
+
+    /// The joint animated by track `track`.
+    pub fn with_track(mut self, track: usize) -> Joint {
+        self.track = Some(track);
+        self
+    }
+
+    /// The joint with end points `ends` in its frame.
+    pub fn with_ends(mut self, ends: Vec<DVec3>) -> Joint {
+        self.ends = ends;
+        self
+    }
+}
+
+/// Joints in a hierarchy, parents first (see the module documentation).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skeleton {
+    joints: Vec<Joint>,
+    tracks: usize,
+}
+
+impl Skeleton {
+    /// The skeleton of `joints`. Errors: a parent that does not come before its child, a track
+    /// animating two joints, a value that is not finite.
+    pub fn new(joints: Vec<Joint>) -> Result<Skeleton, InputError> {
+        let mut seen = Vec::new();
+        for (i, j) in joints.iter().enumerate() {
+            if j.parent.is_some_and(|p| p >= i) {
+                return Err(input_err!(
+                    "joint {i} ({:?}): its parent comes after it",
+                    j.name
+                ));
+            }
+            let finite = j.translation.is_finite()
+                && j.rotation.is_finite()
+                && j.scale.is_finite()
+                && j.ends.iter().all(|e| e.is_finite());
+            if !finite {
+                return Err(input_err!(
+                    "joint {i} ({:?}): a value is not finite",
+                    j.name
+                ));
+            }
+            if let Some(t) = j.track {
+                if seen.contains(&t) {
+                    return Err(input_err!(
+                        "joint {i} ({:?}): track {t} already animates another joint",
+                        j.name
+                    ));
+                }
+                seen.push(t);
+            }
+        }
+        let tracks = seen.iter().max().map_or(0, |m| m + 1);
+        Ok(Skeleton { joints, tracks })
+    }
+
+    /// The joints, parents first.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
+    }
+
+    /// One more than the largest track index of the joints.
+    pub fn track_count(&self) -> usize {
+        self.tracks
+    }
+
+    /// The joint each track animates (`None` for a track no joint takes).
+    pub fn track_joints(&self) -> Vec<Option<usize>> {
+        let mut out = vec![None; self.tracks];
+        for (i, j) in self.joints.iter().enumerate() {
+            if let Some(t) = j.track {
+                out[t] = Some(i);
+            }
+        }
+        out
+    }
+
+    /// Each track's nearest ancestor joint that is animated, as a track index (`None`: none).
+    pub fn track_parents(&self) -> Vec<Option<usize>> {
+        let mut out = vec![None; self.tracks];
+        for j in &self.joints {
+            if let Some(t) = j.track {
+                out[t] = self
+                    .animated_ancestor(j.parent)
+                    .and_then(|a| self.joints[a].track);
+            }
+        }
+        out
+    }
+
+    /// The nearest animated joint at or above `joint`.
+    fn animated_ancestor(&self, mut joint: Option<usize>) -> Option<usize> {
+        while let Some(j) = joint {
+            if self.joints[j].track.is_some() {
+                return Some(j);
+            }
+            joint = self.joints[j].parent;
+        }
+        None
+    }
+
+    /// The skeleton with its tracks renumbered: track `t` becomes `map[t]`, and a joint whose
+    /// track maps to `None` (or past `map`) is no longer animated (a track selection).
+    pub fn retracked(&self, map: &[Option<usize>]) -> Skeleton {
+        let mut joints = self.joints.clone();
+        for j in &mut joints {
+            j.track = j.track.and_then(|t| map.get(t).copied().flatten());
+        }
+        let tracks = joints
+            .iter()
+            .filter_map(|j| j.track)
+            .max()
+            .map_or(0, |m| m + 1);
+        Skeleton { joints, tracks }
+    }
+
+    /// The world transform of every joint for one pose: `pose(track)` gives that track's
+    /// rotation and, where it has one, its translation. `out` is overwritten.
+    pub fn world(&self, pose: impl Fn(usize) -> (DQuat, Option<DVec3>), out: &mut Vec<DAffine3>) {
+        out.clear();
+        for j in &self.joints {
+            let (q, t) = j.track.map_or((j.rotation, None), &pose);
+            let local =
+                DAffine3::from_scale_rotation_translation(j.scale, q, t.unwrap_or(j.translation));
+            let world = j.parent.map_or(local, |p| out[p] * local);
+            out.push(world);
+        }
+    }
+
+    /// The points of one pose in world space ([`Skeleton::world`]), joint by joint: its origin,
+    /// its end points, and with `shell = Some(d)` the three points at `d` along its own x, y
+    /// and z axes. `out` is overwritten; [`Skeleton::point_joints`] says whose each point is.
+    pub fn points(
+        &self,
+        pose: impl Fn(usize) -> (DQuat, Option<DVec3>),
+        shell: Option<f64>,
+        out: &mut Vec<DVec3>,
+    ) {
+        let mut world = Vec::with_capacity(self.joints.len());
+        self.world(pose, &mut world);
+        self.points_of(&world, shell, out);
+    }
+
+    /// [`Skeleton::points`] of world transforms already composed.
+    pub fn points_of(&self, world: &[DAffine3], shell: Option<f64>, out: &mut Vec<DVec3>) {
+        out.clear();
+        for (j, w) in self.joints.iter().zip(world) {
+            out.push(w.translation);
+            out.extend(j.ends.iter().map(|&e| w.transform_point3(e)));
+            if let Some(d) = shell {
+                out.extend([DVec3::X, DVec3::Y, DVec3::Z].map(|axis| w.transform_point3(axis * d)));
+            }
+        }
+    }
+
+    /// The joint of each point [`Skeleton::points`] gives, in its order.
+    pub fn point_joints(&self, shell: bool) -> Vec<usize> {
+        let mut out = Vec::new();
+        for (i, j) in self.joints.iter().enumerate() {
+            let n = 1 + j.ends.len() + if shell { 3 } else { 0 };
+            out.extend(std::iter::repeat_n(i, n));
+        }
+        out
+    }
+
+    /// Whether `ancestor` is `joint` or above it.
+    pub fn is_at_or_above(&self, ancestor: usize, joint: usize) -> bool {
+        let mut at = Some(joint);
+        while let Some(j) = at {
+            if j == ancestor {
+                return true;
+            }
+            at = self.joints[j].parent;
+        }
+        false
+    }
+
+    /// The animated joints at or above `joint`, nearest first.
+    pub fn animated_chain(&self, joint: usize) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut at = self.animated_ancestor(Some(joint));
+        while let Some(j) = at {
+            out.push(j);
+            at = self.animated_ancestor(self.joints[j].parent);
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::FRAC_PI_2;
+
+    fn arm() -> Skeleton {
+        Skeleton::new(vec![
+            Joint::new("root", None, DVec3::new(1.0, 0.0, 0.0)).with_track(1),
+            Joint::new("mid", Some(0), DVec3::new(0.0, 0.0, 0.0)),
+            Joint::new("elbow", Some(1), DVec3::new(2.0, 0.0, 0.0))
+                .with_track(0)
+                .with_ends(vec![DVec3::new(3.0, 0.0, 0.0)]),
+        ])
+        .unwrap()
+    }
+
+    /// Closed form: root at (5,0,0) turned 90° about z, elbow turned 90° about z: the elbow
+    /// sits at (5,2,0), its end 3 further along −x: (2,2,0).
+    #[test]
+    fn composes_from_the_root() {
+        let s = arm();
+        let quarter = DQuat::from_rotation_z(FRAC_PI_2);
+        let mut p = Vec::new();
+        s.points(
+            |t| (quarter, (t == 1).then_some(DVec3::new(5.0, 0.0, 0.0))),
+            Some(0.5),
+            &mut p,
+        );
+        let want = [
+            DVec3::new(5.0, 0.0, 0.0),
+            DVec3::new(5.0, 0.5, 0.0),
+            DVec3::new(4.5, 0.0, 0.0),
+            DVec3::new(5.0, 0.0, 0.5),
+        ];
+        for (got, want) in p[..4].iter().zip(want) {
+            assert!((*got - want).length() < 1e-15, "{got} {want}");
+        }
+        let elbow = &p[8..];
+        assert!((elbow[0] - DVec3::new(5.0, 2.0, 0.0)).length() < 1e-14);
+        assert!((elbow[1] - DVec3::new(2.0, 2.0, 0.0)).length() < 1e-14);
+        assert_eq!(
+            s.point_joints(true),
+            [0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 2]
+        );
+        assert_eq!(s.track_parents(), [Some(1), None]);
+        assert_eq!(s.animated_chain(2), [2, 0]);
+        assert_eq!(s.track_joints(), [Some(2), Some(0)]);
+        let only_root = s.retracked(&[None, Some(0)]);
+        assert_eq!(only_root.track_joints(), [Some(0)]);
+        assert_eq!(only_root.animated_chain(2), [0]);
+    }
+
+    #[test]
+    fn refuses_what_is_not_a_hierarchy() {
+        let late = Skeleton::new(vec![Joint::new("a", Some(0), DVec3::ZERO)]);
+        assert!(late.unwrap_err().to_string().contains("parent comes after"));
+        let twice = Skeleton::new(vec![
+            Joint::new("a", None, DVec3::ZERO).with_track(0),
+            Joint::new("b", Some(0), DVec3::ZERO).with_track(0),
+        ]);
+        assert!(twice.unwrap_err().to_string().contains("already animates"));
+        let nan = Skeleton::new(vec![Joint::new("a", None, DVec3::NAN)]);
+        assert!(nan.unwrap_err().to_string().contains("not finite"));
+    }
+}
