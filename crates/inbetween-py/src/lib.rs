@@ -7,7 +7,8 @@
 //! - [`resample`]: `resample` and `frame_times`, dense frames onto another exact rate.
 //! - [`reduce`]: `reduce`, the fewest keys within a tolerance, verified on every frame.
 //! - [`read`]: `read`, any file the command line reads, as tracks of arrays.
-//! - [`write`]: `write`, tracks of arrays as CSV, JSON or BVH on a skeleton.
+//! - [`write`]: `write`, tracks of arrays as CSV, JSON, npy, npz, BVH on a skeleton, or glTF
+//!   written into the asset they were read from ([`gltf`]).
 //! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
 //! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
 
@@ -16,6 +17,7 @@ use pyo3::prelude::*;
 mod arrays;
 mod curve;
 mod frames;
+mod gltf;
 mod options;
 mod read;
 mod reduce;

@@ -1,6 +1,7 @@
-//! `write`: tracks of arrays as a keyframe document (CSV, JSON), or as BVH motion on a
-//! skeleton, through the formats crate's writers (the bytes `inbetween convert` writes), into
-//! the file atomically (nothing is left on error).
+//! `write`: tracks of arrays as a keyframe document (CSV, JSON), frames (npy, npz), BVH motion
+//! on a skeleton, or keys written into the glTF asset they were read from ([`crate::gltf`]),
+//! through the formats crate's writers (the bytes the command line writes), into the file
+//! atomically (nothing is left on error).
 
 use crate::arrays::{self, Layout};
 use crate::{input_error, options};
@@ -24,12 +25,14 @@ type TrackArrays<'py> = (
 );
 
 /// Writes `tracks` (name, times (K,), rotations (K, 4), translations (K, 3) or None) to `path`
-/// in the format its extension names (csv, json, bvh); `fps` is the rate of the frames (BVH:
-/// the skeleton's when None), `skeleton` the BVH file whose hierarchy BVH output is written
-/// on; `to`, `angles`, `precision` and `euler` as `inbetween convert`'s options.
+/// in the format its extension names (csv, json, npy, npz, bvh, gltf, glb); `fps` is the rate
+/// of the frames (BVH: the skeleton's when None), `skeleton` the BVH file whose hierarchy BVH
+/// output is written on, `asset` the glTF asset glTF output is written into (its name in
+/// messages, its path, its bytes); `to`, `angles`, `precision` and `euler` as `inbetween
+/// convert`'s options.
 #[pyfunction]
 #[pyo3(signature = (
-    path, tracks, *, fps = None, skeleton = None, to = "quat", angles = "deg",
+    path, tracks, *, fps = None, skeleton = None, asset = None, to = "quat", angles = "deg",
     precision = None, euler = "continuous", scalar_first = true
 ))]
 #[allow(clippy::too_many_arguments)]
@@ -39,6 +42,7 @@ pub fn write<'py>(
     tracks: Vec<TrackArrays<'py>>,
     fps: Option<Bound<'py, PyAny>>,
     skeleton: Option<PathBuf>,
+    asset: Option<crate::gltf::SourceAsset>,
     to: &str,
     angles: &str,
     precision: Option<usize>,
@@ -52,16 +56,28 @@ pub fn write<'py>(
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let target = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
-        Some(
-            t @ (OutputFormat::Doc(_) | OutputFormat::Bvh | OutputFormat::Npy | OutputFormat::Npz),
-        ) => t,
+        Some(t) => t,
         _ => {
             return Err(input_error(format!(
-                "path: {source}: write takes .csv, .json, .npy, .npz or .bvh (glTF output is \
-                 written into the input asset, by the command line's interp)"
+                "path: {source}: write takes .csv, .json, .npy, .npz, .bvh, .glb or .gltf"
             )));
         }
     };
+    if let OutputFormat::Gltf(container) = target {
+        return write_gltf(
+            py,
+            &path,
+            (&tracks, scalar_first),
+            asset,
+            container,
+            (to, precision, skeleton),
+        );
+    }
+    if asset.is_some() {
+        return Err(input_error(
+            "asset: only glTF output (.glb, .gltf) is written into an asset",
+        ));
+    }
     let format = match target {
         OutputFormat::Doc(f) => f,
         _ => Format::Bvh, // frames on a grid
@@ -108,12 +124,8 @@ pub fn write<'py>(
         ));
     }
     let doc = document(&source, &tracks, rate, format, scalar_first)?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
     let io = |e: std::io::Error| input_error(format!("{source}: cannot write: {e}"));
-    let mut file = tempfile::NamedTempFile::new_in(&dir).map_err(io)?;
+    let mut file = temp_file(&path).map_err(io)?;
     py.detach(|| -> PyResult<()> {
         let out = std::io::BufWriter::new(file.as_file_mut());
         let frames = rate.unwrap_or(Fps::DEFAULT);
@@ -134,6 +146,81 @@ pub fn write<'py>(
         }
     })?;
     file.persist(&path).map_err(|e| io(e.error))?;
+    Ok(())
+}
+
+/// The folder of `path` (`.` for a bare file name), where its temporary file is made.
+fn folder(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// The temporary file `path` is written as before it is renamed over it, in its folder: with
+/// the mode of the file it replaces, else what any program's output gets (0666 less the
+/// umask; tempfile's own 0600 would leave the output unreadable to others), as the command
+/// line's output.
+fn temp_file(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".inbetween-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let file = builder.tempfile_in(folder(path))?;
+    if let Ok(meta) = std::fs::metadata(path)
+        && meta.is_file()
+    {
+        file.as_file().set_permissions(meta.permissions())?;
+    }
+    Ok(file)
+}
+
+/// glTF output: the tracks written into `asset` ([`crate::gltf::bytes`]), atomically. The
+/// options of the other formats (`to`, `precision`, `skeleton`) are refused rather than
+/// ignored.
+fn write_gltf(
+    py: Python<'_>,
+    path: &Path,
+    (tracks, scalar_first): (&[TrackArrays<'_>], bool),
+    asset: Option<crate::gltf::SourceAsset>,
+    container: inbetween_io::gltf::ContainerFormat,
+    (to, precision, skeleton): (&str, Option<usize>, Option<PathBuf>),
+) -> PyResult<()> {
+    let source = path.display().to_string();
+    let Some(asset) = asset else {
+        return Err(input_error(format!(
+            "path: {source}: glTF output is written into the asset the clip was read from (its \
+             meshes, skins and other channels kept), as BVH output is written on a skeleton: \
+             write a clip that inbetween.read read from a .glb or .gltf"
+        )));
+    };
+    if to != "quat" {
+        return Err(input_error(format!(
+            "to: glTF stores rotations as quaternions, found {to:?}"
+        )));
+    }
+    if precision.is_some() {
+        return Err(input_error(
+            "precision: glTF stores float32 numbers; precision is for csv and json",
+        ));
+    }
+    if skeleton.is_some() {
+        return Err(input_error(
+            "skeleton: only BVH output is written on a skeleton",
+        ));
+    }
+    let doc = document(&source, tracks, None, Format::Json, scalar_first)?;
+    let dir = folder(path);
+    let io = |e: std::io::Error| input_error(format!("{source}: cannot write: {e}"));
+    let mut file = temp_file(path).map_err(io)?;
+    py.detach(|| -> PyResult<()> {
+        let bytes = crate::gltf::bytes(&doc, &asset, container, &dir)?;
+        std::io::Write::write_all(file.as_file_mut(), &bytes).map_err(io)
+    })?;
+    file.persist(path).map_err(|e| io(e.error))?;
     Ok(())
 }
 

@@ -24,3 +24,6 @@ def test_python_md_examples_run(monkeypatch, tmp_path):
     assert namespace["clip"].rotations.shape == (61, 31, 4)
     assert (tmp_path / "wheel.csv").read_text().splitlines()[2].endswith(",30.000,0.000,0.000")
     assert inbetween_read(tmp_path / "cmu_copy.bvh").rotations.shape == (61, 31, 4)
+    small = inbetween_read(tmp_path / "cesium_small.glb")
+    assert small.names == namespace["man"].names and small.times is None  # keys per track
+    assert inbetween_read(tmp_path / "cesium_copy.gltf").rotations.shape == (48, 19, 4)

@@ -1,5 +1,7 @@
 """`inbetween.write`: keys documents and BVH, the bytes the command line writes."""
 
+import os
+import stat
 import subprocess
 
 import numpy as np
@@ -54,7 +56,7 @@ def test_arrays_in_euler_angles_with_few_digits(tmp_path):
     "call, says",
     [
         (lambda d: inbetween.write(d / "x.glb", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "path:"),
-        (lambda d: inbetween.write(d / "x.txt", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "write takes .csv, .json, .npy, .npz or .bvh"),
+        (lambda d: inbetween.write(d / "x.txt", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "write takes .csv, .json, .npy, .npz, .bvh, .glb or .gltf"),
         (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv")), "skeleton: BVH output is written on a skeleton"),
         (lambda d: inbetween.write(d / "x.csv", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), to="euler:QQQ"), "to:"),
         (lambda d: inbetween.write(d / "x.bvh", inbetween.read(FIXTURES / "convert" / "two_tracks.csv"), skeleton=FIXTURES / "bvh" / "cmu_01_01.bvh"), "skeleton"),
@@ -91,3 +93,18 @@ def test_npz_needs_one_grid_and_a_rate(tmp_path):
         inbetween.write(tmp_path / "y.npz", inbetween.Clip.from_arrays(t, [[1, 0, 0, 0]] * 2))
     assert "fps: npy and npz hold frames" in str(e.value)
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.skipif(os.name != "posix", reason="file modes")
+@pytest.mark.parametrize("ext", ["csv", "glb"])
+def test_a_new_file_gets_the_usual_mode_and_a_replaced_one_keeps_its_own(tmp_path, ext):
+    # 0666 less the umask, as the command line's output (not the temporary file's 0600).
+    umask = os.umask(0)
+    os.umask(umask)
+    clip = inbetween.read(FIXTURES / "gltf" / "real" / "RiggedSimple.gltf")
+    out = tmp_path / f"out.{ext}"
+    inbetween.write(out, clip)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o666 & ~umask
+    out.chmod(0o640)
+    inbetween.write(out, clip)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o640

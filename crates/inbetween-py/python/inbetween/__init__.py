@@ -11,7 +11,9 @@ prints as (``59.9999885559082``). Errors are ``InputError`` (a ``ValueError``).
 
 from __future__ import annotations
 
-from typing import Any, Optional, Tuple, Union
+import hashlib
+import os
+from typing import Any, Dict, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
@@ -253,11 +255,13 @@ class Clip:
     (zeros for a track without, as ``has_translation`` (J,) says; ``None`` when no track has
     any), else those three are ``None``. A BVH file or a glTF animation adds ``parents`` (J,) (each
     track's nearest ancestor that is a track, −1 for none) and ``offsets`` (J, 3): the joints'
-    OFFSETs, the glTF nodes' rest translations.
+    OFFSETs, the glTF nodes' rest translations. A clip read from a glTF asset remembers the
+    asset (its path and a digest of its bytes), which ``write`` writes glTF output into;
+    ``with_tracks`` keeps it.
     """
 
     __slots__ = ("source", "format", "fps", "names", "tracks", "parents", "offsets", "times",
-                 "rotations", "translations", "has_translation")
+                 "rotations", "translations", "has_translation", "_asset")
 
     def __init__(self, d: dict) -> None:
         self.source = d["source"]
@@ -265,8 +269,11 @@ class Clip:
         self.fps = d["fps"]
         self.names = list(d["names"])
         self.tracks = list(d["tracks"])
+        if not self.tracks:
+            raise InputError("tracks: a clip has at least one track")
         self.parents = d.get("parents")
         self.offsets = d.get("offsets")
+        self._asset = d.get("asset")
         self.has_translation = np.array([p is not None for _, _, p in self.tracks])
         first = self.tracks[0][0]
         shared = all(t.shape == first.shape and np.array_equal(t, first) for t, _, _ in self.tracks)
@@ -302,6 +309,30 @@ class Clip:
                     "fps": None if fps is None else str(fps), "names": names,
                     "tracks": tracks})
 
+    def with_tracks(self, tracks: Mapping[str, Tuple[Any, ...]], *,
+                    scalar_first: bool = True) -> "Clip":
+        """A clip of the same file (``source``, ``format``, ``fps``, and the glTF asset glTF
+        output is written into) with other tracks: ``tracks`` maps each name to ``(times (K,),
+        rotations (K, 4), translations (K, 3) or None)``, in that order; rotations in this
+        clip's quaternion order (``scalar_first`` as for ``read``: a scipy ``Rotation`` is
+        turned into it). ``parents`` and ``offsets`` stay when the names are this clip's."""
+        names, rows = [], []
+        for name, value in tracks.items():
+            what = f"tracks[{name!r}]"
+            if not isinstance(value, (tuple, list)) or len(value) not in (2, 3):
+                raise InputError(f"{what}: expected (times, rotations, translations or None)")
+            t, q, p = value if len(value) == 3 else (*value, None)
+            if q is None:
+                raise InputError(f"{what}: expected rotations, found None")
+            rows.append((_array(t, f"{what} times"), _rotations(q, scalar_first),
+                         _optional(p, f"{what} translations")))
+            names.append(str(name))
+        same = names == self.names
+        return Clip({"source": self.source, "format": self.format, "fps": self.fps,
+                     "names": names, "tracks": rows,
+                     "parents": self.parents if same else None,
+                     "offsets": self.offsets if same else None, "asset": self._asset})
+
     def track(self, name: Union[str, int]) -> Tuple[np.ndarray, np.ndarray, Optional[np.ndarray]]:
         """One track's (times, rotations, translations), by name or position."""
         if isinstance(name, str):
@@ -335,10 +366,79 @@ def read(
     when the file does not; ``angles`` the unit of undeclared angles; ``key_fps`` the rate of
     frame numbers when the file declares none; ``quat_order`` the order of JSON quaternion
     arrays. Rotations come out as unit quaternions (``scalar_first`` as elsewhere)."""
-    import os
-    return Clip(_inbetween.read(os.fspath(path), rotation=rotation, angles=angles,
-                                key_fps=key_fps, quat_order=quat_order,
-                                scalar_first=scalar_first))
+    path = os.fspath(path)
+    before = _stat(path)
+    d = _inbetween.read(path, rotation=rotation, angles=angles, key_fps=key_fps,
+                        quat_order=quat_order, scalar_first=scalar_first)
+    if d["format"] == "gltf":
+        d["asset"] = _asset_record(path, before, d)
+    return Clip(d)
+
+
+def _stat(path: str) -> Optional[tuple]:
+    try:
+        st = os.stat(path)
+    except OSError:
+        return None
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+def _digest(*arrays: Any) -> str:
+    """A digest of float64 arrays (shapes and values)."""
+    h = hashlib.sha256()
+    for a in arrays:
+        a = np.ascontiguousarray(a, dtype=np.float64)
+        h.update(repr(a.shape).encode())
+        h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def _asset_record(path: str, before: Optional[tuple], d: dict) -> Dict[str, Any]:
+    """What glTF output needs of the asset a clip was read from: its absolute path, its size
+    and the SHA-256 of its bytes (``None`` when it changed while it was read, which ``write``
+    then refuses), and a digest of each track's translations as read (``write`` leaves the
+    node's translation channel as it was for translations it is given back unchanged)."""
+    h = hashlib.sha256()
+    try:
+        with open(path, "rb") as f:
+            for chunk in iter(lambda: f.read(1 << 20), b""):
+                h.update(chunk)
+    except OSError:
+        before = None
+    same = before is not None and _stat(path) == before
+    return {
+        "path": os.path.abspath(path),
+        "size": before[2] if same else None,
+        "sha256": h.hexdigest() if same else None,
+        "translations": {n: _digest(t, p) for n, (t, _, p) in zip(d["names"], d["tracks"])
+                         if p is not None},
+    }
+
+
+def _source_asset(path: str, clip: Clip) -> Tuple[str, str, bytes]:
+    """The asset glTF output of ``clip`` is written into, as ``(source, path, bytes)``: the
+    file the clip was read from, as it was read."""
+    record = getattr(clip, "_asset", None)
+    if clip.format != "gltf" or record is None:
+        was = ("made from arrays" if clip.format is None
+               else f"read from {clip.source} ({clip.format})")
+        raise InputError(
+            f"path: {path}: glTF output is written into the glTF asset the clip was read from "
+            f"(its meshes, skins and other channels kept), as BVH output is written on a "
+            f"skeleton; this clip was {was}: read it from a .glb or .gltf with inbetween.read")
+    try:
+        with open(record["path"], "rb") as f:
+            size = os.fstat(f.fileno()).st_size
+            data = f.read() if size == record["size"] else None
+    except OSError as e:
+        raise InputError(
+            f"{clip.source}: the clip's source asset cannot be read ({e.strerror}): glTF "
+            f"output is written into it") from None
+    if data is None or hashlib.sha256(data).hexdigest() != record["sha256"]:
+        raise InputError(
+            f"{clip.source}: the asset changed since the clip was read from it: glTF output "
+            f"is written into the asset as it was read; read the clip again")
+    return clip.source, record["path"], data
 
 
 def write(
@@ -355,17 +455,27 @@ def write(
 ) -> None:
     """Writes ``clip``'s tracks to ``path`` as its extension says: ``.csv`` or ``.json`` keys
     (the rotations as ``to``: ``"quat"``, ``"euler:ZYX"``, ``"matrix"``, …, angles in
-    ``angles``, ``precision`` digits after the point), or ``.bvh`` motion on ``skeleton`` (a BVH
-    file's hierarchy and channel orders; default the clip's own file when it was read from a
-    BVH), each joint's Euler angles continuous along the clip (``euler="wrapped"``: scipy's
-    ranges). ``fps`` the frames' rate (default the clip's, for BVH the skeleton's). The file is
-    replaced atomically; nothing is written on error."""
-    import os
-    if skeleton is None and clip.format == "bvh" and str(path).lower().endswith(".bvh"):
+    ``angles``, ``precision`` digits after the point), ``.npy`` or ``.npz`` frames, ``.bvh``
+    motion on ``skeleton`` (a BVH file's hierarchy and channel orders; default the clip's own
+    file when it was read from a BVH), each joint's Euler angles continuous along the clip
+    (``euler="wrapped"``: scipy's ranges), or ``.glb`` / ``.gltf``: the glTF asset the clip was
+    read from with each track's keys as a new ``LINEAR`` sampler of its rotation channel (and
+    of its node's translation channel, for translations other than those read), the rest of
+    the asset kept. ``fps`` the frames' rate (default the clip's, for BVH the skeleton's). The
+    file is replaced atomically; nothing is written on error."""
+    path = os.fspath(path)
+    lower = str(path).lower()
+    if skeleton is None and clip.format == "bvh" and lower.endswith(".bvh"):
         skeleton = clip.source
+    asset = None
     tracks = [(n, t, q, p) for n, (t, q, p) in zip(clip.names, clip.tracks)]
-    _inbetween.write(os.fspath(path), tracks,
+    if lower.endswith((".glb", ".gltf")):
+        asset = _source_asset(path, clip)
+        read = clip._asset["translations"]
+        tracks = [(n, t, q, None if p is None or read.get(n) == _digest(t, p) else p)
+                  for n, t, q, p in tracks]
+    _inbetween.write(path, tracks,
                      fps=fps if fps is not None else clip.fps,
                      skeleton=None if skeleton is None else os.fspath(skeleton),
-                     to=to, angles=angles, precision=precision, euler=euler,
+                     asset=asset, to=to, angles=angles, precision=precision, euler=euler,
                      scalar_first=scalar_first)

@@ -74,6 +74,7 @@ def write(
     *,
     fps: Any = ...,
     skeleton: Optional[str] = ...,
+    asset: Optional[Tuple[str, str, bytes]] = ...,
     to: str = ...,
     angles: str = ...,
     precision: Optional[int] = ...,
