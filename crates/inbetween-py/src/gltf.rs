@@ -8,6 +8,7 @@
 
 use crate::input_error;
 use glam::{DQuat, DVec3};
+use inbetween::rotation::quat::rotation_angle_between;
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
@@ -203,9 +204,7 @@ fn check_written(
                     c.times_f32() == f32_times.as_slice()
                         && c.values().len() == want.len()
                         && c.values().iter().zip(want).all(|(got, w)| {
-                            let w = w.normalize();
-                            let d = got.normalize().dot(w).abs().min(1.0);
-                            2.0 * d.acos() <= ROTATION_TOL
+                            rotation_angle_between(got.normalize(), w.normalize()) <= ROTATION_TOL
                         })
                 }),
             Values::Vectors(want) => anim

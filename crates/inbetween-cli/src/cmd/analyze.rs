@@ -54,23 +54,7 @@ pub fn run(
         }
         rows.push(m);
     }
-    let by_extension = || {
-        let ext = args
-            .output
-            .as_deref()?
-            .extension()?
-            .to_str()?
-            .to_ascii_lowercase();
-        match ext.as_str() {
-            "csv" => Some(ReportFormat::Csv),
-            "json" => Some(ReportFormat::Json),
-            _ => None,
-        }
-    };
-    let format = args
-        .output_format
-        .or_else(by_extension)
-        .unwrap_or(ReportFormat::Text);
+    let format = report_format(args.output_format, args.output.as_deref());
     let bytes = match format {
         ReportFormat::Text => text_table(&rows, unit).into_bytes(),
         ReportFormat::Csv => csv_report(&rows, unit),
@@ -124,4 +108,21 @@ fn json_report(rows: &[Metrics], unit: AngleUnit) -> Vec<u8> {
     let mut out = serde_json::to_vec_pretty(&doc).unwrap_or_default();
     out.push(b'\n');
     out
+}
+
+/// A report's format: `--output-format`, else by the extension of `-o` (`.csv`, `.json`), else
+/// text (`analyze`, `diff`).
+pub(super) fn report_format(
+    given: Option<ReportFormat>,
+    output: Option<&std::path::Path>,
+) -> ReportFormat {
+    let by_extension = || {
+        let ext = output?.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "csv" => Some(ReportFormat::Csv),
+            "json" => Some(ReportFormat::Json),
+            _ => None,
+        }
+    };
+    given.or_else(by_extension).unwrap_or(ReportFormat::Text)
 }

@@ -119,7 +119,7 @@ pub fn run(
         }
     }
     let unit = args.input.angles;
-    let bytes = match report_format(args) {
+    let bytes = match super::analyze::report_format(args.output_format, args.output.as_deref()) {
         ReportFormat::Text => text(&rows, unit).into_bytes(),
         ReportFormat::Csv => csv(&rows, unit),
         ReportFormat::Json => json(&rows, unit),
@@ -204,20 +204,6 @@ fn world(
         &pose_b,
         args.shell,
     )))
-}
-
-fn report_format(args: &DiffArgs) -> ReportFormat {
-    let by_extension = || {
-        let ext = args.output.as_deref()?.extension()?.to_str()?;
-        match ext.to_ascii_lowercase().as_str() {
-            "csv" => Some(ReportFormat::Csv),
-            "json" => Some(ReportFormat::Json),
-            _ => None,
-        }
-    };
-    args.output_format
-        .or_else(by_extension)
-        .unwrap_or(ReportFormat::Text)
 }
 
 /// The largest of one measure over the tracks: (value, track, time).
