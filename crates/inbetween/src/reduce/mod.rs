@@ -70,7 +70,7 @@ pub use shared::{reduce_shared, reduce_shared_each};
 pub use verify::curve_errors;
 use verify::{Errors, shared_verified};
 pub use world::{
-    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, TIGHTENING,
+    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, PROBE_FRAMES, TIGHTENING,
     TRANSLATION_SHARE, WorldReduced, WorldTolerance, reduce_world,
 };
 

@@ -17,13 +17,18 @@
 //! The *rigorous* split gives each track the smallest `L(p)/k(p)` over the points `p` below it
 //! (`L` the point's limit, `k` the number of animated joints on its chain): the shares on any
 //! chain then add up to at most its limit, whatever the curves do within their tolerances. It is
-//! loose — errors of different joints rarely line up — so reduce starts from `L(p)/√k(p)`,
+//! loose — errors of different joints rarely line up — so reduce starts from `L(p)/√k(p)` (both
+//! split in proportion to weights rather than equally, [`Setup::weights`]),
 //! reduces every track under its budget (a quarter of a budget to a track's translation, when
 //! it has translations to reduce), poses the kept keys' curves at every frame and measures every
 //! point; where a point misses its limit by a ratio `r`, every budget on its chain is scaled by
-//! `0.95/r`, never below the rigorous split, and those tracks are reduced again. At the rigorous
-//! split no point can miss, so the rounds end; the result is measured once more before it is
-//! returned. Guaranteed: every point within its limit at every frame (measured, not just bound).
+//! `0.95/r`, never below the rigorous split, and those tracks are reduced again. Once every
+//! point is within, the budgets grow once by their chains' slack; where that misses, the tracks
+//! on the chains that missed take back their keys within and the mix is measured (then
+//! tightened as before if it still misses). The split's weights come from a probe of each
+//! track's keys ([`Setup::weights`]). At the rigorous split no point can miss, so the rounds
+//! end; the result returned is the measured round within with the fewest keys. Guaranteed:
+//! every point within its limit at every frame (measured, not just bound).
 //! Not optimal: the budgets are a heuristic split, and the keys of each track are those of the
 //! per-track method (greedy or optimal) under its budget.
 
@@ -47,6 +52,9 @@ pub const LOOSENING: f64 = 0.8;
 
 /// ...the slack counted up to this.
 pub const MAX_LOOSENING: f64 = 4.0;
+
+/// The most frames of a track the probe of the weights reduces.
+pub const PROBE_FRAMES: usize = 1000;
 
 /// Rounds after which every budget still above the rigorous split is set to it.
 pub const MAX_ROUNDS: usize = 24;
@@ -118,8 +126,14 @@ pub fn reduce_world(
     // The result with the fewest keys so far that met every limit, and its key count.
     let mut best: Option<(usize, WorldReduced)> = None;
     let mut loosenings = 0;
+    // The budgets, keys and poses of the last round within, while a loosening is being tried.
+    let mut good: Option<Within> = None;
+    let mut measure_only = false;
     for round in 1.. {
-        setup.reduce(&budgets, &redo, &mut reduced, &mut poses)?;
+        if !measure_only {
+            setup.reduce(&budgets, &redo, &mut reduced, &mut poses)?;
+        }
+        measure_only = false;
         let posed = |f: usize, t: usize| poses[t][f];
         let points = point_displacements(skeleton, frames, &original, &posed, world.shell);
         // Per track, the least ratio of limit to displacement over the points below it.
@@ -150,6 +164,23 @@ pub fn reduce_world(
                 return Ok(result);
             }
             loosenings += 1;
+            good = Some((budgets.clone(), reduced.clone(), poses.clone()));
+        } else if let Some((budgets_within, mut reduced_within, mut poses_within)) = good.take() {
+            // The loosening missed: the tracks on the chains that missed go back to their
+            // keys within, the others keep theirs, and the mix is measured (shared keys cannot
+            // mix: the result within stands).
+            if world.shared_keys {
+                let (_, mut result) = best.expect("a result within the limits");
+                result.rounds = round;
+                return Ok(result);
+            }
+            for t in (0..tracks.len()).filter(|&t| slack[t] < 1.0) {
+                budgets[t] = budgets_within[t];
+                reduced[t] = reduced_within[t].take();
+                poses[t] = std::mem::take(&mut poses_within[t]);
+            }
+            measure_only = true;
+            continue;
         } else if round >= MAX_ROUNDS
             && let Some((_, mut result)) = best.take()
         {
@@ -200,6 +231,12 @@ pub fn reduce_world(
 
 /// A track's share of its chains' limits (length units), and its translation cap.
 type Share = (f64, Option<f64>);
+
+/// A track's rotation and translation at one frame.
+type Pose = (DQuat, Option<DVec3>);
+
+/// The tracks' budgets, keys and poses of a round within the limits.
+type Within = (Vec<Share>, Vec<Option<Reduced>>, Vec<Vec<Pose>>);
 
 /// What the rounds share: the skeleton's geometry and each point's limit and chain.
 struct Setup<'a> {
@@ -327,14 +364,17 @@ impl<'a> Setup<'a> {
     /// others, and its share `e` of a chain to buy `θ ≈ e/U`; the fewest keys on one chain under
     /// `Σ e ≤ L` then give each track a share in proportion to `c^(2/3)·U^(1/3)` (Lagrange).
     /// The probe: every track reduced on its own under the equal split with the starting
-    /// slack, `L(p)·√k/k`.
+    /// slack, `L(p)·√k/k`, on at most [`PROBE_FRAMES`] of its frames (evenly taken, the last
+    /// among them: only the tracks' relative needs matter).
     fn weights(&self) -> Result<Vec<f64>, Error> {
         let equal = vec![1.0; self.tracks.len()];
         let shares = self.budgets(&equal, f64::sqrt);
         let opts = self.options(&shares)?;
-        let frames = self.frames();
         let all: Vec<usize> = (0..self.tracks.len()).collect();
-        let probe = crate::parallel::map(&all, |&t| reduce_frames(&frames[t], &opts[t]));
+        let probe = crate::parallel::map(&all, |&t| {
+            let thinned = Thinned::of(&self.frames()[t]);
+            reduce_frames(&thinned.frames(), &opts[t])
+        });
         let mut weights = Vec::with_capacity(all.len());
         for (t, r) in probe.into_iter().enumerate() {
             let keys = r?.keys.len() as f64;
@@ -460,6 +500,44 @@ impl<'a> Setup<'a> {
     }
 }
 
+/// A track's frames thinned to at most [`PROBE_FRAMES`], for the probe.
+struct Thinned {
+    times: Vec<f64>,
+    rotations: Vec<DQuat>,
+    positions: Option<Vec<DVec3>>,
+    euler: Option<(crate::EulerSeq, Vec<DVec3>)>,
+    key_times: Option<Vec<f64>>,
+}
+
+impl Thinned {
+    fn of(t: &TrackFrames<'_>) -> Thinned {
+        let n = t.times.len();
+        let stride = n.div_ceil(PROBE_FRAMES).max(1);
+        let mut at: Vec<usize> = (0..n).step_by(stride).collect();
+        if n > 0 && at.last() != Some(&(n - 1)) {
+            at.push(n - 1);
+        }
+        let pick = |v: &[DVec3]| at.iter().map(|&i| v[i]).collect::<Vec<_>>();
+        Thinned {
+            times: at.iter().map(|&i| t.times[i]).collect(),
+            rotations: at.iter().map(|&i| t.rotations[i]).collect(),
+            positions: t.positions.map(pick),
+            euler: t.euler.map(|(seq, e)| (seq, pick(e))),
+            key_times: t.key_times.map(|k| at.iter().map(|&i| k[i]).collect()),
+        }
+    }
+
+    fn frames(&self) -> TrackFrames<'_> {
+        TrackFrames {
+            times: &self.times,
+            rotations: &self.rotations,
+            positions: self.positions.as_deref(),
+            euler: self.euler.as_ref().map(|(seq, e)| (*seq, &e[..])),
+            key_times: self.key_times.as_deref(),
+        }
+    }
+}
+
 /// Each track's reach: the largest distance, in its joint's own unscaled frame, from its joint
 /// to any point below it, over the frames as given.
 fn reaches(
@@ -477,18 +555,21 @@ fn reaches(
     let starts: Vec<usize> = (0..frames).step_by(chunk).collect();
     let parts = crate::parallel::map(&starts, |&s| {
         let (mut world, mut points) = (Vec::<DAffine3>::new(), Vec::new());
+        let mut inverses: Vec<glam::DMat3> = Vec::with_capacity(tracks.len());
         let mut reach = vec![0.0f64; tracks.len()];
         for f in s..(s + chunk).min(frames) {
             let pose = |t: usize| (tracks[t].rotations[f], tracks[t].positions.map(|p| p[f]));
             skeleton.world(pose, &mut world);
             skeleton.points_of(&world, shell, &mut points);
+            inverses.clear();
+            inverses.extend(track_joints.iter().take(tracks.len()).map(|j| {
+                let parent = j.and_then(|j| joints[j].parent);
+                parent.map_or(glam::DMat3::IDENTITY, |a| world[a].matrix3.inverse())
+            }));
             for (p, chain) in points.iter().zip(chains) {
                 for &t in chain {
                     let j = track_joints[t].expect("a track on a chain has a joint");
-                    let parent = joints[j]
-                        .parent
-                        .map_or(glam::DMat3::IDENTITY, |a| world[a].matrix3);
-                    let u = parent.inverse() * (*p - world[j].translation);
+                    let u = inverses[t] * (*p - world[j].translation);
                     reach[t] = reach[t].max(u.length());
                 }
             }
