@@ -90,8 +90,26 @@ pub struct ReduceArgs {
     pub output: OutputArgs,
 
     /// Largest rotation error of any input frame, in --angles units (with --distance, a length).
-    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true)]
-    pub tolerance: f64,
+    /// Required unless --position-tolerance is given; with it, both hold.
+    #[arg(long, value_name = "TOL", value_parser = parse_positive, allow_hyphen_values = true,
+        required_unless_present = "position_tolerance")]
+    pub tolerance: Option<f64>,
+
+    /// Largest world-space displacement (length units) of every joint, End Site and --shell
+    /// point, composed through the skeleton from the root, at every input frame (BVH and glTF
+    /// inputs, which have a skeleton).
+    #[arg(long, value_name = "LEN", value_parser = parse_positive)]
+    pub position_tolerance: Option<f64>,
+
+    /// With --position-tolerance, also keep the three points this far from each joint along its
+    /// own axes within it (so that a twist about a bone counts; ACL's virtual vertices).
+    #[arg(long, value_name = "D", value_parser = parse_positive, requires = "position_tolerance")]
+    pub shell: Option<f64>,
+
+    /// With --position-tolerance, another limit for the points of the joints the globs name:
+    /// 'LeftFoot,RightFoot=0.2' (repeatable; a later one wins where several match).
+    #[arg(long, value_name = "GLOBS=LEN", requires = "position_tolerance")]
+    pub joint_tolerance: Vec<String>,
 
     /// The scheme the keys are for (interp's --scheme; use the same with interp). Default
     /// bezier; slerp for glTF output, whose LINEAR samplers play by slerp.

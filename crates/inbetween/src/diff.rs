@@ -104,7 +104,7 @@ pub fn world_diff(
     b: &dyn Poses,
     shell: Option<f64>,
 ) -> WorldDiff {
-    let owner = owners(skeleton);
+    let owner = skeleton.owners();
     let point_owner: Vec<Option<usize>> = skeleton
         .point_joints(shell.is_some())
         .iter()
@@ -112,55 +112,23 @@ pub fn world_diff(
         .collect();
     let track_joints = skeleton.track_joints();
     let tracks = skeleton.track_count();
-    // Frames in chunks on the cores; each chunk's per-track maxima, merged in frame order.
-    let chunk = frames
-        .div_ceil(crate::parallel::MAX_THREADS.max(1) * 4)
-        .max(1);
-    let starts: Vec<usize> = (0..frames).step_by(chunk).collect();
-    let parts = crate::parallel::map(&starts, |&s| {
-        let mut best = vec![(0.0f64, 0usize); tracks];
-        let mut origin_sum = vec![0.0; tracks];
-        let (mut wa, mut wb) = (Vec::new(), Vec::new());
-        let (mut pa, mut pb) = (Vec::new(), Vec::new());
-        for f in s..(s + chunk).min(frames) {
-            skeleton.world(|t| a.at(f, t), &mut wa);
-            skeleton.world(|t| b.at(f, t), &mut wb);
-            points(skeleton, &wa, shell, &mut pa);
-            points(skeleton, &wb, shell, &mut pb);
-            for ((x, y), o) in pa.iter().zip(&pb).zip(&point_owner) {
-                if let Some(t) = *o {
-                    let d = nan_max((*x - *y).length());
-                    if d > best[t].0 {
-                        best[t] = (d, f);
-                    }
-                }
-            }
-            for (t, j) in track_joints.iter().enumerate() {
-                if let Some(j) = *j {
-                    origin_sum[t] += nan_max((wa[j].translation - wb[j].translation).length());
-                }
-            }
-        }
-        (best, origin_sum)
-    });
+    let scan = scan(skeleton, frames, a, b, shell);
     let mut best = vec![(0.0f64, 0usize); tracks];
-    let mut sums = vec![0.0; tracks];
-    for (part, sum) in parts {
-        for t in 0..tracks {
-            if part[t].0 > best[t].0 {
-                best[t] = part[t];
-            }
-            sums[t] += sum[t];
+    for (&(d, f), o) in scan.points.iter().zip(&point_owner) {
+        if let Some(t) = *o
+            && (d > best[t].0 || (d == best[t].0 && f < best[t].1))
+        {
+            best[t] = (d, f);
         }
     }
     WorldDiff {
         tracks: (0..tracks)
             .map(|t| {
-                track_joints[t].map(|_| Extent {
+                track_joints[t].map(|j| Extent {
                     max: best[t].0,
                     at: best[t].1,
                     mean: if frames > 0 {
-                        sums[t] / frames as f64
+                        scan.origin_sums[j] / frames as f64
                     } else {
                         0.0
                     },
@@ -171,23 +139,89 @@ pub fn world_diff(
     }
 }
 
+/// Per point of [`Skeleton::points`] (in its order, with the shell's points when `shell` is
+/// given), its largest world displacement between `a` and `b` over `frames` frames and the first
+/// frame where it occurs (a NaN counts as infinite).
+pub fn point_displacements(
+    skeleton: &Skeleton,
+    frames: usize,
+    a: &dyn Poses,
+    b: &dyn Poses,
+    shell: Option<f64>,
+) -> Vec<(f64, usize)> {
+    scan(skeleton, frames, a, b, shell).points
+}
+
+/// What one pass over the frames measures.
+struct Scan {
+    /// Per point, the largest displacement and its first frame.
+    points: Vec<(f64, usize)>,
+    /// Per joint, the sum over the frames of its origin's displacement.
+    origin_sums: Vec<f64>,
+}
+
+/// The frames posed and compared, in chunks on the cores; the chunks merged in frame order.
+fn scan(
+    skeleton: &Skeleton,
+    frames: usize,
+    a: &dyn Poses,
+    b: &dyn Poses,
+    shell: Option<f64>,
+) -> Scan {
+    let n_points = skeleton.point_joints(shell.is_some()).len();
+    let n_joints = skeleton.joints().len();
+    let chunk = frames
+        .div_ceil(crate::parallel::MAX_THREADS.max(1) * 4)
+        .max(1);
+    let starts: Vec<usize> = (0..frames).step_by(chunk).collect();
+    let parts = crate::parallel::map(&starts, |&s| {
+        let mut best = vec![(0.0f64, s); n_points];
+        let mut origin_sums = vec![0.0; n_joints];
+        let (mut wa, mut wb) = (Vec::new(), Vec::new());
+        let (mut pa, mut pb) = (Vec::new(), Vec::new());
+        for f in s..(s + chunk).min(frames) {
+            skeleton.world(|t| a.at(f, t), &mut wa);
+            skeleton.world(|t| b.at(f, t), &mut wb);
+            points(skeleton, &wa, shell, &mut pa);
+            points(skeleton, &wb, shell, &mut pb);
+            for ((x, y), best) in pa.iter().zip(&pb).zip(&mut best) {
+                let d = nan_max((*x - *y).length());
+                if d > best.0 {
+                    *best = (d, f);
+                }
+            }
+            for ((x, y), sum) in wa.iter().zip(&wb).zip(&mut origin_sums) {
+                *sum += nan_max((x.translation - y.translation).length());
+            }
+        }
+        Scan {
+            points: best,
+            origin_sums,
+        }
+    });
+    let mut out = Scan {
+        points: vec![(0.0, 0); n_points],
+        origin_sums: vec![0.0; n_joints],
+    };
+    for part in parts {
+        for (o, p) in out.points.iter_mut().zip(&part.points) {
+            if p.0 > o.0 {
+                *o = *p;
+            }
+        }
+        for (o, p) in out.origin_sums.iter_mut().zip(&part.origin_sums) {
+            *o += p;
+        }
+    }
+    out
+}
+
 fn points(skeleton: &Skeleton, world: &[DAffine3], shell: Option<f64>, out: &mut Vec<DVec3>) {
     skeleton.points_of(world, shell, out);
 }
 
 fn nan_max(d: f64) -> f64 {
     if d.is_nan() { f64::INFINITY } else { d }
-}
-
-/// The track owning each joint's points: its own, else the nearest animated ancestor's.
-fn owners(skeleton: &Skeleton) -> Vec<Option<usize>> {
-    let joints = skeleton.joints();
-    let mut out: Vec<Option<usize>> = Vec::with_capacity(joints.len());
-    for j in joints {
-        let owner = j.track.or_else(|| j.parent.and_then(|p| out[p]));
-        out.push(owner);
-    }
-    out
 }
 
 #[cfg(test)]

@@ -228,6 +228,17 @@ impl Skeleton {
         out
     }
 
+    /// The track owning each joint's points: its own, else its nearest animated ancestor's
+    /// (`None` above every animated joint).
+    pub fn owners(&self) -> Vec<Option<usize>> {
+        let mut out: Vec<Option<usize>> = Vec::with_capacity(self.joints.len());
+        for j in &self.joints {
+            let owner = j.track.or_else(|| j.parent.and_then(|p| out[p]));
+            out.push(owner);
+        }
+        out
+    }
+
     /// Whether `ancestor` is `joint` or above it.
     pub fn is_at_or_above(&self, ancestor: usize, joint: usize) -> bool {
         let mut at = Some(joint);

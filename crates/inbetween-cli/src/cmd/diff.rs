@@ -9,6 +9,7 @@ use inbetween::metrics::{aligned, format_sig};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
 use inbetween::{Curve, CurveOptions, Error, InputError, Scheme, Track};
+use inbetween_io::gltf::document::{Mode, Sampler};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -76,6 +77,17 @@ pub fn run(
         Curve::new(t, &opts).map_err(|e| e.at(&b.doc.source).into())
     });
     let curves = curves.into_iter().collect::<Result<Vec<Curve>, Error>>()?;
+    // A glTF B's translation channels are played as a player plays them, at A's times: its
+    // tracks hold them only sampled at its rotation keys.
+    let b_samplers: Vec<Option<Sampler>> = b
+        .tracks
+        .iter()
+        .map(|t| {
+            let g = b.gltf.as_ref()?;
+            let source = g.source_of(t.name()?, Mode::Frames)?;
+            Some(g.sampler(source.index, b.fps))
+        })
+        .collect();
     // Per track of A: the compared key indices and B's rotation and translation there.
     let mut compared: Vec<Vec<usize>> = Vec::with_capacity(a.tracks.len());
     let mut b_poses = Vec::with_capacity(a.tracks.len());
@@ -83,7 +95,7 @@ pub fn run(
     for (ta, name) in a.tracks.iter().zip(&a_names) {
         let j = b_of[name.as_str()];
         let (tb, cb) = (&b.tracks[j], &curves[j]);
-        let (keys, poses) = at_a_times(ta, tb, cb, args.common_frames);
+        let (keys, poses) = at_a_times(ta, tb, cb, b_samplers[j].as_ref(), args.common_frames);
         if keys.is_empty() {
             return Err(InputError::new(format!(
                 "diff: track \"{}\": no key time of {sa} is a key time of {sb} (within 1e-9 \
@@ -131,12 +143,14 @@ pub fn run(
 }
 
 /// The key indices of `a` compared and B's rotation and translation at each: every key of A,
-/// B's curve there; with `common`, the keys of A with a key of B at the same time, B's key.
+/// B's curve there (its translation from `sampler`, a glTF B's channels, where given); with
+/// `common`, the keys of A with a key of B at the same time, B's key.
 #[allow(clippy::type_complexity)]
 fn at_a_times(
     a: &Track,
     b: &Track,
     curve: &Curve,
+    sampler: Option<&Sampler>,
     common: bool,
 ) -> (Vec<usize>, Vec<(glam::DQuat, Option<glam::DVec3>)>) {
     let mut keys = Vec::new();
@@ -144,7 +158,10 @@ fn at_a_times(
     for (k, &t) in a.times().iter().enumerate() {
         if !common {
             keys.push(k);
-            poses.push((curve.rotation(t), curve.position(t)));
+            let position = sampler
+                .and_then(|s| s.at(t).1)
+                .or_else(|| curve.position(t));
+            poses.push((curve.rotation(t), position));
             continue;
         }
         let bt = b.times();

@@ -9,5 +9,6 @@ pub mod reduce;
 pub mod reduce_bvh;
 pub mod reduce_gltf;
 pub mod reduce_rounded;
+pub mod reduce_world;
 pub mod settings;
 pub mod skeleton;

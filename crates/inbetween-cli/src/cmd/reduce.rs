@@ -22,8 +22,15 @@ pub fn run(
     if let Some(done) = super::reduce_bvh::lean(args, warn) {
         return done;
     }
+    let gltf_output = !tracks_take_translations(&args.output);
+    super::reduce_world::check_options(args, gltf_output)?;
+    // A position tolerance poses the skeleton with the tracks' translations, even where the
+    // output keeps them.
     let input = read_curves_in(
-        (Mode::Frames, tracks_take_translations(&args.output)),
+        (
+            Mode::Frames,
+            !gltf_output || args.position_tolerance.is_some(),
+        ),
         &args.input,
         &args.curve,
         &|f| scheme(args, f),
@@ -45,7 +52,10 @@ pub fn run(
         ))
         .into());
     }
-    if tracks.iter().any(|t| t.translations().is_some()) && args.translation_tolerance.is_none() {
+    if tracks.iter().any(|t| t.translations().is_some())
+        && args.translation_tolerance.is_none()
+        && args.position_tolerance.is_none()
+    {
         return Err(InputError::new(format!(
             "{}: the tracks have translations: give their tolerance with --translation-tolerance \
              (length units)",
@@ -275,6 +285,17 @@ pub(super) fn reduce_tracks(
         ))
         .into());
     }
+    if args.position_tolerance.is_some() {
+        let posed: Vec<TrackFrames> = tracks
+            .iter()
+            .zip(&frames)
+            .map(|(t, f)| TrackFrames {
+                positions: t.translations(),
+                ..*f
+            })
+            .collect();
+        return super::reduce_world::reduce(args, input, &posed, &opts, (translations, margin.0));
+    }
     let reduced: Vec<Reduced> = if args.shared_keys {
         reduce_shared(&frames, &opts)
     } else {
@@ -289,7 +310,8 @@ pub(super) fn reduce_tracks(
 
 /// `-v`'s line for each track of `input` reduced to `reduced`.
 pub(super) fn report_all(args: &ReduceArgs, input: &Curves, reduced: &[Reduced]) {
-    if args.verbose {
+    // A position tolerance reports its own lines, with the world figures.
+    if args.verbose && args.position_tolerance.is_none() {
         for (t, r) in input.tracks.iter().zip(reduced) {
             report(args, t.name(), t.len(), r);
         }
@@ -305,14 +327,39 @@ pub(super) fn reduce_options(
     (margin, position_margin): (f64, f64),
     translations: bool,
 ) -> Result<ReduceOptions, Error> {
+    let tolerance = match args.tolerance {
+        // --position-tolerance alone: no local bound.
+        None => std::f64::consts::PI,
+        Some(given) => local_tolerance(args, given, margin)?,
+    };
+    let opts = ReduceOptions {
+        curve,
+        tolerance,
+        distance: args.distance,
+        translation_tolerance: args
+            .translation_tolerance
+            .filter(|_| translations)
+            .map(|t| t - position_margin),
+        velocities: !args.no_velocities,
+        method: match args.method {
+            MethodArg::Greedy => Method::Greedy,
+            MethodArg::Optimal => Method::Optimal,
+        },
+    };
+    Ok(opts)
+}
+
+/// `--tolerance given` as reduce measures it (rad, or a length with `--distance`), tightened by
+/// `margin`; a tolerance that is too small is an input error.
+fn local_tolerance(args: &ReduceArgs, given: f64, margin: f64) -> Result<f64, Error> {
     let tolerance = match args.distance {
-        Some(_) => args.tolerance,
-        None => args.input.angles.to_rad(args.tolerance),
+        Some(_) => given,
+        None => args.input.angles.to_rad(given),
     } - margin;
     if tolerance <= 0.0 {
         return Err(InputError::new(format!(
             "--tolerance {}: too small for keys stored as float32; give more than {}",
-            args.tolerance,
+            given,
             match args.distance {
                 Some(_) => margin,
                 None => args.input.angles.from_rad(margin),
@@ -332,25 +379,11 @@ pub(super) fn reduce_options(
         return Err(InputError::new(format!(
             "--tolerance {:e}: below what reduce can verify (rotations carry about 1e-15 rad of \
              round-off); give at least {least:e} {unit}",
-            args.tolerance
+            given
         ))
         .into());
     }
-    let opts = ReduceOptions {
-        curve,
-        tolerance,
-        distance: args.distance,
-        translation_tolerance: args
-            .translation_tolerance
-            .filter(|_| translations)
-            .map(|t| t - position_margin),
-        velocities: !args.no_velocities,
-        method: match args.method {
-            MethodArg::Greedy => Method::Greedy,
-            MethodArg::Optimal => Method::Optimal,
-        },
-    };
-    Ok(opts)
+    Ok(tolerance)
 }
 
 /// An error `x` of the tolerance's measure (rad, or a length with `--distance`) in the unit the

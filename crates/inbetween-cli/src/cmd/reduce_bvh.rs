@@ -19,7 +19,7 @@ type JointDone = Result<(DocTrack, Reduced, Option<String>, usize), Error>;
 /// `reduce` of a BVH file, one joint at a time, with exactly the general path's output,
 /// warnings and errors. `None` when it does not apply — standard input, an option it does not
 /// handle (`--tracks`, `--from`, `--animation`, `--snap-keys`, `--path euler`, end velocities,
-/// `--shared-keys`), or anything wrong with the input or the options, which the general path
+/// `--shared-keys`, `--position-tolerance`), or anything wrong with the input or the options, which the general path
 /// then reads again and reports exactly as always (nothing has been written: the keys are
 /// written once every joint is done). Its warnings are held until it is done, so they are given
 /// once, in the general path's order.
@@ -41,6 +41,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         || args.shared_keys
         || args.scale_tolerance.is_some()
         || args.output.precision.is_some()
+        || args.position_tolerance.is_some()
     {
         return None;
     }

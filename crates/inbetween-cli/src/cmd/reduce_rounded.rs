@@ -67,7 +67,7 @@ pub(super) fn as_written(
     }
     let (what, by) = if miss.0 > 0.0 {
         (
-            format!("--tolerance {}", args.tolerance),
+            format!("--tolerance {}", args.tolerance.unwrap_or(f64::NAN)),
             format!("{:.3e} {}", unit(args, miss.0), unit_name(args)),
         )
     } else {

@@ -218,7 +218,7 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
 
 /// Whether `name` matches `pattern`: `*` any run of characters, `?` one character, anything else
 /// itself.
-fn glob(pattern: &str, name: &str) -> bool {
+pub(super) fn glob(pattern: &str, name: &str) -> bool {
     let (p, n): (Vec<char>, Vec<char>) = (pattern.chars().collect(), name.chars().collect());
     // Classic two-pointer match with backtracking to the last `*`.
     let (mut i, mut j) = (0, 0);

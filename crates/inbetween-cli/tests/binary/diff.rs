@@ -196,3 +196,152 @@ fn world_displacements_agree_with_the_independent_reference() {
         }
     }
 }
+
+/// A clip against itself is zero everywhere; CSV carries the same figures as JSON, one row per
+/// track and a total row.
+#[test]
+fn a_clip_against_itself_is_zero_and_csv_has_the_same_rows() {
+    let clip = "fixtures/bvh/cmu_01_01.bvh";
+    let d = json_of(bin().args([
+        "diff",
+        clip,
+        clip,
+        "--output-format",
+        "json",
+        "--shell",
+        "3",
+    ]));
+    for t in d["tracks"].as_array().unwrap() {
+        assert!(num(&t["max_angle"]) < 1e-12, "{t}");
+        assert_eq!(num(&t["max_world"]), 0.0, "{t}");
+    }
+    let csv = crate::support::stdout_of(bin().args([
+        "diff",
+        "fixtures/diff/turned.json",
+        "fixtures/diff/turned_more.json",
+        "--output-format",
+        "csv",
+    ]));
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        lines[0],
+        "kind,track,frames,max_angle,max_angle_time,mean_angle,max_translation,\
+         max_translation_time,max_world,max_world_time,mean_world"
+    );
+    for (line, kind) in lines[1..].iter().zip(["track", "total"]) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(
+            (cells[0], cells[1], cells[2]),
+            (kind, "wheel", "2"),
+            "{line}"
+        );
+        let angle: f64 = cells[3].parse().unwrap();
+        assert!((angle - 10.0).abs() < 1e-12, "{line}");
+        assert!(cells[6..].iter().all(|c| c.is_empty()), "{line}");
+    }
+    assert_eq!(lines.len(), 3);
+}
+
+/// CMU 01_01 (120 fps) resampled to 30 fps, compared at the capture's frames with the 30 fps
+/// frames played by slerp: the largest angle of every track and the largest world displacement
+/// are the independent checker's (`replay_ref.py`: its own BVH reader, scipy's slerp of the 30
+/// fps frames taken as keys, its own forward kinematics).
+#[test]
+fn a_resample_is_measured_as_the_independent_replay_measures_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let clip = "fixtures/bvh/cmu_01_01.bvh";
+    let resampled = dir.path().join("r30.json");
+    bin()
+        .args(["interp", clip, "--fps", "30", "-o"])
+        .arg(&resampled)
+        .assert()
+        .success();
+    let ours = json_of(bin().args(["diff", clip]).arg(&resampled).args([
+        "--scheme",
+        "slerp",
+        "--output-format",
+        "json",
+    ]));
+    let Some(python) = checker_python("independent replay of a resample") else {
+        return;
+    };
+    // The 30 fps frames as keys, for the checker to slerp between.
+    let mut doc: Value = serde_json::from_slice(&std::fs::read(&resampled).unwrap()).unwrap();
+    for t in doc["tracks"].as_array_mut().unwrap() {
+        let frames = t.as_object_mut().unwrap().remove("frames").unwrap();
+        t["keys"] = frames;
+    }
+    let keys = dir.path().join("r30_keys.json");
+    std::fs::write(&keys, serde_json::to_vec(&doc).unwrap()).unwrap();
+    use std::ffi::OsStr;
+    let reference = python_json(
+        &python,
+        "fixtures/world/replay_ref.py",
+        &[OsStr::new(clip), keys.as_os_str(), OsStr::new("--json")],
+    );
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * b.abs().max(1.0);
+    let joints = reference["joints"].as_array().unwrap();
+    for t in ours["tracks"].as_array().unwrap() {
+        let r = joints.iter().find(|j| j["name"] == t["track"]).unwrap();
+        assert!(
+            close(num(&t["max_angle"]), num(&r["max_angle_deg"])),
+            "{t} {r}"
+        );
+    }
+    let total = &ours["total"];
+    assert!(num(&total["max_angle"]) > 10.0, "{total}");
+    assert!(
+        close(
+            num(&total["max_world"]),
+            num(&reference["max_displacement"])
+        ),
+        "{total} {reference}"
+    );
+}
+
+/// A glTF asset (CesiumMan) and its reduction as written: `diff` plays B's translation channels
+/// as a player does, so its world displacements are the independent glTF player's
+/// (`replay_ref.py`: its own node-tree forward kinematics) to float32 time snapping, and its
+/// translation difference is within the tolerance the channels were reduced under.
+#[test]
+fn a_reduced_gltf_asset_is_measured_as_a_player_plays_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = "fixtures/gltf/real/CesiumMan.glb";
+    let small = dir.path().join("small.glb");
+    bin()
+        .args(["reduce", original, "--tolerance", "0.5"])
+        .args(["--translation-tolerance", "0.001", "-o"])
+        .arg(&small)
+        .assert()
+        .success();
+    let ours = json_of(bin().args(["diff", original]).arg(&small).args([
+        "--scheme",
+        "slerp",
+        "--output-format",
+        "json",
+    ]));
+    let total = &ours["total"];
+    assert!(num(&total["max_translation"]) <= 0.001, "{total}");
+    let Some(python) = checker_python("independent glTF replay") else {
+        return;
+    };
+    use std::ffi::OsStr;
+    let reference = python_json(
+        &python,
+        "fixtures/world/replay_ref.py",
+        &[
+            OsStr::new(original),
+            small.as_os_str(),
+            OsStr::new("--json"),
+        ],
+    );
+    let joints = reference["joints"].as_array().unwrap();
+    let mut compared = 0;
+    for t in ours["tracks"].as_array().unwrap() {
+        let r = joints.iter().find(|j| j["name"] == t["track"]).unwrap();
+        let (a, b) = (num(&t["max_world"]), num(&r["max_displacement"]));
+        assert!((a - b).abs() <= 1e-7, "{t} {r}");
+        compared += 1;
+    }
+    assert!(compared > 10 && num(&total["max_world"]) > 1e-3, "{total}");
+}

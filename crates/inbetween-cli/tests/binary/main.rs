@@ -26,6 +26,7 @@ mod reading;
 mod readme;
 mod reduce_bvh;
 mod reduce_guarantee;
+mod reduce_world;
 mod reliability;
 mod roundtrip;
 mod usage;

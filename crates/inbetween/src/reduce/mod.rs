@@ -56,6 +56,7 @@ mod greedy;
 mod optimal;
 mod shared;
 mod verify;
+mod world;
 
 pub use estimates::{ESTIMATES, frame_velocities, velocity_estimates};
 pub use frames::ANTIPODE_MARGIN;
@@ -65,9 +66,13 @@ pub use frames::error as rotation_error;
 use greedy::{farthest_by, greedy_keys};
 pub use optimal::optimal_window;
 use optimal::{Edge, SlerpSpeeds, optimal_keys, shortest_path};
-pub use shared::reduce_shared;
+pub use shared::{reduce_shared, reduce_shared_each};
 pub use verify::curve_errors;
 use verify::{Errors, shared_verified};
+pub use world::{
+    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, TIGHTENING,
+    TRANSLATION_SHARE, WorldReduced, WorldTolerance, reduce_world,
+};
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
 /// refinement of the frame grid), plus [`SEGMENT_GRID_SLACK`] points; a segment whose start curve
@@ -181,7 +186,7 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> Result<Re
     let frames = [frames];
     let (keys, errors) = method_keys(
         &frames,
-        opts,
+        std::slice::from_ref(opts),
         || greedy_keys(&frames[0], opts),
         |window| optimal_keys(&frames[0], window, opts),
     )?;
@@ -193,10 +198,11 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> Result<Re
 /// they are more than greedy's, whose estimates are then restored. minaccel's optimal keeps
 /// greedy's keys: its segments are not local, and a shortest path would solve a curve per tested
 /// segment (minutes on a few hundred frames) for a test that is not exact anyway. Returns the
-/// keys and each track's errors on them.
+/// keys and each track's errors on them. `opts` are each track's options (differing in their
+/// tolerances only).
 fn method_keys(
     frames: &[Frames],
-    opts: &ReduceOptions,
+    opts: &[ReduceOptions],
     greedy: impl FnOnce() -> InputResult<Vec<usize>>,
     optimal: impl FnOnce(usize) -> InputResult<Vec<usize>>,
 ) -> InputResult<(Vec<usize>, Vec<Errors>)> {
@@ -212,7 +218,7 @@ fn method_keys(
         .map(|f| f.choice.iter().map(std::cell::Cell::get).collect())
         .collect();
     let greedy = shared_verified(frames, keys, opts)?;
-    if opts.method == Method::Greedy || opts.curve.scheme == Scheme::MinAccel {
+    if opts[0].method == Method::Greedy || opts[0].curve.scheme == Scheme::MinAccel {
         return Ok(greedy);
     }
     let best = optimal(optimal_window(&greedy.0))?;
@@ -297,6 +303,27 @@ pub fn reduce_each(
     crate::parallel::map(tracks, |t| reduce_frames(t, opts))
         .into_iter()
         .collect()
+}
+
+/// The track of a reduced track's kept keys, as `interp` reads them back: their times (the
+/// frames' key times where given), rotations, velocities, translations where the frames have
+/// them, and Euler angles for `--path euler`. The curve [`Curve::new`] builds from it with the
+/// options the track was reduced for is the curve reduce verified.
+pub fn kept_track(track: &TrackFrames<'_>, r: &Reduced, opts: &CurveOptions) -> InputResult<Track> {
+    let key_times = track.key_times.unwrap_or(track.times);
+    let t: Vec<f64> = r.keys.iter().map(|&i| key_times[i]).collect();
+    let q: Vec<DQuat> = r.keys.iter().map(|&i| track.rotations[i]).collect();
+    let mut out = Track::new(t, q)?;
+    if let Some(v) = &r.velocities {
+        out = out.with_key_velocities(v.iter().copied().map(Some).collect())?;
+    }
+    if let Some(p) = track.positions {
+        out = out.with_translations(r.keys.iter().map(|&i| p[i]).collect())?;
+    }
+    if let Some((seq, e)) = track.euler.filter(|_| opts.path == PathMode::Euler) {
+        out = out.with_euler_angles(seq, r.keys.iter().map(|&i| e[i]).collect())?;
+    }
+    Ok(out)
 }
 
 /// Most threads [`reduce_each`] uses.

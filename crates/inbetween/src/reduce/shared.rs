@@ -12,6 +12,16 @@ pub fn reduce_shared(
     tracks: &[TrackFrames<'_>],
     opts: &ReduceOptions,
 ) -> Result<Vec<Reduced>, Error> {
+    reduce_shared_each(tracks, &vec![*opts; tracks.len()])
+}
+
+/// [`reduce_shared`] with each track's own tolerances: `opts[t]` is track `t`'s, and all must
+/// agree on everything but `tolerance` and `translation_tolerance` (the curve, the error's
+/// measure, velocities, method).
+pub fn reduce_shared_each(
+    tracks: &[TrackFrames<'_>],
+    opts: &[ReduceOptions],
+) -> Result<Vec<Reduced>, Error> {
     let Some(times) = tracks.first().map(|t| t.times) else {
         return Ok(Vec::new());
     };
@@ -22,10 +32,33 @@ pub fn reduce_shared(
         ])
         .into());
     }
+    let same = |a: &ReduceOptions, b: &ReduceOptions| {
+        ReduceOptions {
+            tolerance: a.tolerance,
+            translation_tolerance: a.translation_tolerance,
+            ..*b
+        } == *a
+    };
+    if opts.len() != tracks.len() || opts.iter().any(|o| !same(o, &opts[0])) {
+        return Err(Error::Internal(format!(
+            "internal error: reduce_shared_each takes one options per track ({} for {} tracks), \
+             differing only in their tolerances",
+            opts.len(),
+            tracks.len()
+        )));
+    }
     let n = times.len();
-    let frames: Vec<Frames> = tracks.iter().map(|t| Frames::new(t, opts)).collect();
+    let frames: Vec<Frames> = tracks
+        .iter()
+        .zip(opts)
+        .map(|(t, o)| Frames::new(t, o))
+        .collect();
     if n < 2 {
-        return tracks.iter().map(|t| reduce_frames(t, opts)).collect();
+        return tracks
+            .iter()
+            .zip(opts)
+            .map(|(t, o)| reduce_frames(t, o))
+            .collect();
     }
     let (keys, errors) = method_keys(
         &frames,
@@ -36,7 +69,8 @@ pub fn reduce_shared(
     frames
         .iter()
         .zip(errors)
-        .map(|(f, e)| reduced(f, keys.clone(), e, opts))
+        .zip(opts)
+        .map(|((f, e), o)| reduced(f, keys.clone(), e, o))
         .collect()
 }
 
@@ -48,7 +82,7 @@ pub(super) fn shared_feasible(
     a: usize,
     b: usize,
     first: &std::cell::Cell<usize>,
-    opts: &ReduceOptions,
+    opts: &[ReduceOptions],
 ) -> InputResult<bool> {
     let m = frames.len();
     for j in 0..m {
@@ -56,7 +90,7 @@ pub(super) fn shared_feasible(
         let f = &frames[t];
         let mut ok = false;
         for c in 0..f.choices {
-            if f.feasible_with(a, b, c, opts)? {
+            if f.feasible_with(a, b, c, &opts[t])? {
                 ok = true;
                 break;
             }
@@ -74,7 +108,7 @@ pub(super) fn shared_feasible(
 /// of its estimates that meets them there.
 pub(super) fn shared_greedy_keys(
     frames: &[Frames],
-    opts: &ReduceOptions,
+    opts: &[ReduceOptions],
 ) -> InputResult<Vec<usize>> {
     let n = frames[0].quats.len();
     let first = std::cell::Cell::new(0);
@@ -103,10 +137,10 @@ pub(super) fn shared_greedy_keys(
 pub(super) fn shared_optimal_keys(
     frames: &[Frames],
     window: usize,
-    opts: &ReduceOptions,
+    opts: &[ReduceOptions],
 ) -> InputResult<Vec<usize>> {
     let n = frames[0].quats.len();
-    let slerp = opts.curve.scheme == Scheme::Slerp && opts.curve.path == PathMode::Shortest;
+    let slerp = opts[0].curve.scheme == Scheme::Slerp && opts[0].curve.path == PathMode::Shortest;
     let first = std::cell::Cell::new(0);
     let mut speeds: Vec<SlerpSpeeds> = Vec::new();
     // Each track's estimate at each frame, from the edge that reached it.

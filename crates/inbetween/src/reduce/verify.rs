@@ -84,7 +84,7 @@ pub(super) fn key_time_miss(
 pub(super) fn shared_verified(
     frames: &[Frames],
     mut keys: Vec<usize>,
-    opts: &ReduceOptions,
+    opts: &[ReduceOptions],
 ) -> InputResult<(Vec<usize>, Vec<Errors>)> {
     // Each track's errors and the number of keys they were measured on. Keys only grow, so a
     // track measured on as many keys as there are now was measured on the final keys.
@@ -96,7 +96,7 @@ pub(super) fn shared_verified(
         {
             break;
         }
-        let (k, e) = verified(&frames[t], keys, opts)?;
+        let (k, e) = verified(&frames[t], keys, &opts[t])?;
         keys = k;
         measured[t] = Some((keys.len(), e));
     }

@@ -1,0 +1,275 @@
+//! `reduce --position-tolerance`: the world-space guarantee replayed by the independent checker
+//! (`fixtures/world/replay_ref.py`: its own BVH and glTF readers, slerp and forward kinematics)
+//! on real BVH and glTF motion, with `--shell`, `--joint-tolerance`, `--shared-keys` and
+//! `--tolerance`; and the refusals.
+
+use crate::support::{bin, checker_python, python_json, stdout_of};
+use serde_json::Value;
+use std::ffi::OsStr;
+use std::path::Path;
+
+const CMU: &str = "fixtures/bvh/cmu_01_01.bvh";
+const CESIUM: &str = "fixtures/gltf/real/CesiumMan.glb";
+
+fn keys_of(path: &Path) -> usize {
+    let doc: Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    doc["tracks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["keys"].as_array().unwrap().len())
+        .sum()
+}
+
+/// The checker's verdict on `reduced` against `original`: it exits 0 only when every joint is
+/// within its limit; the largest displacement it measured.
+fn replay(python: &Path, original: &str, reduced: &Path, extra: &[&str]) -> Value {
+    let mut args: Vec<&OsStr> = vec![OsStr::new(original), reduced.as_os_str()];
+    args.extend(extra.iter().map(OsStr::new));
+    args.push(OsStr::new("--json"));
+    let r = python_json(python, "fixtures/world/replay_ref.py", &args);
+    assert_eq!(r["within"], true, "{r}");
+    r
+}
+
+fn max_displacement(r: &Value) -> f64 {
+    r["max_displacement"].as_f64().unwrap()
+}
+
+/// Bezier keys (the default) replayed as `interp` plays them at the clip's rate, and slerp keys
+/// replayed by the checker's own slerp: every joint and End Site within LEN at every frame, the
+/// shell's points too with `--shell`; and the bound is used, not met by keeping every frame.
+#[test]
+fn every_point_of_a_bvh_clip_stays_within_the_position_tolerance() {
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (len, shell, scheme) in [
+        ("0.5", None, "bezier"),
+        ("0.3", Some("3"), "bezier"),
+        ("0.5", None, "slerp"),
+        ("0.2", Some("2"), "slerp"),
+    ] {
+        let keys = dir.path().join(format!("{scheme}-{len}.json"));
+        let mut cmd = bin();
+        cmd.args([
+            "reduce",
+            CMU,
+            "--position-tolerance",
+            len,
+            "--scheme",
+            scheme,
+        ]);
+        if let Some(d) = shell {
+            cmd.args(["--shell", d]);
+        }
+        stdout_of(cmd.arg("-o").arg(&keys));
+        let replayed = if scheme == "slerp" {
+            keys.clone()
+        } else {
+            let dense = dir.path().join(format!("dense-{len}.json"));
+            stdout_of(
+                bin()
+                    .args(["interp", "--fps", "120", "--scheme", scheme])
+                    .arg(&keys)
+                    .arg("-o")
+                    .arg(&dense),
+            );
+            dense
+        };
+        let mut extra = vec!["--limit", len];
+        if let Some(d) = shell {
+            extra.extend(["--shell", d]);
+        }
+        let r = replay(&python, CMU, &replayed, &extra);
+        let len: f64 = len.parse().unwrap();
+        // 31 tracks of 61 frames: far fewer keys, and the error near its bound.
+        assert!(keys_of(&keys) < 31 * 61 / 3, "{scheme} {len}");
+        assert!(max_displacement(&r) > 0.5 * len, "{scheme} {len}: {r}");
+    }
+}
+
+/// `--joint-tolerance` tightens the named joints' points (a later glob wins), `--shared-keys`
+/// gives every track one set of key times, and `--tolerance` keeps bounding each joint's local
+/// angle as well.
+#[test]
+fn joint_tolerances_shared_keys_and_local_angles_hold_together() {
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("shared.json");
+    stdout_of(
+        bin()
+            .args([
+                "reduce",
+                CMU,
+                "--scheme",
+                "slerp",
+                "--position-tolerance",
+                "0.6",
+                "--joint-tolerance",
+                "L*=0.1",
+                "--joint-tolerance",
+                "LeftHand*=0.3",
+                "--tolerance",
+                "0.4",
+                "--shared-keys",
+                "-o",
+            ])
+            .arg(&keys),
+    );
+    let r = replay(
+        &python,
+        CMU,
+        &keys,
+        &[
+            "--limit",
+            "0.6",
+            "--joint-limit",
+            "L*=0.1",
+            "--joint-limit",
+            "LeftHand*=0.3",
+            "--shared-keys",
+        ],
+    );
+    let joints = r["joints"].as_array().unwrap();
+    let named = |n: &str| joints.iter().find(|j| j["name"] == n).unwrap();
+    assert_eq!(named("LeftFoot")["limit"], 0.1);
+    assert_eq!(named("LeftHand")["limit"], 0.3);
+    for j in joints {
+        assert!(
+            j["max_angle_deg"].as_f64().unwrap() <= 0.4 * (1.0 + 1e-9),
+            "{j}"
+        );
+    }
+    // Without the overrides and the local bound the left leg moves further: they were what
+    // bound it.
+    let loose = dir.path().join("loose.json");
+    stdout_of(
+        bin()
+            .args([
+                "reduce",
+                CMU,
+                "--scheme",
+                "slerp",
+                "--position-tolerance",
+                "0.6",
+            ])
+            .args(["--shared-keys", "-o"])
+            .arg(&loose),
+    );
+    let free = replay(&python, CMU, &loose, &["--limit", "0.6", "--shared-keys"]);
+    let free_joints = free["joints"].as_array().unwrap();
+    let free_foot = free_joints
+        .iter()
+        .find(|j| j["name"] == "LeftFoot")
+        .unwrap();
+    assert!(
+        free_foot["max_displacement"].as_f64().unwrap() > 0.1,
+        "{free_foot}"
+    );
+    assert!(keys_of(&loose) < keys_of(&keys));
+}
+
+/// A glTF asset: the reduced asset as a glTF player plays it (float32 keys, LINEAR slerp),
+/// every node's points within LEN, with the shell's too.
+#[test]
+fn a_reduced_gltf_asset_plays_within_the_position_tolerance() {
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    for (len, shell) in [("0.005", None), ("0.01", Some("0.05"))] {
+        let out = dir.path().join(format!("small-{len}.glb"));
+        let mut cmd = bin();
+        cmd.args(["reduce", CESIUM, "--position-tolerance", len]);
+        if let Some(d) = shell {
+            cmd.args(["--shell", d]);
+        }
+        stdout_of(cmd.arg("-o").arg(&out));
+        let mut extra = vec!["--limit", len];
+        if let Some(d) = shell {
+            extra.extend(["--shell", d]);
+        }
+        let r = replay(&python, CESIUM, &out, &extra);
+        assert!(
+            max_displacement(&r) > 0.3 * len.parse::<f64>().unwrap(),
+            "{r}"
+        );
+    }
+}
+
+fn refused(args: &[&str], needle: &str) {
+    let out = bin().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn what_a_position_tolerance_cannot_be_given_with_is_refused() {
+    // A keys document has no skeleton to pose.
+    refused(
+        &[
+            "reduce",
+            "fixtures/diff/turned.json",
+            "--position-tolerance",
+            "1",
+        ],
+        "needs a skeleton",
+    );
+    refused(
+        &[
+            "reduce",
+            CMU,
+            "--position-tolerance",
+            "1",
+            "--distance",
+            "3",
+            "--tolerance",
+            "1",
+        ],
+        "cannot be given with --distance",
+    );
+    refused(
+        &[
+            "reduce",
+            CMU,
+            "--position-tolerance",
+            "1",
+            "--precision",
+            "4",
+        ],
+        "cannot be given with --precision",
+    );
+    refused(
+        &[
+            "reduce",
+            CMU,
+            "--position-tolerance",
+            "1",
+            "--joint-tolerance",
+            "Tail*=0.1",
+        ],
+        "\"Tail*\" matches no joint; the joints are \"Hips\"",
+    );
+    refused(
+        &[
+            "reduce",
+            CMU,
+            "--position-tolerance",
+            "1",
+            "--joint-tolerance",
+            "Hips",
+        ],
+        "expected GLOBS=LEN",
+    );
+    refused(
+        &["reduce", CMU, "--shell", "3", "--tolerance", "1"],
+        "--position-tolerance",
+    );
+    refused(&["reduce", CMU], "--tolerance");
+}

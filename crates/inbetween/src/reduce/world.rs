@@ -1,0 +1,625 @@
+//! World space (`reduce --position-tolerance`, docs/spec.md §4.8 and §5a): keys whose motion,
+//! posed on a skeleton and composed from the root, keeps every point a viewer sees — each joint's
+//! origin, its end points and, with a shell, three points around it — within a length of the
+//! original at every frame.
+//!
+//! ## The bound
+//! Change one joint's local rotation by an angle θ (its translation by τ) and every point below
+//! it moves by at most `σ·(2·u·sin(θ/2) + τ)`: `u` the point's distance from the joint in the
+//! joint's own (unscaled) frame, `σ` the largest stretch of the joint's parent's world transform
+//! (the product of its ancestors' largest rest scales; 1 without scales). Changing the joints of
+//! a chain one after the other, the displacements add (the triangle inequality): a point moves
+//! by at most the sum of those terms over the animated joints at and above it. With `U` a track's
+//! *reach*, the largest `u` of any point below it at any frame, a per-track budget `e` with
+//! `σ·(2·U·sin(θ/2) + τ) = e` bounds that track's share at every point below it.
+//!
+//! ## Budgets, rounds and the guarantee
+//! The *rigorous* split gives each track the smallest `L(p)/k(p)` over the points `p` below it
+//! (`L` the point's limit, `k` the number of animated joints on its chain): the shares on any
+//! chain then add up to at most its limit, whatever the curves do within their tolerances. It is
+//! loose — errors of different joints rarely line up — so reduce starts from `L(p)/√k(p)`,
+//! reduces every track under its budget (a quarter of a budget to a track's translation, when
+//! it has translations to reduce), poses the kept keys' curves at every frame and measures every
+//! point; where a point misses its limit by a ratio `r`, every budget on its chain is scaled by
+//! `0.95/r`, never below the rigorous split, and those tracks are reduced again. At the rigorous
+//! split no point can miss, so the rounds end; the result is measured once more before it is
+//! returned. Guaranteed: every point within its limit at every frame (measured, not just bound).
+//! Not optimal: the budgets are a heuristic split, and the keys of each track are those of the
+//! per-track method (greedy or optimal) under its budget.
+
+use super::*;
+use crate::diff::point_displacements;
+use crate::error::input_err;
+use crate::skeleton::Skeleton;
+use glam::DAffine3;
+
+/// The share of a track's budget given to its translation, when it has translations to reduce.
+pub const TRANSLATION_SHARE: f64 = 0.25;
+
+/// Each round scales the budgets on a chain that missed by this much more than the miss.
+pub const TIGHTENING: f64 = 0.95;
+
+/// How many times the budgets grow by their slack once every point is within its limit.
+pub const LOOSENINGS: usize = 1;
+
+/// A budget grows by its chains' slack (limit over displacement) to this power...
+pub const LOOSENING: f64 = 0.8;
+
+/// ...the slack counted up to this.
+pub const MAX_LOOSENING: f64 = 4.0;
+
+/// Rounds after which every budget still above the rigorous split is set to it.
+pub const MAX_ROUNDS: usize = 24;
+
+/// The smallest rotation tolerance a budget may come to (rad): what reduce can verify.
+pub const MIN_ANGLE: f64 = 1e-9;
+
+/// What `reduce --position-tolerance` guarantees.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldTolerance {
+    /// Per joint of the skeleton, the largest world displacement of its points (length units).
+    pub limits: Vec<f64>,
+    /// Measure the three points at this distance along each joint's axes too (ACL's virtual
+    /// vertices).
+    pub shell: Option<f64>,
+    /// Reduce the tracks' translations under their budgets; else they are kept exactly (the
+    /// tracks' positions then only pose the skeleton).
+    pub translations: bool,
+    /// One set of key times for all tracks ([`reduce_shared_each`]).
+    pub shared_keys: bool,
+    /// The rotation error (rad) each track's keys may gain where they are written (float32 in
+    /// glTF): every point's limit is tightened by what that error can move it.
+    pub margin: f64,
+}
+
+/// A track's budget: the rotation tolerance (rad) and translation tolerance it was reduced with.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Budget {
+    /// Largest local rotation error, rad.
+    pub angle: f64,
+    /// Largest translation error (length units), for a track whose translations are reduced.
+    pub translation: Option<f64>,
+}
+
+/// Tracks reduced in world space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WorldReduced {
+    /// Each track's keys and local errors, as [`reduce_frames`] gives them.
+    pub tracks: Vec<Reduced>,
+    /// Each track's budget.
+    pub budgets: Vec<Budget>,
+    /// Per point of [`Skeleton::points`] (with the shell's when measured), its largest world
+    /// displacement and the first frame where it occurs.
+    pub points: Vec<(f64, usize)>,
+    /// How many times the tracks were reduced (1: the starting budgets held).
+    pub rounds: usize,
+}
+
+/// Reduces `tracks`, the tracks of `skeleton` (track `t` animating the joint whose `track` is
+/// `t`; all with the same frame times), so that every point stays within its joint's limit in
+/// world space (see the module documentation). `opts.tolerance` is each track's largest local
+/// rotation error too (`PI` for none), `opts.translation_tolerance` its largest translation
+/// error (`None` for none); `opts.distance` must be `None`.
+pub fn reduce_world(
+    skeleton: &Skeleton,
+    tracks: &[TrackFrames<'_>],
+    opts: &ReduceOptions,
+    world: &WorldTolerance,
+) -> Result<WorldReduced, Error> {
+    let setup = Setup::new(skeleton, tracks, opts, world)?;
+    let weights = setup.weights()?;
+    let rigorous = setup.budgets(&weights, |_| 1.0);
+    let mut budgets = setup.budgets(&weights, f64::sqrt);
+    let frames = tracks.first().map_or(0, |t| t.times.len());
+    let original = |f: usize, t: usize| (tracks[t].rotations[f], tracks[t].positions.map(|p| p[f]));
+    let mut reduced: Vec<Option<Reduced>> = vec![None; tracks.len()];
+    let mut poses: Vec<Vec<(DQuat, Option<DVec3>)>> = vec![Vec::new(); tracks.len()];
+    let mut redo: Vec<bool> = vec![true; tracks.len()];
+    // The result with the fewest keys so far that met every limit, and its key count.
+    let mut best: Option<(usize, WorldReduced)> = None;
+    let mut loosenings = 0;
+    for round in 1.. {
+        setup.reduce(&budgets, &redo, &mut reduced, &mut poses)?;
+        let posed = |f: usize, t: usize| poses[t][f];
+        let points = point_displacements(skeleton, frames, &original, &posed, world.shell);
+        // Per track, the least ratio of limit to displacement over the points below it.
+        let mut slack = vec![f64::INFINITY; tracks.len()];
+        for (p, &(d, _)) in points.iter().enumerate() {
+            let ratio = setup.limits[p] * (1.0 - 1e-9) / d;
+            for &t in &setup.chains[p] {
+                slack[t] = slack[t].min(ratio);
+            }
+        }
+        let within = slack.iter().all(|&s| s >= 1.0);
+        if within {
+            let keys = reduced.iter().flatten().map(|r| r.keys.len()).sum();
+            if best.as_ref().is_none_or(|b| keys < b.0) {
+                let result = WorldReduced {
+                    tracks: reduced.iter().flatten().cloned().collect(),
+                    budgets: (0..tracks.len())
+                        .map(|t| setup.budget_of(t, budgets[t]))
+                        .collect(),
+                    points: points.clone(),
+                    rounds: round,
+                };
+                best = Some((keys, result));
+            }
+            if loosenings == LOOSENINGS || round >= MAX_ROUNDS {
+                let (_, mut result) = best.expect("a result within the limits");
+                result.rounds = round;
+                return Ok(result);
+            }
+            loosenings += 1;
+        } else if round >= MAX_ROUNDS
+            && let Some((_, mut result)) = best.take()
+        {
+            result.rounds = round;
+            return Ok(result);
+        }
+        // Within: every budget grows by part of its chains' slack; else those on chains that
+        // missed shrink by more than the miss, never below the rigorous split.
+        let mut changed = false;
+        for t in 0..tracks.len() {
+            let floor = rigorous[t].0;
+            let e = if within {
+                budgets[t].0 * slack[t].min(MAX_LOOSENING).powf(LOOSENING)
+            } else if round >= MAX_ROUNDS {
+                floor
+            } else if slack[t] < 1.0 {
+                (budgets[t].0 * TIGHTENING * slack[t]).max(floor)
+            } else {
+                budgets[t].0
+            };
+            redo[t] = e != budgets[t].0;
+            changed |= redo[t];
+            budgets[t].0 = e;
+        }
+        if !changed {
+            if let Some((_, mut result)) = best.take() {
+                result.rounds = round;
+                return Ok(result);
+            }
+            let (p, &(d, f)) = points
+                .iter()
+                .enumerate()
+                .max_by(|a, b| (a.1.0 / setup.limits[a.0]).total_cmp(&(b.1.0 / setup.limits[b.0])))
+                .expect("a point missed");
+            return Err(Error::Internal(format!(
+                "internal error: reduce in world space: a point of joint \"{}\" moves by \
+                 {d:e} at frame {f} at the rigorous budgets, more than its limit {:e}",
+                skeleton.joints()[setup.point_joints[p]].name,
+                setup.limits[p]
+            )));
+        }
+        if world.shared_keys {
+            redo.fill(true);
+        }
+    }
+    unreachable!("the rounds end at the rigorous budgets")
+}
+
+/// A track's share of its chains' limits (length units), and its translation cap.
+type Share = (f64, Option<f64>);
+
+/// What the rounds share: the skeleton's geometry and each point's limit and chain.
+struct Setup<'a> {
+    tracks: &'a [TrackFrames<'a>],
+    opts: &'a ReduceOptions,
+    world: &'a WorldTolerance,
+    /// Per point, its limit.
+    limits: Vec<f64>,
+    /// Per point, its joint.
+    point_joints: Vec<usize>,
+    /// Per point, the tracks at and above its joint.
+    chains: Vec<Vec<usize>>,
+    /// Per track, its parent chain's largest stretch σ.
+    stretch: Vec<f64>,
+    /// Per track, its reach U.
+    reach: Vec<f64>,
+}
+
+impl<'a> Setup<'a> {
+    fn new(
+        skeleton: &Skeleton,
+        tracks: &'a [TrackFrames<'a>],
+        opts: &'a ReduceOptions,
+        world: &'a WorldTolerance,
+    ) -> Result<Setup<'a>, Error> {
+        let joints = skeleton.joints();
+        if opts.distance.is_some() {
+            return Err(input_err!(
+                "the position tolerance measures world positions; a distance measure does not \
+                 apply"
+            )
+            .into());
+        }
+        if world.limits.len() != joints.len() {
+            return Err(Error::Internal(format!(
+                "internal error: {} joint limits for {} joints",
+                world.limits.len(),
+                joints.len()
+            )));
+        }
+        let track_joints = skeleton.track_joints();
+        if let Some(t) =
+            (0..tracks.len()).find(|&t| track_joints.get(t).is_none_or(Option::is_none))
+        {
+            return Err(input_err!(
+                "track {t} animates no joint of the skeleton: a position tolerance needs every \
+                 track on it"
+            )
+            .into());
+        }
+        if let Some(t) = tracks.iter().position(|t| t.times != tracks[0].times) {
+            return Err(input_err!(
+                "track {t} has other frame times than track 0: a position tolerance poses the \
+                 skeleton at each frame, so the tracks need one grid"
+            )
+            .into());
+        }
+        let point_joints = skeleton.point_joints(world.shell.is_some());
+        let chains: Vec<Vec<usize>> = point_joints
+            .iter()
+            .map(|&j| {
+                let chain = skeleton.animated_chain(j);
+                chain.iter().filter_map(|&a| joints[a].track).collect()
+            })
+            .collect();
+        let limits: Vec<f64> = point_joints.iter().map(|&j| world.limits[j]).collect();
+        let mut stretch = vec![1.0; tracks.len()];
+        for (t, j) in track_joints.iter().take(tracks.len()).enumerate() {
+            let mut at = j.and_then(|j| joints[j].parent);
+            while let Some(a) = at {
+                stretch[t] *= joints[a].scale.abs().max_element();
+                at = joints[a].parent;
+            }
+        }
+        let reach = reaches(skeleton, tracks, world.shell, &chains);
+        // What the written keys' rounding can move each point by.
+        let wobble = |t: usize| 2.0 * stretch[t] * reach[t] * (0.5 * world.margin).sin();
+        let mut tight = Vec::with_capacity(limits.len());
+        for (p, (&limit, chain)) in limits.iter().zip(&chains).enumerate() {
+            let l = limit - chain.iter().map(|&t| wobble(t)).sum::<f64>();
+            if l <= 0.0 {
+                return Err(input_err!(
+                    "the position tolerance {limit} of joint \"{}\" is smaller than what its \
+                     keys' float32 rounding can move its points ({:.3e}); give a larger one",
+                    joints[point_joints[p]].name,
+                    limit - l
+                )
+                .into());
+            }
+            tight.push(l);
+        }
+        let limits = tight;
+        Ok(Setup {
+            tracks,
+            opts,
+            world,
+            limits,
+            point_joints,
+            chains,
+            stretch,
+            reach,
+        })
+    }
+
+    /// Each track's share for `weights`: the least over the points `p` below it of its weight's
+    /// part of `L(p)·slack(k)`, `k` the number of tracks on the point's chain. With `slack` 1
+    /// the shares on any chain add up to at most its limit (the rigorous split).
+    fn budgets(&self, weights: &[f64], slack: impl Fn(f64) -> f64) -> Vec<Share> {
+        let mut share = vec![f64::INFINITY; self.tracks.len()];
+        for (chain, &limit) in self.chains.iter().zip(&self.limits) {
+            let total: f64 = chain.iter().map(|&t| weights[t]).sum();
+            for &t in chain {
+                let e = limit * slack(chain.len() as f64) * weights[t] / total;
+                share[t] = share[t].min(e);
+            }
+        }
+        share
+            .into_iter()
+            .map(|e| (e, self.opts.translation_tolerance))
+            .collect()
+    }
+
+    /// Each track's weight in the split: what keys it needs for its share, from a probe. A
+    /// track keeping `k` keys at angle `θ` is taken to keep about `c·θ^(−½)` (`c = k·√θ`) at
+    /// others, and its share `e` of a chain to buy `θ ≈ e/U`; the fewest keys on one chain under
+    /// `Σ e ≤ L` then give each track a share in proportion to `c^(2/3)·U^(1/3)` (Lagrange).
+    /// The probe: every track reduced on its own under the equal split with the starting
+    /// slack, `L(p)·√k/k`.
+    fn weights(&self) -> Result<Vec<f64>, Error> {
+        let equal = vec![1.0; self.tracks.len()];
+        let shares = self.budgets(&equal, f64::sqrt);
+        let opts = self.options(&shares)?;
+        let frames = self.frames();
+        let all: Vec<usize> = (0..self.tracks.len()).collect();
+        let probe = crate::parallel::map(&all, |&t| reduce_frames(&frames[t], &opts[t]));
+        let mut weights = Vec::with_capacity(all.len());
+        for (t, r) in probe.into_iter().enumerate() {
+            let keys = r?.keys.len() as f64;
+            let c = keys * opts[t].tolerance.min(std::f64::consts::PI).sqrt();
+            let u = self.stretch[t] * self.reach[t];
+            // A track that moves no point still takes part, with a small weight.
+            weights.push((c.powf(2.0 / 3.0) * u.powf(1.0 / 3.0)).max(1e-12));
+        }
+        Ok(weights)
+    }
+
+    /// The rotation and translation tolerances of track `t` for its share `e`.
+    fn budget_of(&self, t: usize, (e, cap): Share) -> Budget {
+        let sigma = self.stretch[t];
+        let translation =
+            (self.world.translations && self.tracks[t].positions.is_some()).then(|| {
+                let tau = TRANSLATION_SHARE * e / sigma;
+                cap.map_or(tau, |c| c.min(tau))
+            });
+        let rotation = e - sigma * translation.unwrap_or(0.0);
+        let span = 2.0 * sigma * self.reach[t];
+        let angle = if span <= rotation || span == 0.0 {
+            std::f64::consts::PI
+        } else {
+            2.0 * (rotation / span).asin()
+        };
+        Budget {
+            angle: angle.min(self.opts.tolerance),
+            translation,
+        }
+    }
+
+    /// Reduces the tracks marked in `redo` under their budgets (all of them together for shared
+    /// keys), and poses their kept keys' curves at every frame.
+    fn reduce(
+        &self,
+        shares: &[Share],
+        redo: &[bool],
+        reduced: &mut [Option<Reduced>],
+        poses: &mut [Vec<(DQuat, Option<DVec3>)>],
+    ) -> Result<(), Error> {
+        let opts = self.options(shares)?;
+        let frames = self.frames();
+        let todo: Vec<usize> = (0..self.tracks.len())
+            .filter(|&t| redo[t] || self.world.shared_keys)
+            .collect();
+        let done: Vec<Reduced> = if self.world.shared_keys {
+            reduce_shared_each(&frames, &opts)?
+        } else {
+            crate::parallel::map(&todo, |&t| reduce_frames(&frames[t], &opts[t]))
+                .into_iter()
+                .collect::<Result<_, _>>()?
+        };
+        let posed =
+            crate::parallel::map(&todo.iter().zip(&done).collect::<Vec<_>>(), |&(&t, r)| {
+                self.pose(t, &frames[t], r)
+            });
+        for ((&t, r), p) in todo.iter().zip(done).zip(posed) {
+            poses[t] = p?;
+            reduced[t] = Some(r);
+        }
+        Ok(())
+    }
+
+    /// Each track's options for its share.
+    fn options(&self, shares: &[Share]) -> Result<Vec<ReduceOptions>, Error> {
+        let mut opts = Vec::with_capacity(self.tracks.len());
+        for (t, &share) in shares.iter().enumerate() {
+            let b = self.budget_of(t, share);
+            if b.angle < MIN_ANGLE {
+                return Err(input_err!(
+                    "the position tolerance leaves track {t} a rotation tolerance of {:.3e} rad \
+                     (its points reach {:.6e} from its joint), below what reduce can verify \
+                     ({MIN_ANGLE:e} rad); give a larger position tolerance",
+                    b.angle,
+                    self.reach[t]
+                )
+                .into());
+            }
+            opts.push(ReduceOptions {
+                tolerance: b.angle,
+                translation_tolerance: b.translation,
+                ..*self.opts
+            });
+        }
+        Ok(opts)
+    }
+
+    /// The tracks' frames as reduced: with their translations when those are reduced.
+    fn frames(&self) -> Vec<TrackFrames<'a>> {
+        self.tracks
+            .iter()
+            .map(|t| TrackFrames {
+                positions: t.positions.filter(|_| self.world.translations),
+                ..*t
+            })
+            .collect()
+    }
+
+    /// Track `t`'s kept keys posed at every frame: the curve `interp` builds through them, and
+    /// the frames' own translations where translations are kept.
+    fn pose(
+        &self,
+        t: usize,
+        frames: &TrackFrames,
+        r: &Reduced,
+    ) -> Result<Vec<(DQuat, Option<DVec3>)>, Error> {
+        let curve = Curve::new(&kept_track(frames, r, &self.opts.curve)?, &self.opts.curve)?;
+        let original = self.tracks[t].positions;
+        Ok(frames
+            .times
+            .iter()
+            .enumerate()
+            .map(|(f, &time)| {
+                let position = match (frames.positions, original) {
+                    (Some(_), _) => curve.position(time),
+                    (None, Some(p)) => Some(p[f]),
+                    (None, None) => None,
+                };
+                (curve.rotation(time), position)
+            })
+            .collect())
+    }
+}
+
+/// Each track's reach: the largest distance, in its joint's own unscaled frame, from its joint
+/// to any point below it, over the frames as given.
+fn reaches(
+    skeleton: &Skeleton,
+    tracks: &[TrackFrames<'_>],
+    shell: Option<f64>,
+    chains: &[Vec<usize>],
+) -> Vec<f64> {
+    let frames = tracks.first().map_or(0, |t| t.times.len());
+    let joints = skeleton.joints();
+    let track_joints = skeleton.track_joints();
+    let chunk = frames
+        .div_ceil(crate::parallel::MAX_THREADS.max(1) * 4)
+        .max(1);
+    let starts: Vec<usize> = (0..frames).step_by(chunk).collect();
+    let parts = crate::parallel::map(&starts, |&s| {
+        let (mut world, mut points) = (Vec::<DAffine3>::new(), Vec::new());
+        let mut reach = vec![0.0f64; tracks.len()];
+        for f in s..(s + chunk).min(frames) {
+            let pose = |t: usize| (tracks[t].rotations[f], tracks[t].positions.map(|p| p[f]));
+            skeleton.world(pose, &mut world);
+            skeleton.points_of(&world, shell, &mut points);
+            for (p, chain) in points.iter().zip(chains) {
+                for &t in chain {
+                    let j = track_joints[t].expect("a track on a chain has a joint");
+                    let parent = joints[j]
+                        .parent
+                        .map_or(glam::DMat3::IDENTITY, |a| world[a].matrix3);
+                    let u = parent.inverse() * (*p - world[j].translation);
+                    reach[t] = reach[t].max(u.length());
+                }
+            }
+        }
+        reach
+    });
+    let mut reach = vec![0.0f64; tracks.len()];
+    for part in parts {
+        for (r, p) in reach.iter_mut().zip(part) {
+            *r = r.max(p);
+        }
+    }
+    reach
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::skeleton::Joint;
+
+    /// A root track turning about z, and a bone with an end point 2 from it, turned by a second
+    /// track about x.
+    fn arm() -> (Skeleton, Vec<f64>, Vec<DQuat>, Vec<DQuat>) {
+        let skeleton = Skeleton::new(vec![
+            Joint::new("root", None, DVec3::ZERO).with_track(0),
+            Joint::new("bone", Some(0), DVec3::new(1.0, 0.0, 0.0))
+                .with_track(1)
+                .with_ends(vec![DVec3::new(2.0, 0.0, 0.0)]),
+        ])
+        .unwrap();
+        let times: Vec<f64> = (0..121).map(|i| f64::from(i) / 60.0).collect();
+        let root = times
+            .iter()
+            .map(|&t| DQuat::from_rotation_z(0.8 * (2.1 * t).sin() + 0.3 * t * t))
+            .collect();
+        let bone = times
+            .iter()
+            .map(|&t| DQuat::from_rotation_x(1.1 * (3.3 * t).cos()) * DQuat::from_rotation_z(t))
+            .collect();
+        (skeleton, times, root, bone)
+    }
+
+    fn frames<'a>(t: &'a [f64], q: &'a [DQuat]) -> TrackFrames<'a> {
+        TrackFrames {
+            times: t,
+            rotations: q,
+            positions: None,
+            euler: None,
+            key_times: None,
+        }
+    }
+
+    fn world(limits: Vec<f64>, shared_keys: bool) -> WorldTolerance {
+        WorldTolerance {
+            limits,
+            shell: None,
+            translations: true,
+            shared_keys,
+            margin: 0.0,
+        }
+    }
+
+    fn no_local_bound() -> ReduceOptions {
+        ReduceOptions {
+            tolerance: std::f64::consts::PI,
+            ..ReduceOptions::default()
+        }
+    }
+
+    /// Closed form: the end point is 2 from the bone's joint and 3 from the root at rest, so a
+    /// bone error θ moves it by exactly 2·2·sin(θ/2): the bone's local error can be no more than
+    /// 2·asin(L/4), whatever the split. And every point is within L, the root's tighter one too.
+    #[test]
+    fn the_points_stay_within_their_limits_and_the_leaf_within_its_chord() {
+        let (skeleton, t, root, bone) = arm();
+        let tracks = [frames(&t, &root), frames(&t, &bone)];
+        for shared in [false, true] {
+            let limits = vec![0.01, 0.05];
+            let r = reduce_world(
+                &skeleton,
+                &tracks,
+                &no_local_bound(),
+                &world(limits, shared),
+            )
+            .unwrap();
+            // Points: root origin, bone origin, bone end.
+            let [root_origin, bone_origin, end] = r.points[..] else {
+                panic!("{:?}", r.points)
+            };
+            assert_eq!(root_origin.0, 0.0);
+            assert!(bone_origin.0 <= 0.05 && end.0 <= 0.05, "{:?}", r.points);
+            assert!(end.0 > 0.02, "the bound is used: {:?}", r.points);
+            assert!(r.tracks[1].max_error <= 2.0 * (0.05f64 / 4.0).asin() + 1e-12);
+            assert!(r.tracks.iter().all(|k| k.keys.len() < 60));
+            if shared {
+                assert_eq!(r.tracks[0].keys, r.tracks[1].keys);
+            }
+        }
+    }
+
+    /// A local bound holds beside the world one; a distance measure, a track that is not on the
+    /// skeleton and a limit below the keys' rounding are refused.
+    #[test]
+    fn a_local_bound_holds_too_and_misuse_is_refused() {
+        let (skeleton, t, root, bone) = arm();
+        let tracks = [frames(&t, &root), frames(&t, &bone)];
+        let local = ReduceOptions {
+            tolerance: 0.2f64.to_radians(),
+            ..ReduceOptions::default()
+        };
+        let r = reduce_world(&skeleton, &tracks, &local, &world(vec![1.0, 1.0], false)).unwrap();
+        assert!(r.tracks.iter().all(|k| k.max_error <= local.tolerance));
+        assert!(r.budgets.iter().all(|b| b.angle <= local.tolerance));
+        let far = ReduceOptions {
+            distance: Some(2.0),
+            ..local
+        };
+        let e = reduce_world(&skeleton, &tracks, &far, &world(vec![1.0, 1.0], false));
+        assert!(matches!(e, Err(Error::Input(_))), "{e:?}");
+        let three = [tracks[0], tracks[1], tracks[1]];
+        let e = reduce_world(&skeleton, &three, &local, &world(vec![1.0, 1.0], false));
+        assert!(
+            e.unwrap_err()
+                .to_string()
+                .contains("track 2 animates no joint")
+        );
+        let rounded = WorldTolerance {
+            margin: 1e-3,
+            ..world(vec![1e-3, 1e-3], false)
+        };
+        let e = reduce_world(&skeleton, &tracks, &local, &rounded).unwrap_err();
+        assert!(e.to_string().contains("float32 rounding"), "{e}");
+    }
+}
