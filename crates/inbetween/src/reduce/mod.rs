@@ -70,8 +70,8 @@ pub use shared::{reduce_shared, reduce_shared_each};
 pub use verify::curve_errors;
 use verify::{Errors, shared_verified};
 pub use world::{
-    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, PROBE_FRAMES, TIGHTENING,
-    TRANSLATION_SHARE, WorldReduced, WorldTolerance, reduce_world,
+    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, MIN_GROWTH, PROBE_FRAMES,
+    START, TIGHTENING, TRANSLATION_SHARE, WorldReduced, WorldTolerance, reduce_world,
 };
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
