@@ -256,7 +256,7 @@ pub struct InputArgs {
     pub input_format: Option<Format>,
 
     /// glTF input: the animation to read, by name, else by index; default every animation
-    /// (tracks named animation/node).
+    /// (tracks named animation/node). FBX input: the animation stack; default the first.
     #[arg(long, value_name = "NAME|INDEX")]
     pub animation: Option<String>,
 
@@ -281,7 +281,8 @@ pub struct OutputArgs {
     pub to: Repr,
 
     /// Output format: csv, json, or (interp only) npy, a NumPy array of float64 rows, or npz,
-    /// named NumPy arrays (times, names, rotations, …); by default the input's format.
+    /// named NumPy arrays (times, names, rotations, …); bvh, gltf/glb, usda (a UsdSkel
+    /// animation) for input with a skeleton; by default the input's format.
     #[arg(long, value_name = "F", value_parser = parse_output_format)]
     pub output_format: Option<OutputFormat>,
 

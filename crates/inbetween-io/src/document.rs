@@ -265,6 +265,9 @@ pub struct Document {
     /// The joints' hierarchy and rest pose, for world-space measures (a BVH clip's, a glTF
     /// animation's nodes): the tracks are its tracks, by index.
     pub hierarchy: Option<std::sync::Arc<inbetween::skeleton::Skeleton>>,
+    /// The length unit in metres, where the input declares one (glTF: 1; FBX: its scene's
+    /// unit); what USD output writes as `metersPerUnit`.
+    pub unit_meters: Option<f64>,
 }
 
 impl Document {

@@ -6,7 +6,7 @@
 //! - [`read`]: the CSV and JSON readers; [`parse_bytes`] and [`read_path`] choose between them.
 //! - [`mod@write`]: frame and key writers (CSV, JSON, npy); [`num`]: their number formatting.
 //! - [`bvh`] and [`clip`]: BVH files and the skeleton-and-motion clip they hold; [`gltf`]: glTF
-//!   2.0 assets.
+//!   2.0 assets; [`fbx`]: FBX scenes, read into a clip.
 
 #![warn(missing_docs, unreachable_pub)]
 
@@ -18,10 +18,12 @@ macro_rules! input_err {
 pub mod bvh;
 pub mod clip;
 pub mod document;
+pub mod fbx;
 pub mod gltf;
 pub mod names;
 pub mod num;
 pub mod read;
+pub mod usd;
 pub mod write;
 
 use document::Document;
@@ -47,24 +49,32 @@ pub enum Format {
     /// A glTF 2.0 asset, `.gltf` JSON or `.glb` binary (input; as output,
     /// [`OutputFormat::Gltf`]): its animations' rotation channels ([`gltf::document`]).
     Gltf,
+    /// An FBX scene, binary or ASCII (input only): one animation stack as a clip on its node
+    /// hierarchy ([`fbx`]), read as a BVH clip is from then on.
+    Fbx,
+    /// A USD text layer (`.usda`): a UsdSkel skeleton's animation ([`usd::read`]).
+    Usd,
 }
 
 impl Format {
-    /// `csv`, `json`, `bvh`, or `gltf`/`glb` (either container: it is recognised by its
-    /// bytes).
+    /// `csv`, `json`, `bvh`, `gltf`/`glb` (either container: it is recognised by its
+    /// bytes), `fbx` or `usda`.
     pub fn parse(s: &str) -> InputResult<Format> {
         match s {
             "csv" => Ok(Format::Csv),
             "json" => Ok(Format::Json),
             "bvh" => Ok(Format::Bvh),
             "gltf" | "glb" => Ok(Format::Gltf),
+            "fbx" => Ok(Format::Fbx),
+            "usda" => Ok(Format::Usd),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+                "expected \"csv\", \"json\", \"bvh\", \"gltf\", \"glb\", \"fbx\" or \"usda\", found \"{s}\""
             )),
         }
     }
 
-    /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, case-insensitive).
+    /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, `.fbx`, `.usda`,
+    /// case-insensitive).
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
@@ -72,6 +82,8 @@ impl Format {
             "json" => Some(Format::Json),
             "bvh" => Some(Format::Bvh),
             "gltf" | "glb" => Some(Format::Gltf),
+            "fbx" => Some(Format::Fbx),
+            "usda" => Some(Format::Usd),
             _ => None,
         }
     }
@@ -83,6 +95,8 @@ impl Format {
             Format::Json
         } else if t.starts_with("HIERARCHY") {
             Format::Bvh
+        } else if t.starts_with("#usda") {
+            Format::Usd
         } else {
             Format::Csv
         }
@@ -103,10 +117,13 @@ pub enum OutputFormat {
     /// The input glTF asset with resampled rotation channels (glTF input only), in this
     /// container.
     Gltf(gltf::ContainerFormat),
+    /// A USD layer in text form (`.usda`): a UsdSkel skeleton and its animation (input with a
+    /// skeleton only: BVH, glTF, FBX).
+    Usda,
 }
 
 impl OutputFormat {
-    /// `csv`, `json`, `npy`, `npz`, `bvh`, `gltf` or `glb`.
+    /// `csv`, `json`, `npy`, `npz`, `bvh`, `gltf`, `glb` or `usda`.
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
@@ -114,9 +131,10 @@ impl OutputFormat {
             "bvh" => Ok(OutputFormat::Bvh),
             "gltf" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Gltf)),
             "glb" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Glb)),
+            "usda" => Ok(OutputFormat::Usda),
             "csv" | "json" => Format::parse(s).map(OutputFormat::Doc),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\" or \"glb\", found \"{s}\""
+                "expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\", \"glb\" or \"usda\", found \"{s}\""
             )),
         }
     }
@@ -213,6 +231,10 @@ pub fn parse_bytes(
             Format::Gltf,
         ));
     }
+    if is_fbx_input(&bytes, path, format) {
+        let fbx = fbx::read(&bytes, source, None)?;
+        return Ok((fbx_document(fbx, source), Format::Fbx));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         input_err!(
             "{source}: expected UTF-8 text, found an invalid byte at offset {}",
@@ -223,6 +245,22 @@ pub fn parse_bytes(
         .or_else(|| path.and_then(Format::from_path))
         .unwrap_or_else(|| Format::sniff(&text));
     Ok((read_document(&text, source, format, opts)?, format))
+}
+
+/// Whether bytes are FBX: the format as given, else `path`'s extension, else the bytes
+/// ([`fbx::is_fbx`]).
+pub fn is_fbx_input(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> bool {
+    format
+        .or_else(|| path.and_then(Format::from_path))
+        .map_or_else(|| fbx::is_fbx(bytes), |f| f == Format::Fbx)
+}
+
+/// An FBX clip as a document: its BVH clip's ([`bvh::document::document`]), with its warnings.
+pub fn fbx_document(fbx: fbx::FbxClip, source: &str) -> Document {
+    let unit = fbx.unit_meters;
+    let mut doc = bvh::document::document(fbx.clip, source, fbx.warnings);
+    doc.unit_meters = (unit.is_finite() && unit > 0.0).then_some(unit);
+    doc
 }
 
 /// The folder where the external buffers of the glTF file at `path` are: its parent.
@@ -332,6 +370,11 @@ pub fn read_document(
             let (clip, warnings) = bvh::parse(text, source)?;
             Ok(bvh::document::document(clip, source, warnings))
         }
+        Format::Fbx => Ok(fbx_document(
+            fbx::read(text.as_bytes(), source, None)?,
+            source,
+        )),
+        Format::Usd => usd::read::read(text, source),
         Format::Gltf => {
             let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
             let clip = gltf::document::GltfClip::new(asset, None)?;

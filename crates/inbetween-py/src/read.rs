@@ -125,5 +125,7 @@ fn format_name(f: Format) -> &'static str {
         Format::Json => "json",
         Format::Bvh => "bvh",
         Format::Gltf => "gltf",
+        Format::Fbx => "fbx",
+        Format::Usd => "usda",
     }
 }

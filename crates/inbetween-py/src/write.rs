@@ -317,5 +317,6 @@ fn document(
         warnings: Vec::new(),
         skeleton: None,
         hierarchy: None,
+        unit_meters: None,
     })
 }

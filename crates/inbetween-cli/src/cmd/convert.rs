@@ -80,6 +80,12 @@ pub fn run(
         {
             OutputFormat::Bvh
         }
+        // A USD input's keys default to JSON too.
+        (OutputFormat::Usda, Format::Usd)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
         // A glTF input's keys default to JSON (tracks = rotation channels).
         (OutputFormat::Gltf(_), Format::Gltf)
             if args.output.output_format.is_none() && args.output.output.is_none() =>
@@ -94,6 +100,12 @@ pub fn run(
     let format = match chosen {
         OutputFormat::Doc(f) => f,
         OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps),
+        OutputFormat::Usda => {
+            let mut out = Output::open(args.output.output.as_deref())?;
+            inbetween_io::usd::keys::write_keys(&mut out, &doc, frame_fps)?;
+            out.commit()?;
+            return Ok(());
+        }
         OutputFormat::Gltf(_) => {
             return Err(InputError::new(
                 "convert does not write glTF; resample a glTF asset's rotation channels into \

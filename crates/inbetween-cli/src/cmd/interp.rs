@@ -17,6 +17,7 @@ use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
+use inbetween_io::usd::frames::UsdFrames;
 use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter, NpzShape, NpzWriter};
 use std::io::Read;
 
@@ -25,7 +26,8 @@ use std::io::Read;
 fn scheme(args: &InterpArgs, input: Format) -> Scheme {
     match (args.scheme, input) {
         (Some(s), _) => s.into(),
-        (None, Format::Gltf) => Scheme::Slerp,
+        // glTF's LINEAR and USD's samples play by slerp.
+        (None, Format::Gltf | Format::Usd) => Scheme::Slerp,
         (None, _) => Scheme::Bezier,
     }
 }
@@ -218,6 +220,32 @@ pub fn run(
         }
         _ => None,
     };
+    let usd = match format {
+        OutputFormat::Usda => {
+            let Some(h) = doc.hierarchy.clone() else {
+                return Err(InputError::new(format!(
+                    "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, \
+                     glTF or FBX input has one); write csv or json",
+                    doc.source
+                ))
+                .into());
+            };
+            if args.span == SpanArg::Track {
+                return Err(InputError::new(
+                    "--span track: USD samples every joint at the same times; use --span clip",
+                )
+                .into());
+            }
+            if args.velocity {
+                return Err(InputError::new(
+                    "--velocity: USD has no place for angular velocities; write csv or json",
+                )
+                .into());
+            }
+            Some(h)
+        }
+        _ => None,
+    };
     // The order the tracks are written in: the skeleton's joints' for BVH output.
     let order: Vec<usize> = match &skeleton {
         Some(s) => {
@@ -285,6 +313,12 @@ pub fn run(
             Box::new(if positions { w.with_positions() } else { w })
         }
         OutputFormat::Npz => Box::new(NpzWriter::new(out, style, fps, npz.expect("checked above"))),
+        OutputFormat::Usda => Box::new(UsdFrames::new(
+            out,
+            usd.expect("checked above"),
+            fps,
+            doc.unit_meters.unwrap_or(0.01),
+        )),
     };
     for &i in &order {
         let (curve, track) = (&curves[i], &tracks[i]);
@@ -594,6 +628,12 @@ impl Sink for GltfFrames<WriteBehind> {
     }
     fn edge(&mut self, time: f64, q: DQuat) -> std::io::Result<()> {
         GltfFrames::edge(self, time, q)
+    }
+}
+
+impl Sink for UsdFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
     }
 }
 

@@ -43,7 +43,9 @@ pub fn run(
             return super::reduce_gltf::to_gltf(args, &input, container);
         }
         OutputFormat::Doc(f) => f,
-        _ => unreachable!("keys_format gives keys documents and glTF"),
+        // USD keys are written from the kept keys as JSON's are (`write` sends them to USD).
+        OutputFormat::Usda => Format::Json,
+        _ => unreachable!("keys_format gives keys documents, glTF and USD"),
     };
     if let Some(s) = args.scale_tolerance {
         return Err(InputError::new(format!(
@@ -79,10 +81,24 @@ pub fn run(
         named_tracks: doc.named_tracks,
         warnings: Vec::new(),
         skeleton: None,
-        hierarchy: None,
+        hierarchy: doc.hierarchy.clone(),
+        unit_meters: doc.unit_meters,
+    };
+    // USD stores float32 rotations and translations: the tolerances are tightened by what that
+    // rounding can move a key (as for glTF output).
+    let margin = if keys_format(args, input.format)? == OutputFormat::Usda {
+        let largest = tracks
+            .iter()
+            .filter_map(|t| t.translations())
+            .flatten()
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f64::max);
+        (FLOAT32_MARGIN, largest * f32::EPSILON as f64)
+    } else {
+        (0.0, 0.0)
     };
     let reduced = match args.output.precision {
-        None => reduce_tracks(args, &input, (0.0, 0.0), true, false)?,
+        None => reduce_tracks(args, &input, margin, true, false)?,
         Some(_) => {
             let encode = |r: &[Reduced]| -> Result<Vec<u8>, Error> {
                 let mut bytes = Vec::new();
@@ -118,6 +134,31 @@ pub(super) fn keys_format(args: &ReduceArgs, input: Format) -> Result<OutputForm
             OutputFormat::Doc(Format::Json)
         }
         f @ (OutputFormat::Gltf(_) | OutputFormat::Doc(_)) => f,
+        OutputFormat::Usda => {
+            if scheme(args, input) != Scheme::Slerp {
+                return Err(InputError::new(
+                    "--scheme: USD plays its samples by slerp (rotations) and linearly \
+                     (translations), so keys reduced for another scheme would not play within \
+                     the tolerance; use --scheme slerp (the default for USD output)",
+                )
+                .into());
+            }
+            if args.output.precision.is_some() {
+                return Err(InputError::new(
+                    "--precision: USD stores its values as float32, and reduce already tightens \
+                     the tolerances by that rounding; drop --precision for .usda output",
+                )
+                .into());
+            }
+            if !args.shared_keys {
+                return Err(InputError::new(
+                    "USD samples every joint at the same times: give --shared-keys (the fewest \
+                     key times shared by every track)",
+                )
+                .into());
+            }
+            OutputFormat::Usda
+        }
         other => {
             let name = match other {
                 OutputFormat::Npy => "npy",
@@ -174,7 +215,11 @@ pub(super) fn write(
         warn(&w);
     }
     let mut out = Output::open(args.output.output.as_deref())?;
-    write_keys(&mut out, doc, format, style, frame_fps)?;
+    if output_format(&args.output, input) == OutputFormat::Usda {
+        inbetween_io::usd::keys::write_keys(&mut out, doc, frame_fps)?;
+    } else {
+        write_keys(&mut out, doc, format, style, frame_fps)?;
+    }
     out.commit()?;
     Ok(())
 }
@@ -427,7 +472,7 @@ pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Redu
 pub(super) fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
     match (args.scheme, output_format(&args.output, input)) {
         (Some(s), _) => s.into(),
-        (None, OutputFormat::Gltf(_)) => Scheme::Slerp,
+        (None, OutputFormat::Gltf(_) | OutputFormat::Usda) => Scheme::Slerp,
         (None, _) => Scheme::Bezier,
     }
 }

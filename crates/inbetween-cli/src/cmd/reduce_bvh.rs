@@ -100,6 +100,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         warnings: Vec::new(),
         skeleton: None,
         hierarchy: None,
+        unit_meters: None,
     };
     for w in &warnings {
         warn(w);

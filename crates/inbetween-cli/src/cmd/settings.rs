@@ -125,10 +125,14 @@ pub fn read_input(
         }
         let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
         (doc, Format::Gltf, Some(Arc::new(clip)))
+    } else if inbetween_io::is_fbx_input(&bytes, path, args.input_format) {
+        let fbx = inbetween_io::fbx::read(&bytes, &source, args.animation.as_deref())?;
+        (inbetween_io::fbx_document(fbx, &source), Format::Fbx, None)
     } else {
         if args.animation.is_some() {
             return Err(InputError::new(format!(
-                "--animation: {source} is not glTF; only a glTF asset has animations to choose"
+                "--animation: {source} is neither glTF nor FBX; only a glTF asset's animations \
+                 and an FBX scene's animation stacks can be chosen"
             )));
         }
         let (doc, format) =
@@ -137,9 +141,10 @@ pub fn read_input(
     };
     // A BVH joint declares its rotation order in CHANNELS and glTF stores quaternions: --from,
     // which says how CSV columns and JSON keys are written, would be silently ignored.
-    if let (Some(r), Format::Bvh | Format::Gltf) = (args.from, format) {
+    if let (Some(r), Format::Bvh | Format::Gltf | Format::Fbx) = (args.from, format) {
         let what = match format {
             Format::Bvh => "a BVH file declares each joint's rotation order in its CHANNELS",
+            Format::Fbx => "an FBX scene declares each node's rotation order",
             _ => "a glTF asset stores quaternions",
         };
         return Err(InputError::new(format!(
@@ -370,6 +375,9 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
             Format::Bvh => OutputFormat::Bvh,
             // interp writes the input's container (convert writes JSON keys).
             Format::Gltf => OutputFormat::Gltf(ContainerFormat::Glb),
+            // FBX is not written: JSON, which keeps the tracks' names and translations.
+            Format::Fbx => OutputFormat::Doc(Format::Json),
+            Format::Usd => OutputFormat::Usda,
             f => OutputFormat::Doc(f),
         })
 }

@@ -50,6 +50,7 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
         warnings,
         hierarchy: Some(Arc::new(clip.skeleton())),
         skeleton: Some(Arc::new(clip)),
+        unit_meters: None,
     }
 }
 
@@ -119,6 +120,7 @@ pub fn joint_tracks(
         warnings: Vec::new(),
         skeleton: None,
         hierarchy: None,
+        unit_meters: None,
     };
     let track = doc.tracks_shaped(clip.fps(), tcb)?.pop();
     Ok(doc.tracks.pop().zip(track))

@@ -401,6 +401,7 @@ impl GltfClip {
             warnings,
             skeleton: None,
             hierarchy: self.skeleton().map(std::sync::Arc::new),
+            unit_meters: Some(1.0),
         })
     }
 }

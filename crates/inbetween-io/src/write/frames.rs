@@ -71,7 +71,7 @@ impl RowFormatter {
             // One `is_finite` per written value and one norm per rotation.
             let mut ok = f.time.is_finite() && is_rotation(f.q);
             match self.format {
-                Format::Csv | Format::Bvh | Format::Gltf => {
+                Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
                     if self.track_column {
                         out.extend_from_slice(track);
                     }
@@ -214,7 +214,7 @@ impl<W: Write> FrameWriter<W> {
         };
         let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
         match format {
-            Format::Csv | Format::Bvh | Format::Gltf => {
+            Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
                 if track_column {
                     buf.extend_from_slice(b"track,");
                 }
@@ -416,7 +416,7 @@ impl<W: Write> FrameSink for FrameWriter<W> {
         self.frames_in_track = 0;
         self.track_name = name.map(str::to_string);
         match self.format {
-            Format::Csv | Format::Bvh | Format::Gltf => {
+            Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
                 self.track = csv_field(name.unwrap_or(""));
                 self.track.push(b',');
             }

@@ -116,7 +116,7 @@ pub fn write_keys<W: Write>(
     // BVH keys are written by `io::bvh` on its skeleton; the commands never route them here.
     debug_assert!(format != Format::Bvh, "write_keys writes CSV or JSON");
     match format {
-        Format::Csv | Format::Bvh | Format::Gltf => {
+        Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
             if named {
                 buf.extend_from_slice(b"track,");
             }
@@ -300,6 +300,7 @@ mod tests {
             warnings: Vec::new(),
             skeleton: None,
             hierarchy: None,
+            unit_meters: None,
         }
     }
 

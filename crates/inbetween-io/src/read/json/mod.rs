@@ -230,6 +230,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         warnings: Vec::new(),
         skeleton: None,
         hierarchy: None,
+        unit_meters: None,
     };
     let ctx = KeyContext {
         source,

@@ -1,0 +1,133 @@
+//! [`UsdFrames`]: baked frames written as `.usda` on the input's skeleton ([`super::write`]).
+//!
+//! Track `k` animates the joint of the skeleton whose track is `k` (BVH joints with channels,
+//! glTF nodes with channels, FBX nodes). Every track is written over the same frames (the clip's
+//! span: USD samples every joint at every time code); the samples are held in memory and
+//! written at [`FrameSink::finish`].
+
+use super::write::{TrackSamples, write_usda};
+use glam::{DQuat, DVec3};
+use inbetween::bake::FrameSink;
+use inbetween::clock::Fps;
+use inbetween::skeleton::Skeleton;
+use std::io::{self, Write};
+use std::sync::Arc;
+
+/// Baked frames into a `.usda` file (see the module documentation).
+pub struct UsdFrames<W: Write> {
+    out: Option<W>,
+    skeleton: Arc<Skeleton>,
+    fps: Fps,
+    meters_per_unit: f64,
+    /// The frame numbers of the first track (every track must have the same).
+    frames: Vec<i64>,
+    tracks: Vec<TrackSamples>,
+    current: Option<(TrackSamples, Vec<i64>)>,
+}
+
+fn internal(msg: String) -> io::Error {
+    io::Error::new(
+        io::ErrorKind::InvalidInput,
+        format!("internal error: {msg}"),
+    )
+}
+
+impl<W: Write> UsdFrames<W> {
+    /// Frames of `skeleton`'s tracks at `fps`, to be written to `out` with the length unit
+    /// `meters_per_unit`.
+    pub fn new(out: W, skeleton: Arc<Skeleton>, fps: Fps, meters_per_unit: f64) -> UsdFrames<W> {
+        UsdFrames {
+            out: Some(out),
+            skeleton,
+            fps,
+            meters_per_unit,
+            frames: Vec::new(),
+            tracks: Vec::new(),
+            current: None,
+        }
+    }
+
+    /// The output, once finished.
+    pub fn into_inner(mut self) -> io::Result<W> {
+        self.out
+            .take()
+            .ok_or_else(|| internal("USD output taken twice".into()))
+    }
+
+    fn push(&mut self, k: i64, q: DQuat, p: Option<DVec3>) -> io::Result<()> {
+        let (samples, frames) = self
+            .current
+            .as_mut()
+            .ok_or_else(|| internal("a frame outside a track".into()))?;
+        samples.rotations.push(q);
+        if let Some(p) = p {
+            samples.positions.get_or_insert_with(Vec::new).push(p);
+        }
+        frames.push(k);
+        Ok(())
+    }
+}
+
+impl<W: Write> FrameSink for UsdFrames<W> {
+    fn begin_track(&mut self, _name: Option<&str>) -> io::Result<()> {
+        self.current = Some((TrackSamples::default(), Vec::new()));
+        Ok(())
+    }
+
+    fn frame(&mut self, k: i64, _time: f64, q: DQuat, _omega: Option<DVec3>) -> io::Result<()> {
+        self.push(k, q, None)
+    }
+
+    fn frame_at(
+        &mut self,
+        k: i64,
+        _time: f64,
+        q: DQuat,
+        _omega: Option<DVec3>,
+        position: DVec3,
+    ) -> io::Result<()> {
+        self.push(k, q, Some(position))
+    }
+
+    fn end_track(&mut self) -> io::Result<()> {
+        let (samples, frames) = self
+            .current
+            .take()
+            .ok_or_else(|| internal("a track ended twice".into()))?;
+        if self.tracks.is_empty() {
+            self.frames = frames;
+        } else if frames != self.frames {
+            return Err(internal(format!(
+                "track {} has other frames than track 0",
+                self.tracks.len()
+            )));
+        }
+        if samples
+            .positions
+            .as_ref()
+            .is_some_and(|p| p.len() != samples.rotations.len())
+        {
+            return Err(internal(
+                "a track with positions at some frames only".into(),
+            ));
+        }
+        self.tracks.push(samples);
+        Ok(())
+    }
+
+    fn finish(&mut self) -> io::Result<()> {
+        let codes: Vec<f64> = self.frames.iter().map(|&k| k as f64).collect();
+        let out = self
+            .out
+            .as_mut()
+            .ok_or_else(|| internal("USD output finished twice".into()))?;
+        write_usda(
+            &mut *out,
+            &self.skeleton,
+            self.fps,
+            &codes,
+            &self.tracks,
+            self.meters_per_unit,
+        )
+    }
+}

@@ -1,0 +1,386 @@
+//! `.usda` input: a UsdSkel `Skeleton`'s bound `SkelAnimation` as tracks (docs/spec.md §3, *USD
+//! input*). Each joint the animation lists is a track named by its joint's name (the last part
+//! of its path); its keys are the animation's time samples — a time code is a frame number at
+//! `timeCodesPerSecond` — and its translations the `translations` samples. Where rotations and
+//! translations are sampled at different times, the keys are at every time either has one, the
+//! other attribute evaluated there as USD does (slerp, linear, held beyond its ends). The
+//! Skeleton's joints and `restTransforms` give the hierarchy for world-space measures and USD
+//! output.
+
+use super::text::{Prim, Property, Value, parse};
+use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
+use glam::{DMat4, DQuat, DVec3, DVec4};
+use inbetween::clock::Fps;
+use inbetween::error::{InputError, InputResult};
+use inbetween::skeleton::{Joint, Skeleton};
+use std::sync::Arc;
+
+/// USD's default `timeCodesPerSecond` when a layer gives none.
+pub const DEFAULT_TIME_CODES_PER_SECOND: f64 = 24.0;
+
+/// Reads `.usda` text into a document (see the module documentation).
+pub fn read(text: &str, source: &str) -> InputResult<Document> {
+    let layer = parse(text, source)?;
+    let at = |prim: &Prim, prop: Option<&Property>| {
+        format!("{source}:{}", prop.map_or(prim.line, |p| p.line))
+    };
+    let skeleton = layer
+        .prims
+        .iter()
+        .find(|p| p.type_name == "Skeleton" && p.property("skel:animationSource").is_some())
+        .ok_or_else(|| {
+            InputError::new(format!(
+                "{source}: no Skeleton with an animation (skel:animationSource) in the layer"
+            ))
+        })?;
+    let source_rel = skeleton
+        .property("skel:animationSource")
+        .expect("found above");
+    let target = match &source_rel.value {
+        Some(Value::Path(p)) => p.clone(),
+        Some(Value::List(v)) if v.len() == 1 => match &v[0] {
+            Value::Path(p) => p.clone(),
+            _ => String::new(),
+        },
+        _ => String::new(),
+    };
+    let target = if target.starts_with('/') {
+        target
+    } else {
+        format!("{}/{target}", skeleton.path)
+    };
+    let anim = layer
+        .prims
+        .iter()
+        .find(|p| p.path == target && p.type_name == "SkelAnimation")
+        .ok_or_else(|| {
+            InputError::new(format!(
+                "{}: skel:animationSource: no SkelAnimation at <{target}>",
+                at(skeleton, Some(source_rel))
+            ))
+        })?;
+    let skel_joints = tokens(skeleton, "joints", source)?;
+    let anim_joints = tokens(anim, "joints", source)?;
+    let rate = layer
+        .number("timeCodesPerSecond")
+        .unwrap_or(DEFAULT_TIME_CODES_PER_SECOND);
+    let fps = exact_rate(rate)
+        .map_err(|e| InputError::new(format!("{source}: timeCodesPerSecond: {}", e.message())))?;
+
+    // The hierarchy: parents from the joint paths, rest poses from restTransforms.
+    let rest = match skeleton.property("restTransforms") {
+        Some(p) => matrices(p, skel_joints.len(), source)?,
+        None => vec![DMat4::IDENTITY; skel_joints.len()],
+    };
+    let mut joints: Vec<Joint> = Vec::with_capacity(skel_joints.len());
+    for (i, path) in skel_joints.iter().enumerate() {
+        let parent = path
+            .rsplit_once('/')
+            .and_then(|(head, _)| skel_joints[..i].iter().position(|p| p == head));
+        if path.contains('/') && parent.is_none() {
+            return Err(InputError::new(format!(
+                "{}: joints[{i}] \"{path}\": its parent is not listed before it",
+                at(skeleton, skeleton.property("joints"))
+            )));
+        }
+        let (scale, rotation, translation) = rest[i].to_scale_rotation_translation();
+        let name = path.rsplit('/').next().unwrap_or(path);
+        let mut j = Joint::new(name, parent, translation);
+        j.rotation = rotation.normalize();
+        j.scale = scale;
+        joints.push(j);
+    }
+
+    // The samples.
+    let rot = anim.property("rotations");
+    let tra = anim.property("translations");
+    let rotations = samples(rot, anim_joints.len(), 4, source)?;
+    let translations = samples(tra, anim_joints.len(), 3, source)?;
+    let mut codes: Vec<f64> = rotations
+        .iter()
+        .chain(&translations)
+        .map(|(c, _)| *c)
+        .collect();
+    codes.sort_by(f64::total_cmp);
+    codes.dedup();
+    if rotations.is_empty() {
+        return Err(InputError::new(format!(
+            "{}: the SkelAnimation has no rotations",
+            at(anim, rot)
+        )));
+    }
+    let mut tracks = Vec::with_capacity(anim_joints.len());
+    for (k, path) in anim_joints.iter().enumerate() {
+        let Some(j) = skel_joints.iter().position(|p| p == path) else {
+            return Err(InputError::new(format!(
+                "{}: joints[{k}] \"{path}\" is not a joint of the Skeleton",
+                at(anim, anim.property("joints"))
+            )));
+        };
+        joints[j].track = Some(tracks.len());
+        let mut track = DocTrack {
+            name: Some(joints[j].name.clone()),
+            keys: Vec::with_capacity(codes.len()),
+            start_velocity: None,
+            end_velocity: None,
+            origin: KeyOrigin::Frames,
+            euler: None,
+            velocities: Vec::new(),
+            tcb: Vec::new(),
+            translations: Vec::new(),
+        };
+        for &c in &codes {
+            let q = at_code(&rotations, c, k, |a, b, u| {
+                let qa = quat(a);
+                let qb = quat(b);
+                let q = qa.slerp(qb, u);
+                vec![q.w, q.x, q.y, q.z]
+            });
+            let q = quat(&q);
+            if !(q.is_finite() && q.length() > 1e-6) {
+                return Err(InputError::new(format!(
+                    "{}: joint \"{path}\" at time code {c}: expected a rotation, found ({}, {}, {}, {})",
+                    at(anim, rot),
+                    q.w,
+                    q.x,
+                    q.y,
+                    q.z
+                )));
+            }
+            track.keys.push(Key {
+                when: KeyTime::Frame(c),
+                rot: q.normalize(),
+            });
+            if !translations.is_empty() {
+                let p = at_code(&translations, c, k, |a, b, u| {
+                    a.iter().zip(b).map(|(x, y)| x + (y - x) * u).collect()
+                });
+                track.translations.push(Some(DVec3::new(p[0], p[1], p[2])));
+            }
+        }
+        tracks.push(track);
+    }
+    // Reorder: tracks in the skeleton's joint order (parents first), as every skeleton's are.
+    let mut order: Vec<(usize, usize)> = joints
+        .iter()
+        .enumerate()
+        .filter_map(|(j, joint)| joint.track.map(|t| (j, t)))
+        .collect();
+    order.sort();
+    let mut sorted = Vec::with_capacity(tracks.len());
+    for (new, &(j, t)) in order.iter().enumerate() {
+        joints[j].track = Some(new);
+        sorted.push(tracks[t].clone());
+    }
+    let hierarchy = Skeleton::new(joints)
+        .map_err(|e| InputError::new(format!("{source}: the Skeleton: {}", e.message())))?;
+    let unit = layer
+        .number("metersPerUnit")
+        .filter(|u| u.is_finite() && *u > 0.0);
+    Ok(Document {
+        source: source.to_string(),
+        fps: Some(fps),
+        rotation: None,
+        tracks: sorted,
+        named_tracks: true,
+        warnings: Vec::new(),
+        skeleton: None,
+        hierarchy: Some(Arc::new(hierarchy)),
+        unit_meters: Some(unit.unwrap_or(0.01)),
+    })
+}
+
+/// Whether text is a USD text layer: it starts with `#usda`.
+pub fn is_usda(bytes: &[u8]) -> bool {
+    bytes
+        .strip_prefix("\u{feff}".as_bytes())
+        .unwrap_or(bytes)
+        .starts_with(b"#usda")
+}
+
+/// A `timeCodesPerSecond` as an exact rate: `n/1001` where it is one (`29.97002997002997` is
+/// 30000/1001), else the shortest decimal of the double.
+fn exact_rate(x: f64) -> InputResult<Fps> {
+    for den in [1u64, 1001] {
+        let n = (x * den as f64).round();
+        if n >= 1.0 && (n / den as f64 - x).abs() <= 1e-12 * x {
+            return Fps::new(n as u64, den);
+        }
+    }
+    Fps::from_f64(x)
+}
+
+/// A prim's `token[]` property as strings.
+fn tokens(prim: &Prim, name: &str, source: &str) -> InputResult<Vec<String>> {
+    let prop = prim.property(name).ok_or_else(|| {
+        InputError::new(format!(
+            "{source}:{}: the {} has no {name}",
+            prim.line, prim.type_name
+        ))
+    })?;
+    match &prop.value {
+        Some(Value::List(items)) => items
+            .iter()
+            .enumerate()
+            .map(|(i, v)| match v {
+                Value::Str(s) => Ok(s.clone()),
+                _ => Err(InputError::new(format!(
+                    "{source}:{}: {name}[{i}]: expected a quoted token",
+                    prop.line
+                ))),
+            })
+            .collect(),
+        _ => Err(InputError::new(format!(
+            "{source}:{}: {name}: expected a list of tokens",
+            prop.line
+        ))),
+    }
+}
+
+/// Numbers of a value (a number or a tuple of numbers), flattened.
+fn numbers(v: &Value, out: &mut Vec<f64>) -> bool {
+    match v {
+        Value::Num(x) => {
+            out.push(*x);
+            true
+        }
+        Value::Tuple(items) => items.iter().all(|i| numbers(i, out)),
+        _ => false,
+    }
+}
+
+/// A `matrix4d[]` of `n` matrices (rows, the translation last: USD's row vectors).
+fn matrices(prop: &Property, n: usize, source: &str) -> InputResult<Vec<DMat4>> {
+    let bad =
+        |what: &str| InputError::new(format!("{source}:{}: {}: {what}", prop.line, prop.name));
+    let Some(Value::List(items)) = &prop.value else {
+        return Err(bad("expected a list of matrices"));
+    };
+    if items.len() != n {
+        return Err(bad(&format!("{} matrices for {n} joints", items.len())));
+    }
+    items
+        .iter()
+        .enumerate()
+        .map(|(i, m)| {
+            let mut v = Vec::with_capacity(16);
+            if !numbers(m, &mut v) || v.len() != 16 || v.iter().any(|x| !x.is_finite()) {
+                return Err(bad(&format!(
+                    "[{i}]: expected a matrix of 16 finite numbers"
+                )));
+            }
+            let row = |r: usize| DVec4::new(v[4 * r], v[4 * r + 1], v[4 * r + 2], v[4 * r + 3]);
+            Ok(DMat4::from_cols(row(0), row(1), row(2), row(3)))
+        })
+        .collect()
+}
+
+/// An attribute's samples: per time code, `n` values of `width` numbers each (rounded to float32
+/// for `quatf[]` and `float3[]`, as USD reads them). Its default value counts as one sample at
+/// time code 0 when it has no time samples.
+fn samples(
+    prop: Option<&Property>,
+    n: usize,
+    width: usize,
+    source: &str,
+) -> InputResult<Vec<(f64, Vec<Vec<f64>>)>> {
+    let Some(prop) = prop else {
+        return Ok(Vec::new());
+    };
+    let list: Vec<(f64, &Value)> = match (&prop.samples, &prop.value) {
+        (Some(s), _) => s.iter().map(|(c, v)| (*c, v)).collect(),
+        (None, Some(v)) => vec![(0.0, v)],
+        (None, None) => return Ok(Vec::new()),
+    };
+    let single = matches!(prop.type_name.as_str(), "quatf[]" | "float3[]");
+    let mut out: Vec<(f64, Vec<Vec<f64>>)> = Vec::with_capacity(list.len());
+    for (code, v) in list {
+        let bad = |what: String| {
+            InputError::new(format!(
+                "{source}:{}: {} at time code {code}: {what}",
+                prop.line, prop.name
+            ))
+        };
+        if !code.is_finite() {
+            return Err(bad("the time code is not finite".into()));
+        }
+        let Value::List(items) = v else {
+            return Err(bad(format!("expected a list of {n} values")));
+        };
+        if items.len() != n {
+            return Err(bad(format!("{} values for {n} joints", items.len())));
+        }
+        let mut values = Vec::with_capacity(n);
+        for (j, item) in items.iter().enumerate() {
+            let mut v = Vec::with_capacity(width);
+            if !numbers(item, &mut v) || v.len() != width || v.iter().any(|x| !x.is_finite()) {
+                return Err(bad(format!("[{j}]: expected {width} finite numbers")));
+            }
+            if single {
+                // What USD holds: the text read as float32.
+                v.iter_mut().for_each(|x| *x = f64::from(*x as f32));
+            }
+            values.push(v);
+        }
+        out.push((code, values));
+    }
+    out.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if out.windows(2).any(|w| w[0].0 == w[1].0) {
+        return Err(InputError::new(format!(
+            "{source}:{}: {}: a time code sampled twice",
+            prop.line, prop.name
+        )));
+    }
+    Ok(out)
+}
+
+/// Joint `k`'s value at `code`: its sample there, else `blend` of the samples around it, else
+/// the nearest end's (USD holds an attribute's first and last samples beyond them).
+fn at_code(
+    samples: &[(f64, Vec<Vec<f64>>)],
+    code: f64,
+    k: usize,
+    blend: impl Fn(&[f64], &[f64], f64) -> Vec<f64>,
+) -> Vec<f64> {
+    let i = samples.partition_point(|(c, _)| *c < code);
+    match (i.checked_sub(1).map(|p| &samples[p]), samples.get(i)) {
+        (_, Some((c, v))) if *c == code => v[k].clone(),
+        (Some((c0, v0)), Some((c1, v1))) => blend(&v0[k], &v1[k], (code - c0) / (c1 - c0)),
+        (Some((_, v)), None) | (None, Some((_, v))) => v[k].clone(),
+        (None, None) => unreachable!("samples are not empty"),
+    }
+}
+
+/// `(w, x, y, z)` as a quaternion.
+fn quat(v: &[f64]) -> DQuat {
+    DQuat::from_xyzw(v[1], v[2], v[3], v[0])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rates_are_exact() {
+        assert_eq!(
+            exact_rate(29.97002997002997).unwrap(),
+            Fps::new(30000, 1001).unwrap()
+        );
+        assert_eq!(exact_rate(24.0).unwrap(), Fps::new(24, 1).unwrap());
+        assert_eq!(exact_rate(12.5).unwrap(), Fps::new(25, 2).unwrap());
+    }
+
+    #[test]
+    fn a_sample_missing_in_one_attribute_is_evaluated_as_usd_does() {
+        let s = vec![
+            (0.0, vec![vec![0.0, 0.0, 0.0]]),
+            (4.0, vec![vec![4.0, 8.0, 0.0]]),
+        ];
+        let lerp = |a: &[f64], b: &[f64], u: f64| -> Vec<f64> {
+            a.iter().zip(b).map(|(x, y)| x + (y - x) * u).collect()
+        };
+        assert_eq!(at_code(&s, 1.0, 0, lerp), vec![1.0, 2.0, 0.0]);
+        assert_eq!(at_code(&s, -1.0, 0, lerp), vec![0.0, 0.0, 0.0]);
+        assert_eq!(at_code(&s, 9.0, 0, lerp), vec![4.0, 8.0, 0.0]);
+    }
+}
