@@ -10,8 +10,9 @@ use inbetween_io::{Format, OutputFormat};
 use std::path::PathBuf;
 
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
-/// matrices, axis-angle, rotation vectors) from CSV, JSON, BVH motion capture or glTF 2.0
-/// (.gltf, .glb) and writes every in-between frame as CSV, JSON, npy, npz, BVH or glTF.
+/// matrices, axis-angle, rotation vectors) from CSV, JSON, BVH motion capture, glTF 2.0
+/// (.gltf, .glb), FBX or USD (.usda) and writes every in-between frame as CSV, JSON, npy, npz,
+/// BVH, glTF or USD.
 #[derive(Debug, Parser)]
 #[command(name = "inbetween", version, max_term_width = 100)]
 pub struct Cli {
@@ -81,13 +82,16 @@ pub enum Command {
     Reduce(ReduceArgs),
 }
 
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct ReduceArgs {
     #[command(flatten)]
     pub input: InputArgs,
 
     #[command(flatten)]
     pub output: OutputArgs,
+
+    #[command(flatten)]
+    pub batch: BatchArgs,
 
     /// Largest rotation error of any input frame, in --angles units (with --distance, a length).
     /// Required unless --position-tolerance is given; with it, both hold.
@@ -168,13 +172,13 @@ fn parse_positive(s: &str) -> Result<f64, String> {
 /// `inbetween diff A B`.
 #[derive(Debug, Args)]
 #[command(mut_arg("input", |a| a.required(true).index(1).value_name("A")
-    .help("Motion A, the reference: CSV, JSON, BVH or glTF; `-` reads standard input")))]
+    .help("Motion A, the reference: CSV, JSON, BVH, glTF, FBX or USD; `-` reads standard input")))]
 pub struct DiffArgs {
     /// Motion A, the reference (its options are those below; `-` reads standard input).
     #[command(flatten)]
     pub input: InputArgs,
 
-    /// Motion B: CSV, JSON, BVH or glTF, read with the same options as A.
+    /// Motion B: CSV, JSON, BVH, glTF, FBX or USD, read with the same options as A.
     #[arg(value_name = "B", index = 2)]
     pub other: PathBuf,
 
@@ -213,10 +217,38 @@ pub struct DiffArgs {
     pub output: Option<PathBuf>,
 }
 
+/// Several inputs at once (docs/spec.md §1, *Batch*): more inputs, and where their outputs go.
+#[derive(Debug, Clone, Default, Args)]
+pub struct BatchArgs {
+    /// More inputs: files, folders (read recursively, every file of a known extension), or glob
+    /// patterns (`clips/*.bvh`, `**` for any folders); they need --out-dir.
+    #[arg(value_name = "MORE", num_args = 0.., trailing_var_arg = false)]
+    pub more: Vec<PathBuf>,
+
+    /// Write each input's output under this folder, at the input's path relative to the folder
+    /// or pattern it was found by, with the output format's extension; each written atomically.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+
+    /// Inputs processed at once, each on one thread (default: the number of cores).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub jobs: Option<u32>,
+
+    /// Append one JSON line per input to this file as each finishes: input, output, status (ok,
+    /// skipped, failed), seconds, and the error of a failed input.
+    #[arg(long, value_name = "FILE")]
+    pub manifest: Option<PathBuf>,
+
+    /// Redo inputs whose output is newer than the input (skipped by default).
+    #[arg(long)]
+    pub refresh: bool,
+}
+
 /// Where the keys come from and how to read them.
 #[derive(Debug, Clone, Args)]
 pub struct InputArgs {
-    /// Input file: CSV, JSON, BVH or glTF (.gltf, .glb); `-` or nothing reads standard input.
+    /// Input file: CSV, JSON, BVH, glTF (.gltf, .glb), FBX (.fbx) or USD (.usda); `-` or
+    /// nothing reads standard input.
     #[arg(value_name = "INPUT")]
     pub input: Option<PathBuf>,
 
@@ -250,8 +282,8 @@ pub struct InputArgs {
     #[arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz")]
     pub quat_order: QuatOrder,
 
-    /// Input format; by default from the file extension, and standard input is sniffed
-    /// (`{` or `[` first means JSON).
+    /// Input format (csv, json, bvh, gltf, glb, fbx, usda); by default from the file extension,
+    /// and standard input is sniffed (`{` or `[` first means JSON).
     #[arg(long, value_name = "F", value_parser = parse_format)]
     pub input_format: Option<Format>,
 
@@ -273,7 +305,7 @@ pub struct InputArgs {
 }
 
 /// Where the output goes and how it is written.
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct OutputArgs {
     /// Output representation: quat, euler:SEQ (scipy letters: ZYX intrinsic, zyx extrinsic),
     /// matrix, axis-angle, rotvec.
@@ -330,13 +362,16 @@ pub enum EulerArg {
     Wrapped,
 }
 
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct ConvertArgs {
     #[command(flatten)]
     pub input: InputArgs,
 
     #[command(flatten)]
     pub output: OutputArgs,
+
+    #[command(flatten)]
+    pub batch: BatchArgs,
 
     /// Rate of `frame` values in documents that do not give one (JSON "fps" wins for its own
     /// frames): 24, 29.97, 30000/1001, ...
@@ -350,13 +385,16 @@ pub struct ConvertArgs {
     pub skeleton: Option<PathBuf>,
 }
 
-#[derive(Debug, Args)]
+#[derive(Debug, Clone, Args)]
 pub struct InterpArgs {
     #[command(flatten)]
     pub input: InputArgs,
 
     #[command(flatten)]
     pub output: OutputArgs,
+
+    #[command(flatten)]
+    pub batch: BatchArgs,
 
     /// Interpolation scheme (bezier: third order, C¹, local; see docs/schemes.md). Default
     /// bezier; for glTF input, each sampler as glTF plays it (LINEAR by slerp), and a scheme

@@ -31,6 +31,33 @@ fn usage_error(e: &clap::Error) -> ExitCode {
     ExitCode::from(2)
 }
 
+/// Runs a command over several inputs ([`cmd::batch::run`]): each input with its own `-o` under
+/// `--out-dir`, standard input empty, the batch options cleared.
+macro_rules! batch {
+    ($args:expr, $run:path) => {{
+        let args = $args;
+        if args.output.output.is_some() {
+            Err(inbetween::InputError::new(
+                "-o names one output; with --out-dir each input's output is named after it",
+            )
+            .into())
+        } else {
+            cmd::batch::run(
+                args.input.input.as_deref(),
+                &args.batch,
+                &|input: &std::path::Path| cmd::batch::extension(input, &args.output),
+                &|input: &std::path::Path, output: &std::path::Path, warn: &mut dyn FnMut(&str)| {
+                    let mut one = args.clone();
+                    one.input.input = Some(input.to_path_buf());
+                    one.output.output = Some(output.to_path_buf());
+                    one.batch = Default::default();
+                    $run(&one, &mut std::io::empty(), warn)
+                },
+            )
+        }
+    }};
+}
+
 fn main() -> ExitCode {
     signals::install();
     let mut cli = match Cli::try_parse() {
@@ -48,6 +75,9 @@ fn main() -> ExitCode {
     // `diff --max-angle/--max-position`: the limit a difference exceeds (exit 1, as diff(1)).
     let mut exceeds: Option<String> = None;
     let result = match &cli.command {
+        Command::Convert(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::convert::run),
+        Command::Interp(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::interp::run),
+        Command::Reduce(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::reduce::run),
         Command::Convert(args) => cmd::convert::run(args, &mut stdin, &mut warn),
         Command::Interp(args) => cmd::interp::run(args, &mut stdin, &mut warn),
         Command::Analyze(args) => cmd::analyze::run(args, &mut stdin, &mut warn),

@@ -23,6 +23,7 @@ use inbetween::error::Error;
 macro_rules! input_err {
     ($($arg:tt)*) => { inbetween::error::InputError::new(format!($($arg)*)) };
 }
+use std::cell::{Cell, RefCell};
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -123,6 +124,35 @@ impl Drop for Registered {
             self.release(&mut registry());
         }
     }
+}
+
+std::thread_local! {
+    /// Set by [`hold_commits`]: a commit on this thread keeps the lock until [`release_commit`].
+    static HOLD: Cell<bool> = const { Cell::new(false) };
+    static HELD: RefCell<Option<MutexGuard<'static, Registry>>> = const { RefCell::new(None) };
+}
+
+/// For a batch: from now on a commit on this thread keeps the lock a signal handler takes
+/// ([`remove_temp_files`]) until [`release_commit`], so that the output and the record that says
+/// it is finished (the manifest line) are both there or neither when a signal ends the process.
+pub fn hold_commits() {
+    HOLD.with(|h| h.set(true));
+}
+
+/// Takes the lock a signal handler takes, until [`release_commit`], unless this thread holds it
+/// already (a commit kept it): for a record that must be written whole or not at all.
+pub fn hold_now() {
+    HELD.with(|h| {
+        let mut h = h.borrow_mut();
+        if h.is_none() {
+            *h = Some(registry());
+        }
+    });
+}
+
+/// Releases the lock a commit on this thread kept ([`hold_commits`]); nothing if none.
+pub fn release_commit() {
+    HELD.with(|h| drop(h.borrow_mut().take()));
 }
 
 /// Removes the temporary file of every uncommitted file [`Output`] of this process, for a signal
@@ -397,6 +427,9 @@ impl Output {
                     .map(drop)
                     .map_err(|e| write_error(&target, e.error));
                 registered.release(&mut reg);
+                if HOLD.with(Cell::get) {
+                    HELD.with(|h| *h.borrow_mut() = Some(reg));
+                }
                 renamed
             }
         }

@@ -268,6 +268,10 @@ pub struct Document {
     /// The length unit in metres, where the input declares one (glTF: 1; FBX: its scene's
     /// unit); what USD output writes as `metersPerUnit`.
     pub unit_meters: Option<f64>,
+    /// Whether the input declares Z up (FBX `UpAxis`, USD `upAxis`); `Some(false)` Y up, `None`
+    /// no declaration (BVH, glTF and keys are Y up by convention); what USD output writes as
+    /// `upAxis`.
+    pub z_up: Option<bool>,
 }
 
 impl Document {

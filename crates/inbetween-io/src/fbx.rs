@@ -38,6 +38,12 @@ use std::fmt::Write as _;
 /// float64), so that a stack declaring an absurd span is refused before it is sampled.
 pub const MAX_VALUES: u64 = 1 << 27;
 
+/// ufbx may use this many bytes of memory per byte of the file (each of its two allocators)...
+pub const MEMORY_PER_BYTE: usize = 32;
+
+/// ...and at least this many.
+pub const MIN_MEMORY_LIMIT: usize = 256 << 20;
+
 /// How far apart (relative) two scales may be and still be the same: a few float32 steps.
 pub const SCALE_TOLERANCE: f64 = 1e-5;
 
@@ -62,6 +68,8 @@ pub struct FbxClip {
     pub start: f64,
     /// The scene's unit in metres (`UnitScaleFactor` / 100), which lengths are in.
     pub unit_meters: f64,
+    /// Whether the scene is Z up (its `UpAxis`); else Y up.
+    pub z_up: bool,
     /// Warnings, each naming the file.
     pub warnings: Vec<String>,
 }
@@ -69,10 +77,20 @@ pub struct FbxClip {
 /// Reads FBX bytes (`source` names them in messages) and the stack chosen by `animation` (a
 /// name, else an index; `None`: the first, with a warning when there are several).
 pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<FbxClip> {
+    // ufbx's memory is bounded too, so that a small file cannot claim gigabytes.
+    let limit = MEMORY_PER_BYTE
+        .saturating_mul(bytes.len())
+        .max(MIN_MEMORY_LIMIT);
+    let allocator = || ufbx::AllocatorOpts {
+        memory_limit: limit,
+        ..Default::default()
+    };
     let opts = ufbx::LoadOpts {
         ignore_geometry: true,
         ignore_embedded: true,
         load_external_files: false,
+        temp_allocator: allocator(),
+        result_allocator: allocator(),
         ..Default::default()
     };
     let scene = ufbx::load_memory(bytes, opts).map_err(|e| {
@@ -247,6 +265,18 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
         fps,
         frames,
     );
+    use ufbx::CoordinateAxis as A;
+    let z_up = match scene.settings.axes.up {
+        A::PositiveZ | A::NegativeZ => true,
+        A::PositiveY | A::NegativeY | A::Unknown => false,
+        A::PositiveX | A::NegativeX => {
+            warnings.push(format!(
+                "{source}: the scene is X up, which USD cannot say (its upAxis is Y or Z): \
+                 written as Y up"
+            ));
+            false
+        }
+    };
     let (clip, bvh_warnings) = crate::bvh::parse(&text, source).map_err(|e| {
         input_err!(
             "{source}: internal error: the clip made of its FBX nodes does not read back: {}",
@@ -259,6 +289,7 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
         stack: stack.element.name.to_string(),
         start,
         unit_meters: scene.settings.unit_meters,
+        z_up,
         warnings,
     })
 }

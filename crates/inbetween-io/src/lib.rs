@@ -83,7 +83,7 @@ impl Format {
             "bvh" => Some(Format::Bvh),
             "gltf" | "glb" => Some(Format::Gltf),
             "fbx" => Some(Format::Fbx),
-            "usda" => Some(Format::Usd),
+            "usda" | "usd" | "usdc" | "usdz" => Some(Format::Usd),
             _ => None,
         }
     }
@@ -235,6 +235,13 @@ pub fn parse_bytes(
         let fbx = fbx::read(&bytes, source, None)?;
         return Ok((fbx_document(fbx, source), Format::Fbx));
     }
+    let usd = format.or_else(|| path.and_then(Format::from_path)) == Some(Format::Usd);
+    if bytes.starts_with(b"PXR-USDC") || (usd && bytes.starts_with(b"PK\x03\x04")) {
+        return Err(input_err!(
+            "{source}: binary USD (usdc, or a usdz package) is not read, only the text form: \
+             write it as text first (usdcat {source} -o clip.usda)"
+        ));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         input_err!(
             "{source}: expected UTF-8 text, found an invalid byte at offset {}",
@@ -257,9 +264,10 @@ pub fn is_fbx_input(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -
 
 /// An FBX clip as a document: its BVH clip's ([`bvh::document::document`]), with its warnings.
 pub fn fbx_document(fbx: fbx::FbxClip, source: &str) -> Document {
-    let unit = fbx.unit_meters;
+    let (unit, z_up) = (fbx.unit_meters, fbx.z_up);
     let mut doc = bvh::document::document(fbx.clip, source, fbx.warnings);
     doc.unit_meters = (unit.is_finite() && unit > 0.0).then_some(unit);
+    doc.z_up = Some(z_up);
     doc
 }
 

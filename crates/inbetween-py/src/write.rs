@@ -318,5 +318,6 @@ fn document(
         skeleton: None,
         hierarchy: None,
         unit_meters: None,
+        z_up: None,
     })
 }

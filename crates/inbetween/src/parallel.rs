@@ -5,10 +5,28 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 /// Most threads that independent work (tracks) is shared out among.
 pub const MAX_THREADS: usize = 8;
 
+std::thread_local! {
+    /// Set by [`serially`]: this thread's [`map`]s run on it alone.
+    static SERIAL: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Runs `f` with every [`map`] it makes on the calling thread alone: for a caller that already
+/// shares its own work out among the cores (a batch of files, one per thread), so that the
+/// threads do not multiply. The results are the same either way.
+pub fn serially<R>(f: impl FnOnce() -> R) -> R {
+    let before = SERIAL.with(|s| s.replace(true));
+    let r = f();
+    SERIAL.with(|s| s.set(before));
+    r
+}
+
 /// `f` of every item, in the items' order: the items are taken in order as threads come free
 /// (one per core, at most [`MAX_THREADS`], never more than the items), so the result is the
 /// same whatever the number of threads. One core, or one item, runs on the calling thread.
 pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    if SERIAL.with(std::cell::Cell::get) {
+        return items.iter().map(f).collect();
+    }
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(MAX_THREADS)

@@ -18,6 +18,7 @@ use inbetween_io::bvh::{self, resample};
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::usd::frames::UsdFrames;
+use inbetween_io::usd::write::Stage;
 use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter, NpzShape, NpzWriter};
 use std::io::Read;
 
@@ -221,29 +222,7 @@ pub fn run(
         _ => None,
     };
     let usd = match format {
-        OutputFormat::Usda => {
-            let Some(h) = doc.hierarchy.clone() else {
-                return Err(InputError::new(format!(
-                    "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, \
-                     glTF or FBX input has one); write csv or json",
-                    doc.source
-                ))
-                .into());
-            };
-            if args.span == SpanArg::Track {
-                return Err(InputError::new(
-                    "--span track: USD samples every joint at the same times; use --span clip",
-                )
-                .into());
-            }
-            if args.velocity {
-                return Err(InputError::new(
-                    "--velocity: USD has no place for angular velocities; write csv or json",
-                )
-                .into());
-            }
-            Some(h)
-        }
+        OutputFormat::Usda => Some(super::skeleton::usd_output(args, doc)?),
         _ => None,
     };
     // The order the tracks are written in: the skeleton's joints' for BVH output.
@@ -317,7 +296,10 @@ pub fn run(
             out,
             usd.expect("checked above"),
             fps,
-            doc.unit_meters.unwrap_or(0.01),
+            Stage {
+                meters_per_unit: doc.unit_meters.unwrap_or(0.01),
+                z_up: doc.z_up == Some(true),
+            },
         )),
     };
     for &i in &order {

@@ -1,6 +1,7 @@
 //! One module per subcommand: validated settings from the parsed arguments, then the library.
 
 pub mod analyze;
+pub mod batch;
 pub mod convert;
 pub mod diff;
 pub mod interp;

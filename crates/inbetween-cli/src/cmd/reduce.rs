@@ -83,6 +83,7 @@ pub fn run(
         skeleton: None,
         hierarchy: doc.hierarchy.clone(),
         unit_meters: doc.unit_meters,
+        z_up: doc.z_up,
     };
     // USD stores float32 rotations and translations: the tolerances are tightened by what that
     // rounding can move a key (as for glTF output).

@@ -101,6 +101,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         skeleton: None,
         hierarchy: None,
         unit_meters: None,
+        z_up: None,
     };
     for w in &warnings {
         warn(w);

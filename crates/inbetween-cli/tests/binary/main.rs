@@ -7,6 +7,7 @@ mod analyze;
 mod animator;
 mod app_conventions;
 mod arrays;
+mod batch;
 mod bvh;
 mod bvh_stream;
 mod bvh_untrusted;

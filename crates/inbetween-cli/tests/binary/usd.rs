@@ -361,3 +361,84 @@ fn bad_usd_input_is_a_located_error() {
         assert!(err.contains(message), "{name}: {err}");
     }
 }
+
+#[test]
+fn usd_input_follows_usd_core_where_a_layer_leaves_things_out() {
+    let dir = tempfile::tempdir().unwrap();
+    // A binding on the SkelRoot is the Skeleton's (as UsdSkel resolves it).
+    let bound = keys_of(&fixtures().join("usd/bind_on_skelroot.usda"));
+    assert_eq!(bound["tracks"].as_array().unwrap().len(), 2);
+    // Without timeCodesPerSecond, framesPerSecond is the rate (usd-core's fallback).
+    let ntsc = std::fs::read_to_string(fixtures().join("usd/skel_ntsc.usda")).unwrap();
+    let kept: String = ntsc
+        .lines()
+        .filter(|l| !l.contains("timeCodesPerSecond"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert_ne!(kept, ntsc);
+    let path = dir.path().join("no_tcps.usda");
+    std::fs::write(&path, kept).unwrap();
+    assert_eq!(keys_of(&path)["fps"], "30000/1001");
+    // Binary USD is refused by name.
+    let usdc = dir.path().join("clip.usdc");
+    std::fs::write(&usdc, b"PXR-USDC\x00\x07\x00\x00").unwrap();
+    let o = bin().arg("convert").arg(&usdc).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("binary USD (usdc, or a usdz package) is not read")
+    );
+}
+
+#[test]
+fn usd_output_keeps_the_inputs_unit_and_up_axis() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("z.usda");
+    // A hand-written ASCII FBX, Z up, in inches (UnitScaleFactor 2.54).
+    bin()
+        .arg("interp")
+        .arg(fixtures().join("fbx/zup_inches_ascii.fbx"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("    metersPerUnit = 0.0254\n"), "{text}");
+    assert!(text.contains("    upAxis = \"Z\"\n"));
+    let back = dir.path().join("back.usda");
+    bin()
+        .arg("convert")
+        .arg(&out)
+        .arg("-o")
+        .arg(&back)
+        .assert()
+        .success();
+    let again = std::fs::read_to_string(&back).unwrap();
+    assert!(again.contains("    upAxis = \"Z\"\n") && again.contains("metersPerUnit = 0.0254\n"));
+    // --tracks and --precision have no place in a USD skeleton.
+    for (flag, value, message) in [
+        (
+            "--tracks",
+            "Hips",
+            "--tracks: a USD skeleton is written with every joint",
+        ),
+        (
+            "--precision",
+            "3",
+            "--precision: USD stores its values as float32",
+        ),
+    ] {
+        let o = bin()
+            .arg("interp")
+            .arg(fixtures().join("bvh/cmu_01_01.bvh"))
+            .args([flag, value, "-o"])
+            .arg(dir.path().join("t.usda"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        assert!(
+            String::from_utf8_lossy(&o.stderr).contains(message),
+            "{flag}"
+        );
+    }
+}

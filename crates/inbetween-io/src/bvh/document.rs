@@ -51,6 +51,7 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
         hierarchy: Some(Arc::new(clip.skeleton())),
         skeleton: Some(Arc::new(clip)),
         unit_meters: None,
+        z_up: None,
     }
 }
 
@@ -121,6 +122,7 @@ pub fn joint_tracks(
         skeleton: None,
         hierarchy: None,
         unit_meters: None,
+        z_up: None,
     };
     let track = doc.tracks_shaped(clip.fps(), tcb)?.pop();
     Ok(doc.tracks.pop().zip(track))

@@ -402,6 +402,7 @@ impl GltfClip {
             skeleton: None,
             hierarchy: self.skeleton().map(std::sync::Arc::new),
             unit_meters: Some(1.0),
+            z_up: None,
         })
     }
 }

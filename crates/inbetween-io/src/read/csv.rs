@@ -165,6 +165,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         skeleton: None,
         hierarchy: None,
         unit_meters: None,
+        z_up: None,
     };
     let mut values = [0.0; MAX_WIDTH];
     let mut track_index: HashMap<String, usize> = HashMap::new();

@@ -5,7 +5,7 @@
 //! span: USD samples every joint at every time code); the samples are held in memory and
 //! written at [`FrameSink::finish`].
 
-use super::write::{TrackSamples, write_usda};
+use super::write::{Stage, TrackSamples, write_usda};
 use glam::{DQuat, DVec3};
 use inbetween::bake::FrameSink;
 use inbetween::clock::Fps;
@@ -18,7 +18,7 @@ pub struct UsdFrames<W: Write> {
     out: Option<W>,
     skeleton: Arc<Skeleton>,
     fps: Fps,
-    meters_per_unit: f64,
+    stage: Stage,
     /// The frame numbers of the first track (every track must have the same).
     frames: Vec<i64>,
     tracks: Vec<TrackSamples>,
@@ -33,14 +33,13 @@ fn internal(msg: String) -> io::Error {
 }
 
 impl<W: Write> UsdFrames<W> {
-    /// Frames of `skeleton`'s tracks at `fps`, to be written to `out` with the length unit
-    /// `meters_per_unit`.
-    pub fn new(out: W, skeleton: Arc<Skeleton>, fps: Fps, meters_per_unit: f64) -> UsdFrames<W> {
+    /// Frames of `skeleton`'s tracks at `fps`, to be written to `out` on `stage`.
+    pub fn new(out: W, skeleton: Arc<Skeleton>, fps: Fps, stage: Stage) -> UsdFrames<W> {
         UsdFrames {
             out: Some(out),
             skeleton,
             fps,
-            meters_per_unit,
+            stage,
             frames: Vec::new(),
             tracks: Vec::new(),
             current: None,
@@ -127,7 +126,7 @@ impl<W: Write> FrameSink for UsdFrames<W> {
             self.fps,
             &codes,
             &self.tracks,
-            self.meters_per_unit,
+            self.stage,
         )
     }
 }

@@ -2,7 +2,7 @@
 //! joint at the same time codes, so the tracks must share their key times; between samples a
 //! USD player interpolates rotations by slerp and translations linearly.
 
-use super::write::{TrackSamples, write_usda};
+use super::write::{Stage, TrackSamples, write_usda};
 use crate::document::{Document, track_label};
 use inbetween::Error;
 use inbetween::clock::Fps;
@@ -16,8 +16,8 @@ use std::io::Write;
 pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Error> {
     let Some(skeleton) = doc.hierarchy.as_deref() else {
         return Err(InputError::new(format!(
-            "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, glTF or \
-             FBX input has one)",
+            "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, glTF, \
+             FBX or USD input has one)",
             doc.source
         ))
         .into());
@@ -78,13 +78,10 @@ pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Erro
         });
     }
     let codes = codes.unwrap_or_default();
-    write_usda(
-        out,
-        skeleton,
-        fps,
-        &codes,
-        &tracks,
-        doc.unit_meters.unwrap_or(0.01),
-    )?;
+    let stage = Stage {
+        meters_per_unit: doc.unit_meters.unwrap_or(0.01),
+        z_up: doc.z_up == Some(true),
+    };
+    write_usda(out, skeleton, fps, &codes, &tracks, stage)?;
     Ok(())
 }

@@ -15,7 +15,7 @@ use inbetween::error::{InputError, InputResult};
 use inbetween::skeleton::{Joint, Skeleton};
 use std::sync::Arc;
 
-/// USD's default `timeCodesPerSecond` when a layer gives none.
+/// USD's default `timeCodesPerSecond` when a layer gives neither it nor `framesPerSecond`.
 pub const DEFAULT_TIME_CODES_PER_SECOND: f64 = 24.0;
 
 /// Reads `.usda` text into a document (see the module documentation).
@@ -24,18 +24,28 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     let at = |prim: &Prim, prop: Option<&Property>| {
         format!("{source}:{}", prop.map_or(prim.line, |p| p.line))
     };
-    let skeleton = layer
+    // A Skeleton's animation: its own skel:animationSource, else its nearest ancestor's (a
+    // SkelRoot's binding is inherited, as UsdSkel resolves it).
+    let binding = |skel: &Prim| -> Option<(&Prim, &Property)> {
+        let mut path = skel.path.as_str();
+        loop {
+            let prim = layer.prims.iter().find(|p| p.path == path)?;
+            if let Some(rel) = prim.property("skel:animationSource") {
+                return Some((prim, rel));
+            }
+            path = &path[..path.rfind('/').filter(|&i| i > 0)?];
+        }
+    };
+    let (skeleton, (bound_at, source_rel)) = layer
         .prims
         .iter()
-        .find(|p| p.type_name == "Skeleton" && p.property("skel:animationSource").is_some())
+        .filter(|p| p.type_name == "Skeleton")
+        .find_map(|p| binding(p).map(|b| (p, b)))
         .ok_or_else(|| {
             InputError::new(format!(
                 "{source}: no Skeleton with an animation (skel:animationSource) in the layer"
             ))
         })?;
-    let source_rel = skeleton
-        .property("skel:animationSource")
-        .expect("found above");
     let target = match &source_rel.value {
         Some(Value::Path(p)) => p.clone(),
         Some(Value::List(v)) if v.len() == 1 => match &v[0] {
@@ -47,7 +57,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     let target = if target.starts_with('/') {
         target
     } else {
-        format!("{}/{target}", skeleton.path)
+        format!("{}/{target}", bound_at.path)
     };
     let anim = layer
         .prims
@@ -63,6 +73,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     let anim_joints = tokens(anim, "joints", source)?;
     let rate = layer
         .number("timeCodesPerSecond")
+        .or_else(|| layer.number("framesPerSecond"))
         .unwrap_or(DEFAULT_TIME_CODES_PER_SECOND);
     let fps = exact_rate(rate)
         .map_err(|e| InputError::new(format!("{source}: timeCodesPerSecond: {}", e.message())))?;
@@ -187,6 +198,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         skeleton: None,
         hierarchy: Some(Arc::new(hierarchy)),
         unit_meters: Some(unit.unwrap_or(0.01)),
+        z_up: Some(layer.word("upAxis").is_some_and(|a| a == "Z")),
     })
 }
 
@@ -319,6 +331,9 @@ fn samples(
             if single {
                 // What USD holds: the text read as float32.
                 v.iter_mut().for_each(|x| *x = f64::from(*x as f32));
+                if v.iter().any(|x| !x.is_finite()) {
+                    return Err(bad(format!("[{j}]: a value beyond float32's range")));
+                }
             }
             values.push(v);
         }

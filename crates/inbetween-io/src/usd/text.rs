@@ -71,6 +71,17 @@ pub struct Layer {
 }
 
 impl Layer {
+    /// A word or string of the layer's metadata (`upAxis = "Z"`).
+    pub fn word(&self, key: &str) -> Option<&str> {
+        self.metadata
+            .iter()
+            .find(|(k, _)| k == key)
+            .and_then(|(_, v)| match v {
+                Value::Str(s) | Value::Word(s) => Some(s.as_str()),
+                _ => None,
+            })
+    }
+
     /// A number of the layer's metadata.
     pub fn number(&self, key: &str) -> Option<f64> {
         self.metadata

@@ -82,9 +82,18 @@ pub struct TrackSamples {
     pub positions: Option<Vec<DVec3>>,
 }
 
+/// How the stage is set up: its length unit and up axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Stage {
+    /// `metersPerUnit`.
+    pub meters_per_unit: f64,
+    /// `upAxis = "Z"`, else `"Y"`.
+    pub z_up: bool,
+}
+
 /// Writes `skeleton`'s motion as `.usda` (see the module documentation): `codes` the sample
 /// time codes (frame numbers at `fps`, increasing), `tracks[t]` the samples of track `t` (a
-/// value per code), `meters_per_unit` the length unit. Errors (`InvalidInput`, internal): a
+/// value per code), `stage` the length unit and up axis. Errors (`InvalidInput`, internal): a
 /// track count or sample count that does not match, a value that is not finite.
 pub fn write_usda<W: Write>(
     mut out: W,
@@ -92,7 +101,7 @@ pub fn write_usda<W: Write>(
     fps: Fps,
     codes: &[f64],
     tracks: &[TrackSamples],
-    meters_per_unit: f64,
+    stage: Stage,
 ) -> io::Result<()> {
     let internal =
         |m: String| io::Error::new(io::ErrorKind::InvalidInput, format!("internal error: {m}"));
@@ -123,10 +132,15 @@ pub fn write_usda<W: Write>(
     let _ = writeln!(s, "    defaultPrim = \"Clip\"");
     let _ = writeln!(s, "    endTimeCode = {}", num(codes[codes.len() - 1]));
     let _ = writeln!(s, "    framesPerSecond = {}", num(rate));
-    let _ = writeln!(s, "    metersPerUnit = {}", num(meters_per_unit));
+    // 12 significant digits: 2.54 cm computed as 2.54 × 0.01 is 0.025400000000000002.
+    let unit: f64 = format!("{:.11e}", stage.meters_per_unit)
+        .parse()
+        .unwrap_or(stage.meters_per_unit);
+    let _ = writeln!(s, "    metersPerUnit = {}", num(unit));
     let _ = writeln!(s, "    startTimeCode = {}", num(codes[0]));
     let _ = writeln!(s, "    timeCodesPerSecond = {}", num(rate));
-    let _ = writeln!(s, "    upAxis = \"Y\"\n)\n");
+    let up = if stage.z_up { "Z" } else { "Y" };
+    let _ = writeln!(s, "    upAxis = \"{up}\"\n)\n");
     let _ = writeln!(s, "def SkelRoot \"Clip\"\n{{");
     let _ = writeln!(
         s,
@@ -331,7 +345,10 @@ mod tests {
             Fps::new(30000, 1001).unwrap(),
             &[0.0, 1.0],
             &[track],
-            0.01,
+            Stage {
+                meters_per_unit: 0.025400000000000002,
+                z_up: true,
+            },
         )
         .unwrap();
         let text = String::from_utf8(out).unwrap();
@@ -339,6 +356,7 @@ mod tests {
             text.contains("timeCodesPerSecond = 29.97002997002997\n"),
             "{text}"
         );
+        assert!(text.contains("metersPerUnit = 0.0254\n") && text.contains("upAxis = \"Z\"\n"));
         assert!(text.contains("uniform token[] joints = [\"Hips\", \"Hips/Spine\"]"));
         // −q is written with w ≥ 0; the unanimated joint holds its rest pose.
         assert!(
@@ -358,7 +376,10 @@ mod tests {
             Fps::new(30, 1).unwrap(),
             &[0.0, 1.0],
             &[short],
-            1.0,
+            Stage {
+                meters_per_unit: 1.0,
+                z_up: false,
+            },
         );
         assert!(e.unwrap_err().to_string().contains("internal error"));
     }

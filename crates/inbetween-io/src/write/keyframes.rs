@@ -301,6 +301,7 @@ mod tests {
             skeleton: None,
             hierarchy: None,
             unit_meters: None,
+            z_up: None,
         }
     }
 

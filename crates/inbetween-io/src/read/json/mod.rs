@@ -231,6 +231,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         skeleton: None,
         hierarchy: None,
         unit_meters: None,
+        z_up: None,
     };
     let ctx = KeyContext {
         source,
