@@ -9,12 +9,15 @@
 //! - [`read`]: `read`, any file the command line reads, as tracks of arrays.
 //! - [`write`]: `write`, tracks of arrays as CSV, JSON, npy, npz, BVH on a skeleton, or glTF
 //!   written into the asset they were read from ([`gltf`]).
+//! - [`batch`]: `process_file`, one command of the command line on one file (for Dask, joblib,
+//!   Ray).
 //! - [`arrays`]: numpy arrays in and out, shapes checked with messages naming the argument.
 //! - [`options`]: schemes, end rules, paths and rates from their Python spellings.
 
 use pyo3::prelude::*;
 
 mod arrays;
+mod batch;
 mod curve;
 mod frames;
 mod gltf;
@@ -62,5 +65,6 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
     m.add_function(wrap_pyfunction!(read::read, m)?)?;
     m.add_function(wrap_pyfunction!(write::write, m)?)?;
+    m.add_function(wrap_pyfunction!(batch::process_file, m)?)?;
     Ok(())
 }

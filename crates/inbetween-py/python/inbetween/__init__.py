@@ -20,8 +20,8 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "read", "reduce", "resample",
-           "write"]
+__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "process_file", "read",
+           "reduce", "resample", "write"]
 
 Rate = Union[int, float, str, Any]
 
@@ -479,3 +479,23 @@ def write(
                      skeleton=None if skeleton is None else os.fspath(skeleton),
                      asset=asset, to=to, angles=angles, precision=precision, euler=euler,
                      scalar_first=scalar_first)
+
+
+def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], command: str,
+                 refresh: bool = False, **options: Any) -> Dict[str, Any]:
+    """Run one command of the command line on one file, in this process, and return its record.
+
+    ``command`` is ``"interp"``, ``"convert"`` or ``"reduce"``; ``inbetween <command> <path> -o
+    <out> <options>`` is run by the same code as the binary (so ``out`` is byte for byte what the
+    command line writes), with the GIL released. ``options`` are the command's flags by name,
+    ``_`` for ``-``: ``fps=30``, ``scheme="slerp"``, ``translation_tolerance=0.1``,
+    ``shared_keys=True`` (``True`` gives the bare flag; ``False``/``None`` leave it out; a list
+    repeats it). An ``out`` newer than ``path`` is skipped unless ``refresh``; its folder is
+    made. The record is the batch manifest's: ``input``, ``output``, ``status`` (``"ok"``,
+    ``"skipped"``, ``"failed"``), ``seconds``, ``error`` (a failed file's message, naming the
+    file), ``exit_code`` (the command line's: 2 refused input, 1 internal error) and
+    ``warnings``. A failed file is a record, not an exception, so that a map over a folder goes
+    on; an unknown ``command`` is an ``InputError``.
+    """
+    return _inbetween.process_file(os.fspath(path), os.fspath(out), command, dict(options),
+                                   refresh)

@@ -81,3 +81,10 @@ def write(
     euler: str = ...,
     scalar_first: bool = ...,
 ) -> None: ...
+def process_file(
+    path: str,
+    out: str,
+    command: str,
+    options: Optional[Dict[str, Any]] = ...,
+    refresh: bool = ...,
+) -> Dict[str, Any]: ...

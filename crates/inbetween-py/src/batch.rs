@@ -1,0 +1,109 @@
+//! `process_file`: one command of the command line on one file, in-process, as a batch of the
+//! command line runs it (docs/python.md, *Many files*): the same code, so the same bytes, with
+//! the GIL released — for Dask, joblib, Ray or a thread pool mapping it over a folder.
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::ffi::OsString;
+use std::path::Path;
+use std::time::Instant;
+
+/// The commands that write a file.
+const COMMANDS: [&str; 3] = ["interp", "convert", "reduce"];
+
+/// Runs `inbetween <command> <path> -o <out> <options>` and returns its record (the batch
+/// manifest's: input, output, status, seconds, error, warnings). `options` maps a flag's name
+/// (`fps`, `scheme`, `translation_tolerance`; `_` for `-`) to its value: `True` gives the bare
+/// flag, `False` or `None` leaves it out, a list repeats it. An output newer than its input is
+/// `skipped` unless `refresh`; its folder is made.
+#[pyfunction]
+#[pyo3(signature = (path, out, command, options=None, refresh=false))]
+pub fn process_file<'py>(
+    py: Python<'py>,
+    path: &str,
+    out: &str,
+    command: &str,
+    options: Option<&Bound<'py, PyDict>>,
+    refresh: bool,
+) -> PyResult<Bound<'py, PyDict>> {
+    if !COMMANDS.contains(&command) {
+        return Err(crate::input_error(format!(
+            "command: expected \"interp\", \"convert\" or \"reduce\", found \"{command}\""
+        )));
+    }
+    let mut args: Vec<OsString> = ["inbetween", command, path, "-o", out]
+        .iter()
+        .map(OsString::from)
+        .collect();
+    if let Some(options) = options {
+        for (k, v) in options.iter() {
+            let name: String = k.extract()?;
+            let flag = format!("--{}", name.replace('_', "-"));
+            if v.is_none() {
+                continue;
+            }
+            if let Ok(b) = v.extract::<bool>() {
+                if b {
+                    args.push(flag.into());
+                }
+                continue;
+            }
+            let values: Vec<Bound<'py, PyAny>> = match v.extract::<Vec<Bound<'py, PyAny>>>() {
+                Ok(list) if !v.is_instance_of::<pyo3::types::PyString>() => list,
+                _ => vec![v],
+            };
+            for value in values {
+                args.push(flag.clone().into());
+                args.push(value.str()?.to_string().into());
+            }
+        }
+    }
+    let record = PyDict::new(py);
+    record.set_item("input", path)?;
+    record.set_item("output", out)?;
+    let t0 = Instant::now();
+    let newer = || {
+        let time = |p: &str| std::fs::metadata(p).and_then(|m| m.modified()).ok();
+        matches!((time(out), time(path)), (Some(o), Some(i)) if o > i)
+    };
+    if !refresh && newer() {
+        record.set_item("status", "skipped")?;
+        record.set_item("seconds", 0.0)?;
+        return Ok(record);
+    }
+    if let Some(dir) = Path::new(out)
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+    {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| crate::input_error(format!("{}: {e}", dir.display())))?;
+    }
+    let (code, lines) = py.detach(move || {
+        let mut lines: Vec<String> = Vec::new();
+        let code = inbetween::parallel::serially(|| {
+            inbetween_cli::run(args, &mut std::io::empty(), &mut |l| {
+                lines.push(l.to_string())
+            })
+        });
+        (code, lines)
+    });
+    let seconds = (t0.elapsed().as_secs_f64() * 1e3).round() / 1e3;
+    let error = lines
+        .iter()
+        .rev()
+        .find_map(|l| l.strip_prefix("inbetween: error: "))
+        .map(str::to_string);
+    let warnings: Vec<String> = lines
+        .iter()
+        .filter(|l| !l.starts_with("inbetween: error: "))
+        .cloned()
+        .collect();
+    record.set_item("status", if code == 0 { "ok" } else { "failed" })?;
+    record.set_item("seconds", seconds)?;
+    if let Some(e) = error.filter(|_| code != 0) {
+        record.set_item("error", e)?;
+    }
+    record.set_item("exit_code", code)?;
+    record.set_item("warnings", warnings)?;
+    Ok(record)
+}

@@ -1,0 +1,79 @@
+"""process_file and the Dask example (examples/python/dask_batch.py): the same outputs, byte
+for byte, as the command line's own batch (`--out-dir`), and records like its manifest."""
+
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+import inbetween
+
+ROOT = pathlib.Path(__file__).resolve().parents[3]
+FIXTURES = ROOT / "fixtures"
+
+
+def _library(folder: pathlib.Path) -> pathlib.Path:
+    clips = folder / "clips"
+    (clips / "fbx").mkdir(parents=True)
+    shutil.copy(FIXTURES / "bvh/cmu_01_01.bvh", clips / "walk.bvh")
+    shutil.copy(FIXTURES / "bvh/mixed_orders.bvh", clips / "mixed.bvh")
+    shutil.copy(FIXTURES / "fbx/real/huesitos.fbx", clips / "fbx/huesitos.fbx")
+    shutil.copy(FIXTURES / "interp/multitrack.json", clips / "keys.json")
+    return clips
+
+
+def _tree(folder: pathlib.Path) -> dict:
+    return {p.relative_to(folder).as_posix(): p.read_bytes()
+            for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def test_process_file_writes_what_the_command_line_writes(tmp_path, cli):
+    clip = FIXTURES / "bvh/cmu_01_01.bvh"
+    out = tmp_path / "deep/a.json"
+    record = inbetween.process_file(clip, out, "reduce", tolerance=0.5, translation_tolerance=0.1)
+    assert record["status"] == "ok" and record["exit_code"] == 0, record
+    single = tmp_path / "b.json"
+    subprocess.run([cli, "reduce", str(clip), "--tolerance", "0.5", "--translation-tolerance",
+                    "0.1", "-o", str(single)], check=True)
+    assert out.read_bytes() == single.read_bytes()
+    # Newer output: skipped; refresh: done again.
+    assert inbetween.process_file(clip, out, "reduce", tolerance=0.5,
+                                  translation_tolerance=0.1)["status"] == "skipped"
+    assert inbetween.process_file(clip, out, "reduce", refresh=True, tolerance=0.5,
+                                  translation_tolerance=0.1)["status"] == "ok"
+    # A refused input is a record with the command line's located message and exit code 2.
+    bad = tmp_path / "bad.bvh"
+    bad.write_text("HIERARCHY\nROOT x\n{\n")
+    r = inbetween.process_file(bad, tmp_path / "bad.json", "interp", fps=30)
+    assert r["status"] == "failed" and r["exit_code"] == 2
+    assert r["error"] == f'{bad}: expected "OFFSET", found the end of the file'
+    assert not (tmp_path / "bad.json").exists()
+    with pytest.raises(inbetween.InputError, match="command"):
+        inbetween.process_file(clip, out, "plot")
+
+
+def test_the_dask_example_matches_the_command_lines_batch(tmp_path, cli):
+    try:
+        import dask.distributed  # noqa: F401
+    except ImportError:
+        if os.environ.get("INBETWEEN_REQUIRE_CLI"):
+            raise
+        pytest.skip("dask.distributed is not installed")
+    clips = _library(tmp_path)
+    options = ["--fps", "30", "--output-format", "json"]
+    subprocess.run([cli, "interp", str(clips), *options, "--jobs", "2", "--out-dir",
+                    str(tmp_path / "cli")], check=True)
+    done = subprocess.run(
+        [sys.executable, str(ROOT / "examples/python/dask_batch.py"), str(clips),
+         str(tmp_path / "dask"), "--command", "interp", "--workers", "2", "--manifest",
+         str(tmp_path / "m.jsonl"), "--", *options],
+        capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    cli_tree, dask_tree = _tree(tmp_path / "cli"), _tree(tmp_path / "dask")
+    assert sorted(cli_tree) == ["fbx/huesitos.json", "keys.json", "mixed.json", "walk.json"]
+    assert dask_tree == cli_tree
+    lines = (tmp_path / "m.jsonl").read_text().splitlines()
+    assert len(lines) == 4 and all('"status": "ok"' in l for l in lines)
