@@ -75,6 +75,14 @@ pub fn run(
         )),
         None => None,
     };
+    // The largest files first, so that the threads end together (the longest-first rule); the
+    // outputs do not depend on the order.
+    let mut order: Vec<(u64, usize)> = jobs
+        .iter()
+        .enumerate()
+        .map(|(i, j)| (std::fs::metadata(&j.input).map_or(0, |m| m.len()), i))
+        .collect();
+    order.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
     let tally = Mutex::new(Tally::default());
     let next = AtomicUsize::new(0);
     let started = Instant::now();
@@ -82,7 +90,9 @@ pub fn run(
         crate::output::hold_commits();
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(job) = jobs.get(i) else { break };
+            let Some(job) = order.get(i).map(|&(_, k)| &jobs[k]) else {
+                break;
+            };
             let t0 = Instant::now();
             let mut warnings: Vec<String> = Vec::new();
             let known = job

@@ -12,23 +12,23 @@ use serde_json::Value;
 /// (fixtures/fbx/README.md).
 const ANGLE: f64 = 2e-6;
 
-fn quat(v: &Value) -> DQuat {
-    let a: Vec<f64> = v
-        .as_array()
+/// A JSON array of numbers.
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
         .unwrap()
         .iter()
         .map(|x| x.as_f64().unwrap())
-        .collect();
+        .collect()
+}
+
+/// `[w, x, y, z]`.
+fn quat(v: &Value) -> DQuat {
+    let a = numbers(v);
     DQuat::from_xyzw(a[1], a[2], a[3], a[0])
 }
 
 fn vec3(v: &Value) -> DVec3 {
-    let a: Vec<f64> = v
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let a = numbers(v);
     DVec3::new(a[0], a[1], a[2])
 }
 

@@ -6,16 +6,21 @@
 use crate::support::{bin, checker_python, fixtures};
 use std::path::Path;
 
-/// `check_usd.py usda npz extra…` succeeds (the checker prints its findings on failure).
-fn usd_core_accepts(python: &Path, usda: &Path, npz: &Path, extra: &[&str]) {
+/// `check_usd.py usda npz extra…`, run.
+fn check_usd(python: &Path, usda: &Path, npz: &Path, extra: &[&str]) -> std::process::Output {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
-    let o = std::process::Command::new(python)
+    std::process::Command::new(python)
         .arg(root.join("fixtures/usd/check_usd.py"))
         .arg(usda)
         .arg(npz)
         .args(extra)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// `check_usd.py usda npz extra…` succeeds (the checker prints its findings on failure).
+fn usd_core_accepts(python: &Path, usda: &Path, npz: &Path, extra: &[&str]) {
+    let o = check_usd(python, usda, npz, extra);
     assert!(
         o.status.success(),
         "check_usd {}: {}{}",
@@ -122,20 +127,18 @@ fn a_reduced_slerp_file_plays_within_its_tolerance_in_usd() {
         ],
     );
     // And not within a tenth of it: the check can fail.
-    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
-    let o = std::process::Command::new(&python)
-        .arg(root.join("fixtures/usd/check_usd.py"))
-        .arg(&small)
-        .arg(&npz)
-        .args([
+    let o = check_usd(
+        &python,
+        &small,
+        &npz,
+        &[
             "--times-from-npz",
             "--max-angle-deg",
             "0.1",
             "--max-translation",
             "0.1",
-        ])
-        .output()
-        .unwrap();
+        ],
+    );
     assert!(
         !o.status.success(),
         "a 0.1° bound should fail on keys reduced at 1°"
