@@ -5,8 +5,9 @@ The same code runs on a local cluster (``--workers N`` processes on this machine
 multi-machine one (``--scheduler tcp://host:8786``, workers started with ``dask worker``, each
 with ``inbetween`` installed). Every file of IN (recursively; hidden files left out) is one task:
 ``inbetween <command> <file> -o <out>`` run inside the worker by the command line's own code, its
-output under OUT at the file's path relative to IN, with the output format's extension
-(``--output-format``'s, else the input's own; FBX, which is not written, as ``.json``) — the
+output under OUT at the file's path relative to IN, with the extension the command line's batch
+gives it (``--output-format``'s, else the input's own; keys as ``.json`` for ``convert`` and
+``reduce`` of BVH, FBX or USD) — the
 layout, bytes and records of the command line's ``--out-dir`` batch. The records go to
 ``--manifest`` (JSON Lines) as tasks finish; the exit code is 0 when every file succeeded or was
 skipped, 2 when one was refused, 1 on an internal error.
@@ -58,9 +59,10 @@ def command_options(words: list[str]) -> dict:
     return options
 
 
-def output_path(source: Path, folder: Path, out: Path, options: dict) -> Path:
+def output_path(source: Path, folder: Path, out: Path, command: str, options: dict) -> Path:
+    """Where the command line's ``--out-dir`` puts ``source``'s output (docs/spec.md, Batch)."""
     ext = options.get("output_format") or source.suffix.lstrip(".").lower()
-    if ext in ("fbx", ""):
+    if ext in ("fbx", "") or (command != "interp" and ext in ("bvh", "usda")):
         ext = "json"
     return (out / source.relative_to(folder)).with_suffix("." + ext)
 
@@ -88,7 +90,7 @@ def main(argv: list[str]) -> int:
                                dashboard_address=None)
         client = Client(cluster)
     sources = files_below(args.input)
-    outputs = [output_path(s, args.input, args.out, options) for s in sources]
+    outputs = [output_path(s, args.input, args.out, args.command, options) for s in sources]
     task = functools.partial(inbetween.process_file, command=args.command, refresh=args.refresh,
                              **options)
     futures = client.map(task, [str(s) for s in sources], [str(o) for o in outputs], pure=False)

@@ -44,7 +44,7 @@ pub fn install_signals() {
 /// Runs a command over several inputs ([`cmd::batch::run`]): each input with its own `-o` under
 /// `--out-dir`, standard input empty, the batch options cleared.
 macro_rules! batch {
-    ($args:expr, $run:path) => {{
+    ($args:expr, $run:path, $keys:expr) => {{
         let args = $args;
         if args.output.output.is_some() {
             Err(inbetween::InputError::new(
@@ -55,7 +55,7 @@ macro_rules! batch {
             cmd::batch::run(
                 args.input.input.as_deref(),
                 &args.batch,
-                &|input: &std::path::Path| cmd::batch::extension(input, &args.output),
+                &|input: &std::path::Path| cmd::batch::extension(input, &args.output, $keys),
                 &|input: &std::path::Path, output: &std::path::Path, warn: &mut dyn FnMut(&str)| {
                     let mut one = args.clone();
                     one.input.input = Some(input.to_path_buf());
@@ -86,9 +86,9 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
     // `diff --max-angle/--max-position`: the limit a difference exceeds (exit 1, as diff(1)).
     let mut exceeds: Option<String> = None;
     let result = match &cli.command {
-        Command::Convert(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::convert::run),
-        Command::Interp(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::interp::run),
-        Command::Reduce(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::reduce::run),
+        Command::Convert(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::convert::run, true),
+        Command::Interp(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::interp::run, false),
+        Command::Reduce(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::reduce::run, true),
         Command::Convert(args) => cmd::convert::run(args, stdin, &mut warn),
         Command::Interp(args) => cmd::interp::run(args, stdin, &mut warn),
         Command::Analyze(args) => cmd::analyze::run(args, stdin, &mut warn),

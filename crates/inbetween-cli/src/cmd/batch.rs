@@ -14,6 +14,34 @@ use std::time::Instant;
 /// The extensions of the input formats (a folder's other files are failed inputs).
 pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
 
+/// What one input came to, for its manifest line: set by the command run on it ([`note`]).
+#[derive(Debug, Clone, Default)]
+pub struct Stats {
+    /// Frames: written (`interp`, all tracks together) or read (`reduce`).
+    pub frames: Option<u64>,
+    /// Tracks.
+    pub tracks: Option<usize>,
+    /// Keys: kept (`reduce`) or written (`convert`), all tracks together.
+    pub keys: Option<usize>,
+    /// `reduce`: the largest error of any track, in `--angles` units (with `--distance`, a
+    /// length).
+    pub largest_error: Option<f64>,
+}
+
+std::thread_local! {
+    static STATS: std::cell::RefCell<Option<Stats>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Records figures of the input being processed on this thread, when a batch runs it (else
+/// nothing).
+pub fn note(f: impl FnOnce(&mut Stats)) {
+    STATS.with(|s| {
+        if let Some(stats) = s.borrow_mut().as_mut() {
+            f(stats)
+        }
+    });
+}
+
 /// The command on one input: `(input, output, warn)`.
 pub type OneInput<'a> = dyn Fn(&Path, &Path, &mut dyn FnMut(&str)) -> Result<(), Error> + Sync + 'a;
 
@@ -83,6 +111,16 @@ pub fn run(
         .map(|(i, j)| (std::fs::metadata(&j.input).map_or(0, |m| m.len()), i))
         .collect();
     order.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
+    // A progress bar on a terminal (files done of all, elapsed, rate); nothing otherwise.
+    let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+        let style = indicatif::ProgressStyle::with_template(
+            "{bar:30} {pos}/{len} files, {elapsed_precise}, {per_sec}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+        indicatif::ProgressBar::new(jobs.len() as u64).with_style(style)
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
     let tally = Mutex::new(Tally::default());
     let next = AtomicUsize::new(0);
     let started = Instant::now();
@@ -126,6 +164,7 @@ pub fn run(
                                     output.display()
                                 )))
                             });
+                        STATS.with(|s| *s.borrow_mut() = Some(Stats::default()));
                         let result = made.and_then(|()| {
                             inbetween::parallel::serially(|| {
                                 one(&job.input, &output, &mut |w: &str| {
@@ -141,19 +180,35 @@ pub fn run(
                 }
             };
             let seconds = t0.elapsed().as_secs_f64();
-            for w in &warnings {
-                eprintln!("inbetween: warning: {w}");
-            }
             let message = error.as_ref().map(crate::flags::error_text);
-            if let Some(m) = &message {
-                eprintln!("inbetween: error: {m}");
-            }
+            bar.suspend(|| {
+                for w in &warnings {
+                    eprintln!("inbetween: warning: {w}");
+                }
+                if let Some(m) = &message {
+                    eprintln!("inbetween: error: {m}");
+                }
+            });
             let mut record = serde_json::json!({
                 "input": job.input.display().to_string(),
                 "output": output.as_ref().map(|o| o.display().to_string()),
                 "status": status,
                 "seconds": (seconds * 1e3).round() / 1e3,
             });
+            let stats = STATS
+                .with(|s| s.borrow_mut().take())
+                .filter(|_| error.is_none());
+            if let Some(st) = stats {
+                let mut put = |k: &str, v: Option<serde_json::Value>| {
+                    if let Some(v) = v {
+                        record[k] = v;
+                    }
+                };
+                put("frames", st.frames.map(Into::into));
+                put("tracks", st.tracks.map(Into::into));
+                put("keys", st.keys.map(Into::into));
+                put("largest_error", st.largest_error.map(Into::into));
+            }
             if let Some(m) = message {
                 record["error"] = serde_json::Value::from(m);
             }
@@ -166,6 +221,7 @@ pub fn run(
             }
             // The output and its line are both written: a signal may end the process now.
             crate::output::release_commit();
+            bar.inc(1);
             let mut t = tally
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -182,6 +238,7 @@ pub fn run(
             s.spawn(work);
         }
     });
+    bar.finish_and_clear();
     let t = tally
         .into_inner()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -221,9 +278,15 @@ pub fn wanted(batch: &BatchArgs) -> bool {
         || batch.refresh
 }
 
-/// The extension of an input's output: `--output-format`'s, else the input's own (FBX, which is
-/// not written, as JSON).
-pub fn extension(input: &Path, output: &crate::cli::OutputArgs) -> Result<String, Error> {
+/// The extension of an input's output: `--output-format`'s, else what the command writes for
+/// that input without `-o` — `interp` the input's own format (FBX, which is not written: JSON),
+/// `convert` and `reduce` keys as JSON for a BVH, FBX or USD input (`reduce` of glTF: glTF), a
+/// keys document's own format otherwise.
+pub fn extension(
+    input: &Path,
+    output: &crate::cli::OutputArgs,
+    keys: bool,
+) -> Result<String, Error> {
     use inbetween_io::gltf::ContainerFormat;
     use inbetween_io::{Format, OutputFormat};
     let ext = match output.output_format {
@@ -243,6 +306,7 @@ pub fn extension(input: &Path, output: &crate::cli::OutputArgs) -> Result<String
                 .unwrap_or_default();
             return Ok(match own.as_str() {
                 "fbx" | "" => "json".into(),
+                "bvh" | "usda" if keys => "json".into(),
                 _ => own,
             });
         }

@@ -54,6 +54,10 @@ pub fn run(
     // Frames of keys that declare no rate, with no --fps, are at the skeleton's Frame Time: the
     // rate the clip they came from was captured at.
     let fps = args.fps.or(template.as_ref().map(|t| t.fps()));
+    super::batch::note(|s| {
+        s.tracks = Some(doc.tracks.len());
+        s.keys = Some(doc.tracks.iter().map(|t| t.keys.len()).sum());
+    });
     let (frame_fps, _) = rates(&doc, fps);
     for track in &doc.tracks {
         doc.track_times(track, frame_fps, 1)?;

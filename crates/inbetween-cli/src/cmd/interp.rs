@@ -131,6 +131,10 @@ pub fn run(
     let rows: u64 = (0..tracks.len())
         .map(|i| fps.frame_count(span(i).0, span(i).1))
         .fold(0, u64::saturating_add);
+    super::batch::note(|s| {
+        s.frames = Some(rows);
+        s.tracks = Some(tracks.len());
+    });
     if rows > args.max_frames {
         return Err(InputError::new(format!(
             "{}: interp would write {rows} frames at {fps} fps, more than --max-frames {}",
@@ -514,6 +518,10 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
     if joints.is_empty() || rows > args.max_frames {
         return None;
     }
+    super::batch::note(|s| {
+        s.frames = Some(rows);
+        s.tracks = Some(joints.len());
+    });
     for &j in &joints {
         near_misses(
             &source,

@@ -356,6 +356,8 @@ pub(super) fn reduce_tracks(
 
 /// `-v`'s line for each track of `input` reduced to `reduced`.
 pub(super) fn report_all(args: &ReduceArgs, input: &Curves, reduced: &[Reduced]) {
+    let lens: Vec<usize> = input.tracks.iter().map(|t| t.len()).collect();
+    note_batch(args, &lens, reduced);
     // A position tolerance reports its own lines, with the world figures.
     if args.verbose && args.position_tolerance.is_none() {
         for (t, r) in input.tracks.iter().zip(reduced) {
@@ -450,6 +452,21 @@ pub(super) fn unit_name(args: &ReduceArgs) -> &'static str {
 }
 
 /// `-v`'s line for a track named `name` of `len` frames reduced to `r`.
+/// A batch's figures of this input: the frames read, tracks, keys kept and largest error.
+pub(super) fn note_batch(args: &ReduceArgs, lens: &[usize], reduced: &[Reduced]) {
+    super::batch::note(|s| {
+        s.frames = Some(lens.iter().map(|&n| n as u64).sum());
+        s.tracks = Some(reduced.len());
+        s.keys = Some(reduced.iter().map(|r| r.keys.len()).sum());
+        s.largest_error = Some(
+            reduced
+                .iter()
+                .map(|r| unit(args, r.max_error))
+                .fold(0.0, f64::max),
+        );
+    });
+}
+
 pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Reduced) {
     let unit = |x: f64| unit(args, x);
     let unit_name = unit_name(args);

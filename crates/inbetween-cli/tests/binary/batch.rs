@@ -108,6 +108,15 @@ fn a_batch_writes_what_each_single_command_writes_and_lists_every_input() {
     }
     let records = manifest(&list);
     assert_eq!(records.len(), 6);
+    let walk = records
+        .iter()
+        .find(|r| r["input"].as_str().unwrap().ends_with("walk.bvh"))
+        .unwrap();
+    // cmu_01_01: 31 joints, 61 frames at 120 fps → 16 frames at 30 fps each.
+    assert_eq!(
+        (walk["tracks"].as_u64(), walk["frames"].as_u64()),
+        (Some(31), Some(31 * 16))
+    );
     for (name, message) in [
         (
             "broken.bvh",
@@ -144,8 +153,8 @@ fn a_batch_writes_what_each_single_command_writes_and_lists_every_input() {
     let records = manifest(&list);
     assert_eq!(status_of(&records, "walk.bvh"), ["ok", "skipped"]);
     assert_eq!(status_of(&records, "broken.bvh"), ["failed", "failed"]);
-    // --refresh redoes them.
-    bin()
+    // --refresh redoes them; on a stderr that is no terminal, no progress bar: the summary only.
+    let refreshed = bin()
         .arg("interp")
         .arg(input.join("walk.bvh"))
         .arg(input.join("sub"))
@@ -160,10 +169,43 @@ fn a_batch_writes_what_each_single_command_writes_and_lists_every_input() {
         .arg(&out)
         .arg("--manifest")
         .arg(&list)
-        .assert()
-        .success();
+        .output()
+        .unwrap();
+    assert!(refreshed.status.success());
+    let err = String::from_utf8_lossy(&refreshed.stderr);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("inbetween: 3 inputs: 3 ok, 0 skipped, 0 failed ("),
+        "{err}"
+    );
     let records = manifest(&list);
     assert_eq!(status_of(&records, "walk.bvh"), ["ok", "skipped", "ok"]);
+    // reduce's records carry the keys kept and the largest error.
+    let reduced = dir.path().join("reduced.jsonl");
+    bin()
+        .arg("reduce")
+        .arg(input.join("walk.bvh"))
+        .args([
+            "--tolerance",
+            "1",
+            "--translation-tolerance",
+            "0.1",
+            "--out-dir",
+        ])
+        .arg(dir.path().join("r"))
+        .arg("--manifest")
+        .arg(&reduced)
+        .assert()
+        .success();
+    let r = &manifest(&reduced)[0];
+    assert_eq!(
+        (r["frames"].as_u64(), r["tracks"].as_u64()),
+        (Some(31 * 61), Some(31))
+    );
+    let keys = r["keys"].as_u64().unwrap();
+    assert!((62..31 * 61).contains(&keys), "{r}");
+    let e = r["largest_error"].as_f64().unwrap();
+    assert!(e > 0.0 && e <= 1.0, "{r}");
     assert_eq!(status_of(&records, "keys.json"), ["ok", "skipped", "ok"]);
 }
 
