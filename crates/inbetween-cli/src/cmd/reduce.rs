@@ -356,8 +356,7 @@ pub(super) fn reduce_tracks(
 
 /// `-v`'s line for each track of `input` reduced to `reduced`.
 pub(super) fn report_all(args: &ReduceArgs, input: &Curves, reduced: &[Reduced]) {
-    let lens: Vec<usize> = input.tracks.iter().map(|t| t.len()).collect();
-    note_batch(args, &lens, reduced);
+    note_batch(args, input.tracks.iter().map(|t| t.len()).zip(reduced));
     // A position tolerance reports its own lines, with the world figures.
     if args.verbose && args.position_tolerance.is_none() {
         for (t, r) in input.tracks.iter().zip(reduced) {
@@ -453,17 +452,22 @@ pub(super) fn unit_name(args: &ReduceArgs) -> &'static str {
 
 /// `-v`'s line for a track named `name` of `len` frames reduced to `r`.
 /// A batch's figures of this input: the frames read, tracks, keys kept and largest error.
-pub(super) fn note_batch(args: &ReduceArgs, lens: &[usize], reduced: &[Reduced]) {
+pub(super) fn note_batch<'a>(
+    args: &ReduceArgs,
+    tracks: impl IntoIterator<Item = (usize, &'a Reduced)>,
+) {
     super::batch::note(|s| {
-        s.frames = Some(lens.iter().map(|&n| n as u64).sum());
-        s.tracks = Some(reduced.len());
-        s.keys = Some(reduced.iter().map(|r| r.keys.len()).sum());
-        s.largest_error = Some(
-            reduced
-                .iter()
-                .map(|r| unit(args, r.max_error))
-                .fold(0.0, f64::max),
-        );
+        let (mut frames, mut count, mut keys, mut largest) = (0u64, 0, 0, 0.0f64);
+        for (len, r) in tracks {
+            frames += len as u64;
+            count += 1;
+            keys += r.keys.len();
+            largest = largest.max(unit(args, r.max_error));
+        }
+        s.frames = Some(frames);
+        s.tracks = Some(count);
+        s.keys = Some(keys);
+        s.largest_error = Some(largest);
     });
 }
 

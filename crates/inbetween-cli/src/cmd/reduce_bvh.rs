@@ -106,9 +106,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
     for w in &warnings {
         warn(w);
     }
-    let lens: Vec<usize> = reports.iter().map(|(_, len, _)| *len).collect();
-    let kept: Vec<Reduced> = reports.iter().map(|(_, _, r)| r.clone()).collect();
-    super::reduce::note_batch(args, &lens, &kept);
+    super::reduce::note_batch(args, reports.iter().map(|(_, len, r)| (*len, r)));
     if args.verbose {
         for (name, len, r) in &reports {
             report(args, name.as_deref(), *len, r);

@@ -171,17 +171,14 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         }
         tracks.push(track);
     }
-    // Reorder: tracks in the skeleton's joint order (parents first), as every skeleton's are.
-    let mut order: Vec<(usize, usize)> = joints
-        .iter()
-        .enumerate()
-        .filter_map(|(j, joint)| joint.track.map(|t| (j, t)))
-        .collect();
-    order.sort();
+    // Tracks in the skeleton's joint order (parents first), as every skeleton's are.
+    let mut tracks: Vec<Option<DocTrack>> = tracks.into_iter().map(Some).collect();
     let mut sorted = Vec::with_capacity(tracks.len());
-    for (new, &(j, t)) in order.iter().enumerate() {
-        joints[j].track = Some(new);
-        sorted.push(tracks[t].clone());
+    for joint in &mut joints {
+        if let Some(t) = joint.track {
+            joint.track = Some(sorted.len());
+            sorted.push(tracks[t].take().expect("one joint per animation joint"));
+        }
     }
     let hierarchy = Skeleton::new(joints)
         .map_err(|e| InputError::new(format!("{source}: the Skeleton: {}", e.message())))?;
