@@ -72,6 +72,13 @@ macro_rules! batch {
 /// `stdin` as standard input; every line meant for standard error goes to `err` (without its
 /// line end). Returns the exit code.
 pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str)) -> u8 {
+    // Every line of stderr escaped and bounded (cli::line); a text of several lines (clap's
+    // usage errors) line by line.
+    let err = &mut |text: &str| {
+        for l in text.split('\n') {
+            err(&cli::line(l));
+        }
+    };
     let mut cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => return usage_error(&e, err),

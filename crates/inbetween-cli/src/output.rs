@@ -180,14 +180,20 @@ fn interrupted() -> io::Error {
 /// (`… at path "dir/.inbetween-XXXX.tmp"`); only their cause is kept.
 fn named(path: &Path, what: &str, e: io::Error) -> Error {
     let message = e.to_string();
-    let cause = match message.rsplit_once(" at path \"") {
-        Some((cause, _)) => cause,
-        None => &message,
-    };
+    let cause = without_temp_path(&message);
     Error::Io(io::Error::new(
         e.kind(),
         format!("-o {}: {what}: {cause}", path.display()),
     ))
+}
+
+/// An error's text without the ` at path "dir/.inbetween-XXXX.tmp"` tempfile appends: the
+/// message names the output, never its temporary file.
+fn without_temp_path(message: &str) -> &str {
+    match message.rsplit_once(" at path \"") {
+        Some((cause, _)) => cause,
+        None => message,
+    }
 }
 
 /// Follows a chain of symbolic links to the path it ends at (which may not exist). Relative
@@ -223,7 +229,7 @@ fn write_error(path: &Path, e: io::Error) -> io::Error {
     }
     // The OS's words without the temporary file's name that tempfile adds.
     let why = e.raw_os_error().map_or_else(
-        || e.to_string(),
+        || without_temp_path(&e.to_string()).to_string(),
         |n| io::Error::from_raw_os_error(n).to_string(),
     );
     io::Error::new(
@@ -573,5 +579,25 @@ impl Drop for WriteBehind {
         if let Some(t) = self.thread.take() {
             let _ = t.join();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A full disk while writing names the output, not the temporary file tempfile reports.
+    #[test]
+    fn write_errors_name_the_output_not_the_temporary_file() {
+        let e = io::Error::new(
+            io::ErrorKind::StorageFull,
+            "No space left on device (os error 28) at path \"/d/.inbetween-Ab12.tmp\"",
+        );
+        let w = write_error(Path::new("/d/out.json"), e);
+        assert_eq!(
+            w.to_string(),
+            "-o /d/out.json: cannot write: No space left on device (os error 28)"
+        );
+        assert_eq!(w.kind(), io::ErrorKind::StorageFull);
     }
 }

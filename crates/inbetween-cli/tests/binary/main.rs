@@ -8,6 +8,7 @@ mod animator;
 mod app_conventions;
 mod arrays;
 mod batch;
+mod batch_untrusted;
 mod bvh;
 mod bvh_stream;
 mod bvh_untrusted;

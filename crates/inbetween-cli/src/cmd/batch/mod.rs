@@ -11,6 +11,9 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
+mod inputs;
+pub use inputs::Job;
+
 /// The extensions of the input formats (a folder's other files are failed inputs).
 pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
 
@@ -45,28 +48,132 @@ pub fn note(f: impl FnOnce(&mut Stats)) {
 /// The command on one input: `(input, output, warn)`.
 pub type OneInput<'a> = dyn Fn(&Path, &Path, &mut dyn FnMut(&str)) -> Result<(), Error> + Sync + 'a;
 
-/// One input of a batch: its path and its path relative to where it was found.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Job {
-    /// The input file.
-    pub input: PathBuf,
-    /// Where it was found from: its path below the folder or the pattern's fixed part.
-    pub relative: PathBuf,
-}
-
 /// What finished inputs came to.
 #[derive(Debug, Default)]
 struct Tally {
     ok: usize,
     skipped: usize,
     refused: usize,
+    unwritten: usize,
     internal: usize,
 }
 
+/// `path` as messages show it: its control characters escaped (`\n`, `\u{1b}`), so that a
+/// file's name cannot write to the terminal.
+pub fn shown(path: &Path) -> String {
+    crate::cli::printable(&path.display().to_string())
+}
+
+/// Whether `path` has the extension of an input format.
+fn known(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| INPUT_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()))
+}
+
+/// The output of `job` under `out_dir` (with `ext`'s extension), or why it has none.
+fn output_of(
+    job: &Job,
+    out_dir: &Path,
+    ext: &(dyn Fn(&Path) -> Result<String, Error> + Sync),
+) -> Result<PathBuf, Error> {
+    if !known(&job.input) {
+        return Err(InputError::new(format!(
+            "{}: not an input format: a batch knows its inputs by their extension (.csv, .json, \
+             .bvh, .gltf, .glb, .fbx, .usda)",
+            shown(&job.input)
+        ))
+        .into());
+    }
+    let ext = ext(&job.input)?;
+    Ok(out_dir.join(&job.relative).with_extension(ext))
+}
+
+/// At most this many collisions are listed in the refusal.
+const LISTED: usize = 10;
+
+/// The manifest, appended a line at a time; the first error writing it.
+struct Manifest {
+    file: Option<Mutex<std::fs::File>>,
+    path: Option<PathBuf>,
+    error: Mutex<Option<std::io::Error>>,
+}
+
+impl Manifest {
+    /// Opens `path` for appending: refused when it exists and is not a regular file (a FIFO
+    /// would block, a device is not the user's log).
+    fn open(path: Option<&Path>) -> Result<Manifest, Error> {
+        let Some(path) = path else {
+            return Ok(Manifest {
+                file: None,
+                path: None,
+                error: Mutex::new(None),
+            });
+        };
+        if let Ok(m) = std::fs::metadata(path)
+            && !m.is_file()
+        {
+            return Err(InputError::new(format!(
+                "--manifest {}: expected a regular file, found {}",
+                shown(path),
+                if m.is_dir() {
+                    "a folder"
+                } else {
+                    "no regular file"
+                }
+            ))
+            .into());
+        }
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+            .map_err(|e| InputError::new(format!("--manifest {}: {e}", shown(path))))?;
+        Ok(Manifest {
+            file: Some(Mutex::new(file)),
+            path: Some(path.to_path_buf()),
+            error: Mutex::new(None),
+        })
+    }
+
+    /// Appends `record` as one line in one write; the first failure is kept for the exit.
+    fn write(&self, record: &serde_json::Value) {
+        let Some(f) = &self.file else {
+            return;
+        };
+        let mut f = f.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let written = f
+            .write_all(format!("{record}\n").as_bytes())
+            .and_then(|()| f.flush());
+        if let Err(e) = written {
+            let mut first = self
+                .error
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner);
+            first.get_or_insert(e);
+        }
+    }
+
+    /// The error of the first line that could not be written, naming the manifest.
+    fn failure(self) -> Option<Error> {
+        let e = self
+            .error
+            .into_inner()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)?;
+        let path = self.path.as_deref().map(shown).unwrap_or_default();
+        Some(Error::Io(std::io::Error::new(
+            e.kind(),
+            format!("--manifest {path}: cannot write: {e}"),
+        )))
+    }
+}
+
 /// Runs `one(input, output, warn)` for every input of `first` and `batch.more` (see the module
-/// documentation). `ext` gives an input's output extension. Exit: `Ok` when every input
-/// succeeded or was skipped; an input error when one was refused; an internal error (exit 1)
-/// when one failed otherwise.
+/// documentation). `ext` gives an input's output extension. Before anything is written, the
+/// outputs and the manifest are checked against the inputs and each other: a collision refuses
+/// the batch. Exit: `Ok` when every input succeeded or was skipped; an input error when one was
+/// refused; an I/O error (exit 1) when an output or the manifest could not be written; an
+/// internal error (exit 1) when one failed otherwise.
 pub fn run(
     first: Option<&Path>,
     batch: &BatchArgs,
@@ -87,22 +194,59 @@ pub fn run(
         )
         .into());
     }
-    let jobs = expand(&patterns)?;
+    // The output folder is no input, nor is a manifest of no input format found in a folder.
+    let mut exclude = vec![out_dir.to_path_buf()];
+    exclude.extend(batch.manifest.iter().filter(|m| !known(m)).cloned());
+    let rules = inputs::Rules {
+        follow: batch.follow,
+        exclude,
+    };
+    let found = inputs::expand(&patterns, &rules)?;
+    let jobs = found.jobs;
+    let outputs: Vec<Result<PathBuf, Error>> =
+        jobs.iter().map(|j| output_of(j, out_dir, ext)).collect();
+    let clashes = inputs::collisions(
+        &jobs.iter().map(|j| j.input.as_path()).collect::<Vec<_>>(),
+        &jobs
+            .iter()
+            .zip(&outputs)
+            .filter_map(|(j, o)| o.as_ref().ok().map(|o| (j.input.as_path(), o.as_path())))
+            .collect::<Vec<_>>(),
+        batch.manifest.as_deref(),
+    );
+    if !clashes.is_empty() {
+        let more = clashes.len().saturating_sub(LISTED);
+        return Err(InputError::new(format!(
+            "the batch would write over its own files, so nothing was written: {}{}; choose \
+             another --out-dir (or --manifest), or name the inputs by a pattern",
+            clashes[..clashes.len().min(LISTED)].join("; "),
+            if more > 0 {
+                format!("; and {more} more")
+            } else {
+                String::new()
+            }
+        ))
+        .into());
+    }
+    let manifest = Manifest::open(batch.manifest.as_deref())?;
+    for p in &found.passed {
+        eprintln!(
+            "inbetween: warning: {}: {}, skipped",
+            shown(&p.path),
+            p.reason
+        );
+        manifest.write(&serde_json::json!({
+            "input": p.path.display().to_string(),
+            "output": null,
+            "status": "skipped",
+            "reason": p.reason,
+        }));
+    }
     let threads = batch
         .jobs
         .map(|n| n as usize)
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
         .min(jobs.len().max(1));
-    let manifest = match &batch.manifest {
-        Some(path) => Some(Mutex::new(
-            std::fs::OpenOptions::new()
-                .create(true)
-                .append(true)
-                .open(path)
-                .map_err(|e| InputError::new(format!("--manifest {}: {e}", path.display())))?,
-        )),
-        None => None,
-    };
     // The largest files first, so that the threads end together (the longest-first rule); the
     // outputs do not depend on the order.
     let mut order: Vec<(u64, usize)> = jobs
@@ -128,46 +272,33 @@ pub fn run(
         crate::output::hold_commits();
         loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
-            let Some(job) = order.get(i).map(|&(_, k)| &jobs[k]) else {
+            let Some((job, planned)) = order.get(i).map(|&(_, k)| (&jobs[k], &outputs[k])) else {
                 break;
             };
             let t0 = Instant::now();
             let mut warnings: Vec<String> = Vec::new();
-            let known = job
-                .input
-                .extension()
-                .and_then(|e| e.to_str())
-                .is_some_and(|e| INPUT_EXTENSIONS.contains(&e.to_ascii_lowercase().as_str()));
-            let format = if known {
-                ext(&job.input)
-            } else {
-                Err(InputError::new(format!(
-                    "{}: not an input format: a batch knows its inputs by their extension (.csv, \
-                     .json, .bvh, .gltf, .glb, .fbx, .usda)",
-                    job.input.display()
-                ))
-                .into())
-            };
-            let (status, output, error) = match format {
-                Err(e) => ("failed", None, Some(e)),
-                Ok(ext) => {
-                    let output = out_dir.join(&job.relative).with_extension(ext);
-                    if !batch.refresh && newer(&output, &job.input) {
+            let (status, output, error) = match planned {
+                Err(e) => ("failed", None, Some(copy(e))),
+                Ok(output) => {
+                    if !batch.refresh && newer(output, &job.input) {
                         ("skipped", Some(output), None)
                     } else {
                         let made = output
                             .parent()
                             .map_or(Ok(()), std::fs::create_dir_all)
                             .map_err(|e| {
-                                Error::Input(InputError::new(format!(
-                                    "--out-dir: cannot make the folder of {}: {e}",
-                                    output.display()
-                                )))
+                                Error::Io(std::io::Error::new(
+                                    e.kind(),
+                                    format!(
+                                        "--out-dir: cannot make the folder of {}: {e}",
+                                        shown(output)
+                                    ),
+                                ))
                             });
                         STATS.with(|s| *s.borrow_mut() = Some(Stats::default()));
                         let result = made.and_then(|()| {
                             inbetween::parallel::serially(|| {
-                                one(&job.input, &output, &mut |w: &str| {
+                                one(&job.input, output, &mut |w: &str| {
                                     warnings.push(w.to_string())
                                 })
                             })
@@ -183,18 +314,21 @@ pub fn run(
             let message = error.as_ref().map(crate::flags::error_text);
             bar.suspend(|| {
                 for w in &warnings {
-                    eprintln!("inbetween: warning: {w}");
+                    eprintln!("inbetween: warning: {}", crate::cli::line(w));
                 }
                 if let Some(m) = &message {
-                    eprintln!("inbetween: error: {m}");
+                    eprintln!("inbetween: error: {}", crate::cli::line(m));
                 }
             });
             let mut record = serde_json::json!({
                 "input": job.input.display().to_string(),
-                "output": output.as_ref().map(|o| o.display().to_string()),
+                "output": output.map(|o| o.display().to_string()),
                 "status": status,
                 "seconds": (seconds * 1e3).round() / 1e3,
             });
+            if status == "skipped" {
+                record["reason"] = "its output is newer (--refresh redoes it)".into();
+            }
             let stats = STATS
                 .with(|s| s.borrow_mut().take())
                 .filter(|_| error.is_none());
@@ -212,12 +346,10 @@ pub fn run(
             if let Some(m) = message {
                 record["error"] = serde_json::Value::from(m);
             }
-            if let Some(f) = &manifest {
-                // The line whole, in one write, under the lock a signal waits for.
+            // The line whole, in one write, under the lock a signal waits for.
+            if manifest.file.is_some() {
                 crate::output::hold_now();
-                let mut f = f.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-                let _ = f.write_all(format!("{record}\n").as_bytes());
-                let _ = f.flush();
+                manifest.write(&record);
             }
             // The output and its line are both written: a signal may end the process now.
             crate::output::release_commit();
@@ -229,6 +361,7 @@ pub fn run(
                 (None, "skipped") => t.skipped += 1,
                 (None, _) => t.ok += 1,
                 (Some(Error::Input(_)), _) => t.refused += 1,
+                (Some(Error::Io(_)), _) => t.unwritten += 1,
                 (Some(_), _) => t.internal += 1,
             }
         }
@@ -242,29 +375,40 @@ pub fn run(
     let t = tally
         .into_inner()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
-    let failed = t.refused + t.internal;
+    let skipped = t.skipped + found.passed.len();
+    let failed = t.refused + t.unwritten + t.internal;
+    let all = jobs.len() + found.passed.len();
     eprintln!(
-        "inbetween: {} inputs: {} ok, {} skipped, {failed} failed ({:.2} s, {threads} jobs)",
-        jobs.len(),
+        "inbetween: {all} inputs: {} ok, {skipped} skipped, {failed} failed ({:.2} s, {threads} \
+         jobs)",
         t.ok,
-        t.skipped,
         started.elapsed().as_secs_f64()
     );
-    if t.internal > 0 {
+    if let Some(e) = manifest.failure() {
+        Err(e)
+    } else if t.internal > 0 {
         Err(Error::Internal(format!(
-            "internal error: {} of {} inputs failed",
-            t.internal,
-            jobs.len()
+            "internal error: {} of {all} inputs failed",
+            t.internal
         )))
+    } else if t.unwritten > 0 {
+        Err(Error::Io(std::io::Error::other(format!(
+            "{} of {all} outputs could not be written",
+            t.unwritten
+        ))))
     } else if t.refused > 0 {
-        Err(InputError::new(format!(
-            "{} of {} inputs were refused",
-            t.refused,
-            jobs.len()
-        ))
-        .into())
+        Err(InputError::new(format!("{} of {all} inputs were refused", t.refused)).into())
     } else {
         Ok(())
+    }
+}
+
+/// A planned output's error again, for its record (the plan keeps its own).
+fn copy(e: &Error) -> Error {
+    match e {
+        Error::Input(i) => Error::Input(i.clone()),
+        Error::Io(io) => Error::Io(std::io::Error::new(io.kind(), io.to_string())),
+        Error::Internal(s) => Error::Internal(s.clone()),
     }
 }
 
@@ -318,157 +462,4 @@ pub fn extension(
 fn newer(output: &Path, input: &Path) -> bool {
     let time = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
     matches!((time(output), time(input)), (Some(o), Some(i)) if o > i)
-}
-
-/// The inputs of `patterns`, in order: a file as itself (relative path: its name), a folder's
-/// files recursively in name order (relative to the folder; hidden ones left out), a pattern
-/// with `*`, `?` or `[` the files below its fixed leading folders that match it (relative to
-/// them). A file found twice is processed once. Errors: a path that does not exist, a pattern
-/// that matches nothing, no inputs at all.
-pub fn expand(patterns: &[&Path]) -> Result<Vec<Job>, Error> {
-    let mut jobs: Vec<Job> = Vec::new();
-    for &p in patterns {
-        let text = p.to_string_lossy();
-        let found = if text.contains(['*', '?', '[']) {
-            let (base, rest) = fixed_prefix(p);
-            let mut files = Vec::new();
-            if base.is_dir() {
-                walk(&base, &mut files)?;
-            }
-            let rest = rest.to_string_lossy().replace('\\', "/");
-            let matched: Vec<Job> = files
-                .into_iter()
-                .filter_map(|f| {
-                    let rel = f.strip_prefix(&base).ok()?.to_path_buf();
-                    path_glob(&rest, &rel.to_string_lossy()).then_some(Job {
-                        input: f,
-                        relative: rel,
-                    })
-                })
-                .collect();
-            if matched.is_empty() {
-                return Err(
-                    InputError::new(format!("{text}: no file matches this pattern")).into(),
-                );
-            }
-            matched
-        } else if p.is_dir() {
-            let mut files = Vec::new();
-            walk(p, &mut files)?;
-            files
-                .into_iter()
-                .map(|f| Job {
-                    relative: f.strip_prefix(p).unwrap_or(&f).to_path_buf(),
-                    input: f,
-                })
-                .collect()
-        } else if p.exists() {
-            vec![Job {
-                input: p.to_path_buf(),
-                relative: PathBuf::from(p.file_name().unwrap_or(p.as_os_str())),
-            }]
-        } else {
-            return Err(InputError::new(format!("{text}: no such file or folder")).into());
-        };
-        for j in found {
-            if !jobs.iter().any(|k| k.input == j.input) {
-                jobs.push(j);
-            }
-        }
-    }
-    if jobs.is_empty() {
-        return Err(InputError::new(
-            "no input files (folders are searched for .csv, .json, .bvh, .gltf, .glb, .fbx, .usda)",
-        )
-        .into());
-    }
-    Ok(jobs)
-}
-
-/// The leading components of a pattern without glob characters, and the rest.
-fn fixed_prefix(p: &Path) -> (PathBuf, PathBuf) {
-    let mut base = PathBuf::new();
-    let mut rest = PathBuf::new();
-    let mut in_rest = false;
-    for c in p.components() {
-        let s = c.as_os_str().to_string_lossy();
-        if !in_rest && !s.contains(['*', '?', '[']) {
-            base.push(c);
-        } else {
-            in_rest = true;
-            rest.push(c);
-        }
-    }
-    if base.as_os_str().is_empty() {
-        base.push(".");
-    }
-    (base, rest)
-}
-
-/// Every file below `dir` but hidden ones (names starting with `.`), sorted by path.
-fn walk(dir: &Path, out: &mut Vec<PathBuf>) -> Result<(), Error> {
-    let entries = std::fs::read_dir(dir)
-        .map_err(|e| InputError::new(format!("{}: cannot read the folder: {e}", dir.display())))?;
-    let mut paths: Vec<PathBuf> = entries.filter_map(|e| e.ok().map(|e| e.path())).collect();
-    paths.sort();
-    for p in paths {
-        let hidden = p
-            .file_name()
-            .is_some_and(|n| n.to_string_lossy().starts_with('.'));
-        if hidden {
-            continue;
-        }
-        if p.is_dir() {
-            walk(&p, out)?;
-        } else {
-            out.push(p);
-        }
-    }
-    Ok(())
-}
-
-/// A relative path against a pattern of `/`-separated parts: `**` any number of folders, else
-/// each part a glob of `*` and `?` for one component.
-fn path_glob(pattern: &str, path: &str) -> bool {
-    let pat: Vec<&str> = pattern.split('/').filter(|s| !s.is_empty()).collect();
-    let parts: Vec<&str> = path.split(['/', '\\']).filter(|s| !s.is_empty()).collect();
-    fn go(pat: &[&str], parts: &[&str]) -> bool {
-        match pat.split_first() {
-            None => parts.is_empty(),
-            Some((&"**", rest)) => (0..=parts.len()).any(|k| go(rest, &parts[k..])),
-            Some((p, rest)) => parts
-                .split_first()
-                .is_some_and(|(first, more)| super::settings::glob(p, first) && go(rest, more)),
-        }
-    }
-    go(&pat, &parts)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn path_globs() {
-        assert!(path_glob("*.bvh", "a.bvh"));
-        assert!(!path_glob("*.bvh", "sub/a.bvh"));
-        assert!(path_glob("**/*.bvh", "sub/deeper/a.bvh"));
-        assert!(path_glob("**/*.bvh", "a.bvh"));
-        assert!(path_glob("sub/?.bvh", "sub/a.bvh"));
-        assert!(!path_glob("sub/?.bvh", "sub/ab.bvh"));
-    }
-
-    #[test]
-    fn fixed_prefixes() {
-        let (b, r) = fixed_prefix(Path::new("clips/cmu/*.bvh"));
-        assert_eq!(
-            (b.as_path(), r.as_path()),
-            (Path::new("clips/cmu"), Path::new("*.bvh"))
-        );
-        let (b, r) = fixed_prefix(Path::new("*/x.bvh"));
-        assert_eq!(
-            (b.as_path(), r.as_path()),
-            (Path::new("."), Path::new("*/x.bvh"))
-        );
-    }
 }
