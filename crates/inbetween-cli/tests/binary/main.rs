@@ -34,4 +34,5 @@ mod reliability;
 mod roundtrip;
 mod usage;
 mod usd;
+mod usd_untrusted;
 mod validation;

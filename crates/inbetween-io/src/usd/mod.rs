@@ -3,6 +3,7 @@
 
 pub mod frames;
 pub mod keys;
+mod lex;
 pub mod read;
 pub mod text;
 pub mod write;

@@ -1,6 +1,6 @@
 //! `.usda` input: a UsdSkel `Skeleton`'s bound `SkelAnimation` as tracks (docs/spec.md §3, *USD
-//! input*). Each joint the animation lists is a track named by its joint's name (the last part
-//! of its path); its keys are the animation's time samples — a time code is a frame number at
+//! input*). Each joint the animation lists is a track named by its joint's full path
+//! (`Hips/Spine/LeftArm`, unique in the Skeleton); its keys are the animation's time samples — a time code is a frame number at
 //! `timeCodesPerSecond` — and its translations the `translations` samples. Where rotations and
 //! translations are sampled at different times, the keys are at every time either has one, the
 //! other attribute evaluated there as USD does (slerp, linear, held beyond its ends). The
@@ -13,6 +13,7 @@ use glam::{DMat4, DQuat, DVec3, DVec4};
 use inbetween::clock::Fps;
 use inbetween::error::{InputError, InputResult};
 use inbetween::skeleton::{Joint, Skeleton};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// USD's default `timeCodesPerSecond` when a layer gives neither it nor `framesPerSecond`.
@@ -26,21 +27,23 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     };
     // A Skeleton's animation: its own skel:animationSource, else its nearest ancestor's (a
     // SkelRoot's binding is inherited, as UsdSkel resolves it).
-    let binding = |skel: &Prim| -> Option<(&Prim, &Property)> {
-        let mut path = skel.path.as_str();
-        loop {
-            let prim = layer.prims.iter().find(|p| p.path == path)?;
+    let binding = |skel: usize| -> Option<(&Prim, &Property)> {
+        let mut at = Some(skel);
+        while let Some(k) = at {
+            let prim = &layer.prims[k];
             if let Some(rel) = prim.property("skel:animationSource") {
                 return Some((prim, rel));
             }
-            path = &path[..path.rfind('/').filter(|&i| i > 0)?];
+            at = prim.parent;
         }
+        None
     };
     let (skeleton, (bound_at, source_rel)) = layer
         .prims
         .iter()
-        .filter(|p| p.type_name == "Skeleton")
-        .find_map(|p| binding(p).map(|b| (p, b)))
+        .enumerate()
+        .filter(|(_, p)| p.type_name == "Skeleton")
+        .find_map(|(i, p)| binding(i).map(|b| (p, b)))
         .ok_or_else(|| {
             InputError::new(format!(
                 "{source}: no Skeleton with an animation (skel:animationSource) in the layer"
@@ -57,16 +60,21 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     let target = if target.starts_with('/') {
         target
     } else {
-        format!("{}/{target}", bound_at.path)
+        let bound = layer.prims.iter().position(|p| std::ptr::eq(p, bound_at));
+        format!(
+            "{}/{target}",
+            bound.map(|i| layer.path(i)).unwrap_or_default()
+        )
     };
     let anim = layer
-        .prims
-        .iter()
-        .find(|p| p.path == target && p.type_name == "SkelAnimation")
+        .find(&target)
+        .map(|i| &layer.prims[i])
+        .filter(|p| p.type_name == "SkelAnimation")
         .ok_or_else(|| {
             InputError::new(format!(
-                "{}: skel:animationSource: no SkelAnimation at <{target}>",
-                at(skeleton, Some(source_rel))
+                "{}: skel:animationSource: no SkelAnimation at <{}>",
+                at(skeleton, Some(source_rel)),
+                inbetween::error::shorten(&target)
             ))
         })?;
     let skel_joints = tokens(skeleton, "joints", source)?;
@@ -83,20 +91,32 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         Some(p) => matrices(p, skel_joints.len(), source)?,
         None => vec![DMat4::IDENTITY; skel_joints.len()],
     };
+    // Joints by path: a hash map, so that finding parents and the animation's joints is
+    // linear in the joints.
+    let mut index_of: HashMap<&str, usize> = HashMap::with_capacity(skel_joints.len());
     let mut joints: Vec<Joint> = Vec::with_capacity(skel_joints.len());
     for (i, path) in skel_joints.iter().enumerate() {
-        let parent = path
-            .rsplit_once('/')
-            .and_then(|(head, _)| skel_joints[..i].iter().position(|p| p == head));
-        if path.contains('/') && parent.is_none() {
+        if let Some(&first) = index_of.get(path.as_str()) {
             return Err(InputError::new(format!(
-                "{}: joints[{i}] \"{path}\": its parent is not listed before it",
-                at(skeleton, skeleton.property("joints"))
+                "{}: joints[{first}] and joints[{i}] are both \"{}\": a joint path is listed once",
+                at(skeleton, skeleton.property("joints")),
+                inbetween::error::shorten(path)
             )));
         }
+        let parent = path
+            .rsplit_once('/')
+            .and_then(|(head, _)| index_of.get(head).copied());
+        if path.contains('/') && parent.is_none() {
+            return Err(InputError::new(format!(
+                "{}: joints[{i}] \"{}\": its parent is not listed before it",
+                at(skeleton, skeleton.property("joints")),
+                inbetween::error::shorten(path)
+            )));
+        }
+        index_of.insert(path, i);
         let (scale, rotation, translation) = rest[i].to_scale_rotation_translation();
-        let name = path.rsplit('/').next().unwrap_or(path);
-        let mut j = Joint::new(name, parent, translation);
+        // The joint's full path is its name: two joints `arm/hand` and `leg/hand` stay two.
+        let mut j = Joint::new(path.as_str(), parent, translation);
         j.rotation = rotation.normalize();
         j.scale = scale;
         joints.push(j);
@@ -122,10 +142,11 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     }
     let mut tracks = Vec::with_capacity(anim_joints.len());
     for (k, path) in anim_joints.iter().enumerate() {
-        let Some(j) = skel_joints.iter().position(|p| p == path) else {
+        let Some(&j) = index_of.get(path.as_str()) else {
             return Err(InputError::new(format!(
-                "{}: joints[{k}] \"{path}\" is not a joint of the Skeleton",
-                at(anim, anim.property("joints"))
+                "{}: joints[{k}] \"{}\" is not a joint of the Skeleton",
+                at(anim, anim.property("joints")),
+                inbetween::error::shorten(path)
             )));
         };
         joints[j].track = Some(tracks.len());
@@ -141,7 +162,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
             translations: Vec::new(),
         };
         for &c in &codes {
-            let q = at_code(&rotations, c, k, |a, b, u| {
+            let q = at_code(&rotations, c, k, 4, |a, b, u| {
                 let qa = quat(a);
                 let qb = quat(b);
                 let q = qa.slerp(qb, u);
@@ -150,8 +171,9 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
             let q = quat(&q);
             if !(q.is_finite() && q.length() > 1e-6) {
                 return Err(InputError::new(format!(
-                    "{}: joint \"{path}\" at time code {c}: expected a rotation, found ({}, {}, {}, {})",
+                    "{}: joint \"{}\" at time code {c}: expected a rotation, found ({}, {}, {}, {})",
                     at(anim, rot),
+                    inbetween::error::shorten(path),
                     q.w,
                     q.x,
                     q.y,
@@ -163,7 +185,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
                 rot: q.normalize(),
             });
             if !translations.is_empty() {
-                let p = at_code(&translations, c, k, |a, b, u| {
+                let p = at_code(&translations, c, k, 3, |a, b, u| {
                     a.iter().zip(b).map(|(x, y)| x + (y - x) * u).collect()
                 });
                 track.translations.push(Some(DVec3::new(p[0], p[1], p[2])));
@@ -254,6 +276,10 @@ fn numbers(v: &Value, out: &mut Vec<f64>) -> bool {
             true
         }
         Value::Tuple(items) => items.iter().all(|i| numbers(i, out)),
+        Value::Numbers(xs) => {
+            out.extend_from_slice(xs);
+            true
+        }
         _ => false,
     }
 }
@@ -292,7 +318,7 @@ fn samples(
     n: usize,
     width: usize,
     source: &str,
-) -> InputResult<Vec<(f64, Vec<Vec<f64>>)>> {
+) -> InputResult<Vec<(f64, Vec<f64>)>> {
     let Some(prop) = prop else {
         return Ok(Vec::new());
     };
@@ -302,7 +328,7 @@ fn samples(
         (None, None) => return Ok(Vec::new()),
     };
     let single = matches!(prop.type_name.as_str(), "quatf[]" | "float3[]");
-    let mut out: Vec<(f64, Vec<Vec<f64>>)> = Vec::with_capacity(list.len());
+    let mut out: Vec<(f64, Vec<f64>)> = Vec::with_capacity(list.len());
     for (code, v) in list {
         let bad = |what: String| {
             InputError::new(format!(
@@ -319,20 +345,24 @@ fn samples(
         if items.len() != n {
             return Err(bad(format!("{} values for {n} joints", items.len())));
         }
-        let mut values = Vec::with_capacity(n);
+        // Joint j's numbers at values[j * width..][..width]: one allocation per time code.
+        let mut values = Vec::with_capacity(n * width);
         for (j, item) in items.iter().enumerate() {
-            let mut v = Vec::with_capacity(width);
-            if !numbers(item, &mut v) || v.len() != width || v.iter().any(|x| !x.is_finite()) {
+            let start = values.len();
+            if !numbers(item, &mut values)
+                || values.len() - start != width
+                || values[start..].iter().any(|x| !x.is_finite())
+            {
                 return Err(bad(format!("[{j}]: expected {width} finite numbers")));
             }
             if single {
                 // What USD holds: the text read as float32.
+                let v = &mut values[start..];
                 v.iter_mut().for_each(|x| *x = f64::from(*x as f32));
                 if v.iter().any(|x| !x.is_finite()) {
                     return Err(bad(format!("[{j}]: a value beyond float32's range")));
                 }
             }
-            values.push(v);
         }
         out.push((code, values));
     }
@@ -349,16 +379,22 @@ fn samples(
 /// Joint `k`'s value at `code`: its sample there, else `blend` of the samples around it, else
 /// the nearest end's (USD holds an attribute's first and last samples beyond them).
 fn at_code(
-    samples: &[(f64, Vec<Vec<f64>>)],
+    samples: &[(f64, Vec<f64>)],
     code: f64,
     k: usize,
+    width: usize,
     blend: impl Fn(&[f64], &[f64], f64) -> Vec<f64>,
 ) -> Vec<f64> {
     let i = samples.partition_point(|(c, _)| *c < code);
+    let of = |v: &[f64]| v[k * width..][..width].to_vec();
     match (i.checked_sub(1).map(|p| &samples[p]), samples.get(i)) {
-        (_, Some((c, v))) if *c == code => v[k].clone(),
-        (Some((c0, v0)), Some((c1, v1))) => blend(&v0[k], &v1[k], (code - c0) / (c1 - c0)),
-        (Some((_, v)), None) | (None, Some((_, v))) => v[k].clone(),
+        (_, Some((c, v))) if *c == code => of(v),
+        (Some((c0, v0)), Some((c1, v1))) => blend(
+            &v0[k * width..][..width],
+            &v1[k * width..][..width],
+            (code - c0) / (c1 - c0),
+        ),
+        (Some((_, v)), None) | (None, Some((_, v))) => of(v),
         (None, None) => unreachable!("samples are not empty"),
     }
 }
@@ -384,15 +420,12 @@ mod tests {
 
     #[test]
     fn a_sample_missing_in_one_attribute_is_evaluated_as_usd_does() {
-        let s = vec![
-            (0.0, vec![vec![0.0, 0.0, 0.0]]),
-            (4.0, vec![vec![4.0, 8.0, 0.0]]),
-        ];
+        let s = vec![(0.0, vec![0.0, 0.0, 0.0]), (4.0, vec![4.0, 8.0, 0.0])];
         let lerp = |a: &[f64], b: &[f64], u: f64| -> Vec<f64> {
             a.iter().zip(b).map(|(x, y)| x + (y - x) * u).collect()
         };
-        assert_eq!(at_code(&s, 1.0, 0, lerp), vec![1.0, 2.0, 0.0]);
-        assert_eq!(at_code(&s, -1.0, 0, lerp), vec![0.0, 0.0, 0.0]);
-        assert_eq!(at_code(&s, 9.0, 0, lerp), vec![4.0, 8.0, 0.0]);
+        assert_eq!(at_code(&s, 1.0, 0, 3, lerp), vec![1.0, 2.0, 0.0]);
+        assert_eq!(at_code(&s, -1.0, 0, 3, lerp), vec![0.0, 0.0, 0.0]);
+        assert_eq!(at_code(&s, 9.0, 0, 3, lerp), vec![4.0, 8.0, 0.0]);
     }
 }

@@ -3,7 +3,9 @@
 //! — other prims, dictionaries, variant sets, metadata — is read and kept or skipped as values,
 //! never interpreted.
 
+use super::lex::{Lexer, Tok};
 use inbetween::error::{InputError, InputResult};
+use std::collections::{HashMap, VecDeque};
 
 /// A value as written.
 #[derive(Debug, Clone, PartialEq)]
@@ -20,6 +22,8 @@ pub enum Value {
     List(Vec<Value>),
     /// `(a, b, …)`.
     Tuple(Vec<Value>),
+    /// `(a, b, …)` or `[a, b, …]` of numbers only: 8 bytes a number.
+    Numbers(Vec<f64>),
     /// `{ code: value, … }` (time samples), or a dictionary (kept as its entries' values).
     Samples(Vec<(f64, Value)>),
     /// A dictionary or anything in braces that is not time samples.
@@ -44,8 +48,10 @@ pub struct Property {
 /// A prim: `def Type "name" (…) { … }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Prim {
-    /// Its path, `/Clip/Skeleton`.
-    pub path: String,
+    /// Its name, `Skeleton`.
+    pub name: String,
+    /// Its parent's index in [`Layer::prims`], `None` at the root.
+    pub parent: Option<usize>,
     /// Its type (`Skeleton`), empty for none.
     pub type_name: String,
     /// Its properties in order.
@@ -71,6 +77,37 @@ pub struct Layer {
 }
 
 impl Layer {
+    /// The path of prim `i`, `/Clip/Skeleton` (as long as its nesting: built on demand, so that
+    /// nested prims cost memory linear in the text, not quadratic in depth).
+    pub fn path(&self, i: usize) -> String {
+        let mut names = Vec::new();
+        let mut at = Some(i);
+        while let Some(k) = at {
+            names.push(self.prims[k].name.as_str());
+            at = self.prims[k].parent;
+        }
+        let mut path = String::new();
+        for n in names.iter().rev() {
+            path.push('/');
+            path.push_str(n);
+        }
+        path
+    }
+
+    /// The index of the prim at the absolute `path` (`/Clip/Skeleton`), the first where two
+    /// define it; one pass over the prims.
+    pub fn find(&self, path: &str) -> Option<usize> {
+        let mut parent: Option<usize> = None;
+        let mut from = 0;
+        for name in path.split('/').filter(|n| !n.is_empty()) {
+            let k = (from..self.prims.len())
+                .find(|&k| self.prims[k].parent == parent && self.prims[k].name == name)?;
+            parent = Some(k);
+            from = k + 1;
+        }
+        parent
+    }
+
     /// A word or string of the layer's metadata (`upAxis = "Z"`).
     pub fn word(&self, key: &str) -> Option<&str> {
         self.metadata
@@ -94,150 +131,6 @@ impl Layer {
     }
 }
 
-#[derive(Debug, Clone, PartialEq)]
-enum Tok {
-    Num(f64),
-    Str(String),
-    Word(String),
-    Path(String),
-    Punct(char),
-}
-
-struct Lexer<'a> {
-    src: &'a [u8],
-    at: usize,
-    line: usize,
-    source: &'a str,
-}
-
-impl Lexer<'_> {
-    fn err(&self, what: &str) -> InputError {
-        InputError::new(format!("{}:{}: {what}", self.source, self.line))
-    }
-
-    /// The next token and its line, or `None` at the end.
-    fn next(&mut self) -> InputResult<Option<(Tok, usize)>> {
-        let s = self.src;
-        loop {
-            match s.get(self.at) {
-                None => return Ok(None),
-                Some(b'\n') => {
-                    self.line += 1;
-                    self.at += 1;
-                }
-                Some(c) if c.is_ascii_whitespace() => self.at += 1,
-                Some(b'#') => {
-                    while self.at < s.len() && s[self.at] != b'\n' {
-                        self.at += 1;
-                    }
-                }
-                Some(_) => break,
-            }
-        }
-        let line = self.line;
-        let c = s[self.at];
-        let tok = match c {
-            b'"' | b'\'' => Tok::Str(self.string(c)?),
-            b'<' => {
-                let start = self.at + 1;
-                let end = s[start..]
-                    .iter()
-                    .position(|&b| b == b'>' || b == b'\n')
-                    .map(|e| start + e)
-                    .filter(|&e| s[e] == b'>')
-                    .ok_or_else(|| self.err("a path without its closing '>'"))?;
-                self.at = end + 1;
-                Tok::Path(String::from_utf8_lossy(&s[start..end]).into_owned())
-            }
-            b'(' | b')' | b'[' | b']' | b'{' | b'}' | b'=' | b',' | b':' | b';' => {
-                self.at += 1;
-                Tok::Punct(c as char)
-            }
-            b'-' | b'+' | b'.' | b'0'..=b'9' => {
-                let start = self.at;
-                self.at += 1;
-                while self.at < s.len()
-                    && (s[self.at].is_ascii_alphanumeric()
-                        || matches!(s[self.at], b'.' | b'-' | b'+'))
-                {
-                    self.at += 1;
-                }
-                let text = std::str::from_utf8(&s[start..self.at]).unwrap_or("");
-                let x = match text {
-                    "-inf" => f64::NEG_INFINITY,
-                    "+inf" => f64::INFINITY,
-                    _ => text
-                        .parse::<f64>()
-                        .map_err(|_| self.err(&format!("expected a number, found \"{text}\"")))?,
-                };
-                Tok::Num(x)
-            }
-            c if c.is_ascii_alphabetic() || c == b'_' || c >= 0x80 => {
-                let start = self.at;
-                while self.at < s.len() {
-                    let b = s[self.at];
-                    let colon_word = b == b':'
-                        && s.get(self.at + 1)
-                            .is_some_and(|n| n.is_ascii_alphabetic() || *n == b'_');
-                    if b.is_ascii_alphanumeric()
-                        || b == b'_'
-                        || b == b'.'
-                        || b >= 0x80
-                        || colon_word
-                    {
-                        self.at += 1;
-                    } else {
-                        break;
-                    }
-                }
-                let word = String::from_utf8_lossy(&s[start..self.at]).into_owned();
-                match word.as_str() {
-                    "inf" => Tok::Num(f64::INFINITY),
-                    "nan" => Tok::Num(f64::NAN),
-                    _ => Tok::Word(word),
-                }
-            }
-            other => return Err(self.err(&format!("unexpected character '{}'", other as char))),
-        };
-        Ok(Some((tok, line)))
-    }
-
-    /// A quoted string (single, double or triple quotes) from `self.at`.
-    fn string(&mut self, quote: u8) -> InputResult<String> {
-        let s = self.src;
-        let triple = s[self.at..].starts_with(&[quote; 3]);
-        self.at += if triple { 3 } else { 1 };
-        let mut out = Vec::new();
-        loop {
-            let Some(&b) = s.get(self.at) else {
-                return Err(self.err("a string without its closing quote"));
-            };
-            if b == b'\\' {
-                let e = s.get(self.at + 1).copied().unwrap_or(b'\\');
-                out.push(match e {
-                    b'n' => b'\n',
-                    b't' => b'\t',
-                    other => other,
-                });
-                self.at += 2;
-                continue;
-            }
-            if b == quote && (!triple || s[self.at..].starts_with(&[quote; 3])) {
-                self.at += if triple { 3 } else { 1 };
-                return Ok(String::from_utf8_lossy(&out).into_owned());
-            }
-            if b == b'\n' {
-                if !triple {
-                    return Err(self.err("a string without its closing quote"));
-                }
-                self.line += 1;
-            }
-            out.push(b);
-            self.at += 1;
-        }
-    }
-}
-
 /// Parses `.usda` text (`source` names it in messages, with the line).
 pub fn parse(text: &str, source: &str) -> InputResult<Layer> {
     let body = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -246,65 +139,128 @@ pub fn parse(text: &str, source: &str) -> InputResult<Layer> {
             "{source}:1: expected \"#usda 1.0\", the first line of a USD text layer"
         )));
     }
-    let mut lexer = Lexer {
+    let lexer = Lexer {
         src: body.as_bytes(),
         at: 0,
         line: 1,
         source,
     };
-    let mut toks = Vec::new();
-    while let Some(t) = lexer.next()? {
-        toks.push(t);
-    }
     let mut p = Parser {
-        toks,
-        at: 0,
+        lexer,
+        ahead: VecDeque::new(),
+        lex_error: None,
+        last_line: 1,
+        depth: 0,
         source,
     };
-    let mut layer = Layer::default();
-    if p.peek() == Some(&Tok::Punct('(')) {
-        layer.metadata = p.metadata()?;
+    let parsed = p.layer();
+    // A lexing error ends the tokens early: it, not what the parser made of the early end, is
+    // the error.
+    match (parsed, p.lex_error) {
+        (_, Some(e)) => Err(e),
+        (result, None) => result,
     }
-    while p.peek().is_some() {
-        p.prim("", &mut layer.prims)?;
-    }
-    Ok(layer)
 }
 
+/// The properties a skeletal animation is read from; the parser keeps only these (the others
+/// are parsed, checked and dropped, so a layer's meshes and shaders cost no memory).
+pub const KEPT_PROPERTIES: [&str; 5] = [
+    "joints",
+    "restTransforms",
+    "rotations",
+    "translations",
+    "skel:animationSource",
+];
+
+/// How deep prims, lists, tuples and metadata may nest: real layers nest a few dozen levels;
+/// the parser recurses once per level, so the bound is what keeps a hostile file from
+/// overflowing the stack (on a batch worker's 2 MiB thread too).
+pub const MAX_NESTING: usize = 256;
+
+/// The parser: tokens are lexed as they are needed (at most two ahead), so no token list is
+/// held beside the text.
 struct Parser<'a> {
-    toks: Vec<(Tok, usize)>,
-    at: usize,
+    lexer: Lexer<'a>,
+    ahead: VecDeque<(Tok, usize)>,
+    lex_error: Option<InputError>,
+    last_line: usize,
+    depth: usize,
     source: &'a str,
 }
 
 impl Parser<'_> {
-    fn peek(&self) -> Option<&Tok> {
-        self.toks.get(self.at).map(|t| &t.0)
+    fn layer(&mut self) -> InputResult<Layer> {
+        let mut layer = Layer::default();
+        if self.peek() == Some(&Tok::Punct('(')) {
+            layer.metadata = self.metadata()?;
+        }
+        while self.peek().is_some() {
+            self.prim(None, &mut layer.prims)?;
+        }
+        Ok(layer)
     }
 
-    fn line(&self) -> usize {
-        self.toks
-            .get(self.at)
-            .or(self.toks.last())
-            .map_or(1, |t| t.1)
+    /// Lexes until `n` tokens are ahead (fewer at the end or at a lexing error, kept).
+    fn fill(&mut self, n: usize) {
+        while self.ahead.len() < n && self.lex_error.is_none() {
+            match self.lexer.next() {
+                Ok(Some(t)) => self.ahead.push_back(t),
+                Ok(None) => break,
+                Err(e) => self.lex_error = Some(e),
+            }
+        }
     }
 
-    fn err(&self, what: &str) -> InputError {
-        InputError::new(format!("{}:{}: {what}", self.source, self.line()))
+    fn peek(&mut self) -> Option<&Tok> {
+        self.fill(1);
+        self.ahead.front().map(|t| &t.0)
+    }
+
+    /// The token after the next.
+    fn peek2(&mut self) -> Option<&Tok> {
+        self.fill(2);
+        self.ahead.get(1).map(|t| &t.0)
+    }
+
+    /// The line of the next token (of the last one at the end).
+    fn line(&mut self) -> usize {
+        self.fill(1);
+        self.ahead.front().map_or(self.last_line, |t| t.1)
+    }
+
+    fn err(&mut self, what: &str) -> InputError {
+        let line = self.line();
+        InputError::new(format!("{}:{line}: {what}", self.source))
+    }
+
+    /// An error at the token just taken.
+    fn err_last(&self, what: &str) -> InputError {
+        InputError::new(format!("{}:{}: {what}", self.source, self.last_line))
     }
 
     fn bump(&mut self) -> Option<Tok> {
-        let t = self.toks.get(self.at).map(|t| t.0.clone());
-        self.at += 1;
-        t
+        self.fill(1);
+        let (t, line) = self.ahead.pop_front()?;
+        self.last_line = line;
+        Some(t)
+    }
+
+    /// One level deeper (a prim, a list, a tuple, metadata): an error past [`MAX_NESTING`].
+    fn enter(&mut self) -> InputResult<()> {
+        self.depth += 1;
+        if self.depth > MAX_NESTING {
+            return Err(self.err(&format!(
+                "nested deeper than {MAX_NESTING} levels (prims, lists, tuples or metadata)"
+            )));
+        }
+        Ok(())
     }
 
     fn expect(&mut self, c: char) -> InputResult<()> {
         match self.bump() {
             Some(Tok::Punct(p)) if p == c => Ok(()),
             other => {
-                self.at -= 1;
-                Err(self.err(&format!("expected '{c}', found {}", shown(other.as_ref()))))
+                Err(self.err_last(&format!("expected '{c}', found {}", shown(other.as_ref()))))
             }
         }
     }
@@ -312,10 +268,14 @@ impl Parser<'_> {
     /// `( key = value … )`: metadata, its keys and values (list edits and docs kept as values).
     fn metadata(&mut self) -> InputResult<Vec<(String, Value)>> {
         self.expect('(')?;
+        self.enter()?;
         let mut out = Vec::new();
         loop {
             match self.bump() {
-                Some(Tok::Punct(')')) => return Ok(out),
+                Some(Tok::Punct(')')) => {
+                    self.depth -= 1;
+                    return Ok(out);
+                }
                 Some(Tok::Punct(';')) => {}
                 Some(Tok::Str(_)) => {}
                 Some(Tok::Word(w)) => {
@@ -346,8 +306,7 @@ impl Parser<'_> {
                     }
                 }
                 other => {
-                    self.at -= 1;
-                    return Err(self.err(&format!(
+                    return Err(self.err_last(&format!(
                         "expected metadata or ')', found {}",
                         shown(other.as_ref())
                     )));
@@ -365,8 +324,11 @@ impl Parser<'_> {
             Some(Tok::Word(w)) => Ok(Value::Word(w)),
             Some(Tok::Path(p)) => Ok(Value::Path(p)),
             Some(Tok::Punct(open @ ('[' | '('))) => {
+                self.enter()?;
                 let close = if open == '[' { ']' } else { ')' };
-                let mut items = Vec::new();
+                // Numbers are gathered as numbers (8 bytes each) until an item is not one.
+                let mut numbers: Vec<f64> = Vec::new();
+                let mut items: Option<Vec<Value>> = None;
                 loop {
                     match self.peek() {
                         Some(Tok::Punct(c)) if *c == close => {
@@ -377,18 +339,32 @@ impl Parser<'_> {
                             self.bump();
                         }
                         None => return Err(self.err(&format!("expected '{close}', found the end"))),
-                        _ => items.push(self.value()?),
+                        _ => match (self.value()?, &mut items) {
+                            (Value::Num(x), None) => numbers.push(x),
+                            (v, Some(items)) => items.push(v),
+                            (v, None) => {
+                                let mut all: Vec<Value> =
+                                    numbers.drain(..).map(Value::Num).collect();
+                                all.push(v);
+                                items = Some(all);
+                            }
+                        },
                     }
                 }
-                Ok(if open == '[' {
-                    Value::List(items)
-                } else {
-                    Value::Tuple(items)
+                self.depth -= 1;
+                Ok(match items {
+                    // A list or tuple of numbers (a quaternion, a vector, a matrix row, an
+                    // array of floats) as numbers alone.
+                    None if !numbers.is_empty() => Value::Numbers(numbers),
+                    None if open == '[' => Value::List(Vec::new()),
+                    None => Value::Tuple(Vec::new()),
+                    Some(items) if open == '[' => Value::List(items),
+                    Some(items) => Value::Tuple(items),
                 })
             }
             Some(Tok::Punct('{')) => {
                 let samples = matches!(self.peek(), Some(Tok::Num(_)))
-                    && matches!(self.toks.get(self.at + 1), Some((Tok::Punct(':'), _)));
+                    && self.peek2() == Some(&Tok::Punct(':'));
                 if !samples {
                     let mut depth = 1;
                     while depth > 0 {
@@ -411,8 +387,7 @@ impl Parser<'_> {
                             out.push((code, self.value()?));
                         }
                         other => {
-                            self.at -= 1;
-                            return Err(self.err(&format!(
+                            return Err(self.err_last(&format!(
                                 "expected a time code or '}}', found {}",
                                 shown(other.as_ref())
                             )));
@@ -420,24 +395,21 @@ impl Parser<'_> {
                     }
                 }
             }
-            other => {
-                self.at -= 1;
-                Err(self.err(&format!(
-                    "expected a value, found {}",
-                    shown(other.as_ref())
-                )))
-            }
+            other => Err(self.err_last(&format!(
+                "expected a value, found {}",
+                shown(other.as_ref())
+            ))),
         }
     }
 
     /// A prim (`def|over|class [Type] "name" [(…)] { … }`) and its children, under `parent`.
-    fn prim(&mut self, parent: &str, prims: &mut Vec<Prim>) -> InputResult<()> {
+    fn prim(&mut self, parent: Option<usize>, prims: &mut Vec<Prim>) -> InputResult<()> {
         let line = self.line();
+        self.enter()?;
         match self.bump() {
             Some(Tok::Word(w)) if matches!(w.as_str(), "def" | "over" | "class") => {}
             other => {
-                self.at -= 1;
-                return Err(self.err(&format!(
+                return Err(self.err_last(&format!(
                     "expected a prim (def, over or class), found {}",
                     shown(other.as_ref())
                 )));
@@ -453,8 +425,7 @@ impl Parser<'_> {
         let name = match self.bump() {
             Some(Tok::Str(n)) => n,
             other => {
-                self.at -= 1;
-                return Err(self.err(&format!(
+                return Err(self.err_last(&format!(
                     "expected the prim's name in quotes, found {}",
                     shown(other.as_ref())
                 )));
@@ -464,25 +435,37 @@ impl Parser<'_> {
             self.metadata()?;
         }
         self.expect('{')?;
-        let path = format!("{parent}/{name}");
         let index = prims.len();
         prims.push(Prim {
-            path: path.clone(),
+            name,
+            parent,
             type_name,
             properties: Vec::new(),
             line,
         });
+        // Properties by name, for a property given twice (a default and its time samples).
+        let mut by_name: HashMap<String, usize> = HashMap::new();
         loop {
             match self.peek() {
                 Some(Tok::Punct('}')) => {
                     self.bump();
+                    self.depth -= 1;
+                    // A prim that is no skeleton or animation, keeps no property and has no
+                    // such prim below it is not kept: a layer's other prims cost no memory.
+                    let prim = &prims[index];
+                    let kept = matches!(prim.type_name.as_str(), "Skeleton" | "SkelAnimation")
+                        || !prim.properties.is_empty()
+                        || prims.len() > index + 1;
+                    if !kept {
+                        prims.truncate(index);
+                    }
                     return Ok(());
                 }
                 Some(Tok::Punct(';')) => {
                     self.bump();
                 }
                 Some(Tok::Word(w)) if matches!(w.as_str(), "def" | "over" | "class") => {
-                    self.prim(&path, prims)?;
+                    self.prim(Some(index), prims)?;
                 }
                 Some(Tok::Word(w)) if w == "variantSet" => {
                     // `variantSet "name" = { … }`: skipped.
@@ -493,13 +476,21 @@ impl Parser<'_> {
                 }
                 Some(Tok::Word(_)) => {
                     let p = self.property()?;
+                    if !KEPT_PROPERTIES.contains(&p.name.as_str()) {
+                        // Read and dropped: a layer's other properties cost no memory.
+                        continue;
+                    }
                     let props = &mut prims[index].properties;
-                    match props.iter_mut().find(|q| q.name == p.name) {
-                        Some(q) => {
+                    match by_name.get(&p.name) {
+                        Some(&k) => {
+                            let q = &mut props[k];
                             q.value = p.value.or(q.value.take());
                             q.samples = p.samples.or(q.samples.take());
                         }
-                        None => props.push(p),
+                        None => {
+                            by_name.insert(p.name.clone(), props.len());
+                            props.push(p);
+                        }
                     }
                 }
                 other => {
@@ -590,7 +581,7 @@ mod tests {
         let text = "#usda 1.0\n(\n    doc = \"\"\"a\n\"b\"\"\"\n    timeCodesPerSecond = 29.97002997002997\n    customLayerData = {\n        string creator = \"x\"\n    }\n)\n\ndef SkelRoot \"Clip\" (kind = \"component\")\n{\n    def Skeleton \"Skel\" (\n        prepend apiSchemas = [\"SkelBindingAPI\"]\n    )\n    {\n        uniform token[] joints = [\"A\", \"A/B\"]\n        rel skel:animationSource = </Clip/Skel/Anim>\n        def SkelAnimation \"Anim\"\n        {\n            quatf[] rotations.timeSamples = {\n                0: [(1, 0, 0, -0), (0.70710677, 0, 0, 0.70710677)],\n                2.5: [(1, 0, 0, 0), (1, 0, 0, 0)],\n            }\n        }\n    }\n}\n";
         let layer = parse(text, "a.usda").unwrap();
         assert_eq!(layer.number("timeCodesPerSecond"), Some(29.97002997002997));
-        let paths: Vec<&str> = layer.prims.iter().map(|p| p.path.as_str()).collect();
+        let paths: Vec<String> = (0..layer.prims.len()).map(|i| layer.path(i)).collect();
         assert_eq!(paths, ["/Clip", "/Clip/Skel", "/Clip/Skel/Anim"]);
         let skel = &layer.prims[1];
         assert_eq!(skel.type_name, "Skeleton");
@@ -618,5 +609,86 @@ mod tests {
         assert!(e.message().starts_with("c.usda:1: expected \"#usda 1.0\""));
         let e = parse("#usda 1.0\ndef \"a\" { float x = \"open\n}", "d.usda").unwrap_err();
         assert_eq!(e.message(), "d.usda:2: a string without its closing quote");
+    }
+
+    /// Prims, lists and tuples nested deeper than [`MAX_NESTING`]: a located error, never a
+    /// stack overflow, on a thread with a batch worker's 2 MiB stack (a debug build's frames).
+    #[test]
+    fn deep_nesting_is_an_error_not_a_stack_overflow() {
+        let run = |text: String| {
+            std::thread::Builder::new()
+                .stack_size(2 << 20)
+                .spawn(move || parse(&text, "deep.usda").map(|l| l.prims.len()))
+                .unwrap()
+                .join()
+                .expect("no stack overflow")
+        };
+        let prims = |n: usize| {
+            format!(
+                "#usda 1.0\n{}def Skeleton \"s\" {{\n{}",
+                "def \"a\" {\n".repeat(n - 1),
+                "}\n".repeat(n)
+            )
+        };
+        assert_eq!(run(prims(MAX_NESTING)).unwrap(), MAX_NESTING);
+        let e = run(prims(MAX_NESTING + 1)).unwrap_err();
+        assert_eq!(
+            e.message(),
+            format!(
+                "deep.usda:{}: nested deeper than {MAX_NESTING} levels (prims, lists, tuples or \
+                 metadata)",
+                MAX_NESTING + 2
+            )
+        );
+        assert!(run(prims(100_000)).is_err());
+        for (open, close) in [("[", "]"), ("(", ")")] {
+            let values = |n: usize| {
+                format!(
+                    "#usda 1.0\ndef \"a\" {{\n float x = {}1{}\n}}\n",
+                    open.repeat(n),
+                    close.repeat(n)
+                )
+            };
+            assert!(run(values(MAX_NESTING - 1)).is_ok());
+            assert!(run(values(MAX_NESTING)).is_err());
+            assert!(run(values(1_000_000)).is_err());
+        }
+        let meta = format!("#usda 1.0\n{}", "( doc = ".repeat(100_000));
+        assert!(run(meta).is_err());
+    }
+
+    /// A 100 000-character number is quoted cut to 60 characters.
+    #[test]
+    fn long_tokens_are_quoted_shortened() {
+        let long = "1".repeat(50_000) + "x" + &"2".repeat(50_000);
+        let e = parse(&format!("#usda 1.0\n( a = {long} )\n"), "l.usda").unwrap_err();
+        assert!(e.message().len() < 200, "{}", e.message());
+    }
+
+    /// Blender's export writes asset paths: read as values, skipped.
+    #[test]
+    fn asset_paths_are_values() {
+        let text = "#usda 1.0\ndef Shader \"s\" {\n asset inputs:file = @./textures/x.jpg@\n asset b = @@@a@b\nc@@@\n asset joints = @j@\n}\n";
+        let layer = parse(text, "a.usda").unwrap();
+        let p = layer.prims[0].property("joints").unwrap();
+        assert_eq!(p.value, Some(Value::Str("j".into())));
+        assert_eq!(p.line, 6);
+        // Properties no skeleton is read from are not kept.
+        assert!(layer.prims[0].property("inputs:file").is_none());
+        assert!(parse("#usda 1.0\ndef \"s\" {\n asset a = @x\n}\n", "b.usda").is_err());
+    }
+
+    /// Paths are built from parents, found in one pass; the first of two definitions wins.
+    #[test]
+    fn prims_are_found_by_path() {
+        let text = "#usda 1.0\ndef \"A\" {\n def \"B\" {\n def Skeleton \"C\" {\n }\n def \"D\" {\n float x = 1\n }\n }\n def SkelAnimation \"C\" {\n }\n}\nover \"A\" {\n}\n";
+        let layer = parse(text, "p.usda").unwrap();
+        assert_eq!(layer.find("/A/B/C"), Some(2));
+        assert_eq!(layer.find("/A/C"), Some(3));
+        assert_eq!(layer.find("/A"), Some(0));
+        assert_eq!(layer.find("/B"), None);
+        assert_eq!(layer.path(2), "/A/B/C");
+        // D (no kept property) and the last `over` (nothing in it) are not kept.
+        assert_eq!(layer.prims.len(), 4);
     }
 }

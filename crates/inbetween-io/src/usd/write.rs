@@ -51,21 +51,31 @@ pub fn usd_name(name: &str) -> String {
     s
 }
 
-/// The joints' USD names, made unique among siblings' paths by a `_<index>` suffix where two
-/// would collide (the joint's index in the skeleton).
+/// The joints' USD paths: each joint's name as a USD identifier ([`usd_name`]; of a name that
+/// is already a joint path, `Hips/Spine` as read from USD, its last part) under its parent's
+/// path, so that a USD input's joints keep their paths. Where two joints would share a path,
+/// the later gets `_<its index>` (and `_2`, `_3`, … after that while the path is taken): no
+/// two joints are ever written with one path.
 pub fn joint_paths(skeleton: &Skeleton) -> Vec<String> {
     let mut paths: Vec<String> = Vec::with_capacity(skeleton.joints().len());
     let mut seen = HashSet::new();
     for (i, j) in skeleton.joints().iter().enumerate() {
-        let mut name = usd_name(&j.name);
+        let leaf = j.name.rsplit('/').next().unwrap_or(&j.name);
         let prefix = j
             .parent
             .map(|p| format!("{}/", paths[p]))
             .unwrap_or_default();
-        if seen.contains(&format!("{prefix}{name}")) {
-            name = format!("{name}_{i}");
+        let base = usd_name(leaf);
+        let mut path = format!("{prefix}{base}");
+        let mut k = 1;
+        while seen.contains(&path) {
+            path = if k == 1 {
+                format!("{prefix}{base}_{i}")
+            } else {
+                format!("{prefix}{base}_{i}_{k}")
+            };
+            k += 1;
         }
-        let path = format!("{prefix}{name}");
         seen.insert(path.clone());
         paths.push(path);
     }
@@ -324,6 +334,37 @@ mod tests {
         ])
         .unwrap();
         assert_eq!(joint_paths(&s), ["a", "a/b_1", "a/b_1_2"]);
+        // The suffix itself taken: the next one.
+        let s = Skeleton::new(vec![
+            Joint::new("a", None, DVec3::ZERO).with_track(0),
+            Joint::new("b_1_2", Some(0), DVec3::X),
+            Joint::new("b.1", Some(0), DVec3::Y),
+            Joint::new("b_1", Some(0), DVec3::Z),
+        ])
+        .unwrap();
+        let paths = joint_paths(&s);
+        assert_eq!(paths, ["a", "a/b_1_2", "a/b_1", "a/b_1_3"]);
+        let unique: HashSet<&String> = paths.iter().collect();
+        assert_eq!(unique.len(), paths.len());
+        // Names that are USD joint paths keep them.
+        let s = Skeleton::new(vec![
+            Joint::new("Hips", None, DVec3::ZERO).with_track(0),
+            Joint::new("Hips/arm", Some(0), DVec3::X),
+            Joint::new("Hips/arm/hand", Some(1), DVec3::X),
+            Joint::new("Hips/leg", Some(0), DVec3::Y),
+            Joint::new("Hips/leg/hand", Some(3), DVec3::Y),
+        ])
+        .unwrap();
+        assert_eq!(
+            joint_paths(&s),
+            [
+                "Hips",
+                "Hips/arm",
+                "Hips/arm/hand",
+                "Hips/leg",
+                "Hips/leg/hand"
+            ]
+        );
     }
 
     #[test]
