@@ -32,11 +32,21 @@ use inbetween::clock::Fps;
 use inbetween::error::{InputError, InputResult, Setting, shorten};
 use inbetween::message;
 use inbetween::rotation::EulerSeq;
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
-/// The most channel values (frames × channels) a clip read from FBX may hold: 2²⁷ (1 GiB of
-/// float64), so that a stack declaring an absurd span is refused before it is sampled.
-pub const MAX_VALUES: u64 = 1 << 27;
+/// The samples (frames × nodes) a clip read from FBX may take at least: 2²² (about 1 GB at
+/// the peak of reading), so that a stack declaring an absurd span is refused before it is
+/// sampled...
+pub const MIN_SAMPLE_BUDGET: u64 = 1 << 22;
+
+/// ...or this many per byte of the file, where that is more (a file whose curves are baked at
+/// every frame holds several bytes per sample, so a long real take is read whole).
+pub const SAMPLES_PER_BYTE: u64 = 8;
+
+/// Sampling evaluates every animation layer of the stack at each sample: the samples times the
+/// layers may be at most this many times the sample budget.
+pub const LAYER_WORK_FACTOR: u64 = 4;
 
 /// ufbx may use this many bytes of memory per byte of the file (each of its two allocators)...
 pub const MEMORY_PER_BYTE: usize = 32;
@@ -151,8 +161,13 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
     }
     let span_frames = ((end - start) * fps.as_f64() + 1e-6).floor();
 
-    // The animated nodes, and their ancestors.
+    // The animated nodes, and their ancestors: nodes by element id in a hash map, each
+    // ancestor chain walked until a node already wanted (linear in nodes and properties).
     let nodes = &scene.nodes;
+    let by_id: HashMap<u32, usize> = nodes
+        .iter()
+        .map(|n| (n.element.element_id, node_index(n)))
+        .collect();
     let mut wanted = vec![false; nodes.len()];
     for layer in stack.layers.iter() {
         for prop in layer.anim_props.iter() {
@@ -160,17 +175,15 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
             if name != "Lcl Rotation" && name != "Lcl Translation" {
                 continue;
             }
-            let id = prop.element.element_id;
-            if let Some(mut n) = nodes.iter().find(|n| n.element.element_id == id) {
-                loop {
-                    if n.is_root {
-                        break;
-                    }
-                    wanted[node_index(n)] = true;
-                    match &n.parent {
-                        Some(p) => n = p,
-                        None => break,
-                    }
+            let Some(&first) = by_id.get(&prop.element.element_id) else {
+                continue;
+            };
+            let mut n = &nodes[first];
+            while !n.is_root && !wanted[node_index(n)] {
+                wanted[node_index(n)] = true;
+                match &n.parent {
+                    Some(p) => n = p,
+                    None => break,
                 }
             }
         }
@@ -182,17 +195,32 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
             label(index)
         ));
     }
-    let frames = span_frames as u64 + 1;
-    let values = frames.saturating_mul(order.len() as u64 * 6);
-    if span_frames > u32::MAX as f64 || values > MAX_VALUES {
+    // The work the stack claims, refused before any sample is taken or allocated.
+    let budget = MIN_SAMPLE_BUDGET.max(SAMPLES_PER_BYTE.saturating_mul(bytes.len() as u64));
+    let layers = (stack.layers.len() as u64).max(1);
+    let samples = (span_frames + 1.0) * order.len() as f64;
+    if samples > budget as f64 || samples * layers as f64 > (budget * LAYER_WORK_FACTOR) as f64 {
         return Err(input_err!(
-            "{source}: animation stack {} spans {} frames at {fps} fps for {} nodes, more than \
-             {MAX_VALUES} values",
+            "{source}: animation stack {} spans {} s, {} frames at {fps} fps, for {} node(s){}: \
+             more than the {budget} samples this file may claim (frames × nodes{}; at least \
+             {MIN_SAMPLE_BUDGET}, or {SAMPLES_PER_BYTE} per byte of the file)",
             label(index),
+            end - start,
             span_frames + 1.0,
-            order.len()
+            order.len(),
+            if layers > 1 {
+                format!(" in {layers} layers")
+            } else {
+                String::new()
+            },
+            if layers > LAYER_WORK_FACTOR {
+                format!(" × layers / {LAYER_WORK_FACTOR}")
+            } else {
+                String::new()
+            }
         ));
     }
+    let frames = span_frames as u64 + 1;
     let frames = frames as usize;
     let time = |k: usize| start + fps.time_of(k as i64);
 
@@ -244,10 +272,13 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
     }
 
     // Parents within the chosen nodes; the scale every translation is multiplied by.
-    let slot = |i: usize| order.iter().position(|&o| o == i);
+    let mut slot: Vec<Option<usize>> = vec![None; nodes.len()];
+    for (j, &i) in order.iter().enumerate() {
+        slot[i] = Some(j);
+    }
     let parents: Vec<Option<usize>> = order
         .iter()
-        .map(|&i| nodes[i].parent.as_ref().and_then(|p| slot(node_index(p))))
+        .map(|&i| nodes[i].parent.as_ref().and_then(|p| slot[node_index(p)]))
         .collect();
     let mut factor = vec![1.0; order.len()];
     for j in 0..order.len() {
@@ -379,22 +410,27 @@ fn bvh_text(
         .iter()
         .map(|&i| bvh_order(nodes[i].rotation_order))
         .collect();
-    let children = |p: Option<usize>| (0..n).filter(move |&j| parents[j] == p);
+    // Each joint's children, in the scene's order (one pass; the roots under `n`).
+    let mut kids: Vec<Vec<usize>> = vec![Vec::new(); n + 1];
+    for (j, p) in parents.iter().enumerate() {
+        kids[p.unwrap_or(n)].push(j);
+    }
     let mut text = String::from("HIERARCHY\n");
     // Depth-first, children in the scene's order; an explicit stack keeps deep chains safe.
     let mut listed: Vec<usize> = Vec::with_capacity(n);
+    // Not indented: the text is read, never shown, and an indent as deep as the joint made a
+    // 20 000-node chain gigabytes of spaces.
     fn open(text: &mut String, depth: usize, name: &str, offset: DVec3, channels: &str) {
-        let pad = "  ".repeat(depth);
         let kind = if depth == 0 { "ROOT" } else { "JOINT" };
-        let _ = writeln!(text, "{pad}{kind} {name}\n{pad}{{");
-        let _ = writeln!(text, "{pad}  OFFSET {} {} {}", offset.x, offset.y, offset.z);
-        let _ = writeln!(text, "{pad}  {channels}");
+        let _ = writeln!(text, "{kind} {name}\n{{");
+        let _ = writeln!(text, "OFFSET {} {} {}", offset.x, offset.y, offset.z);
+        let _ = writeln!(text, "{channels}");
     }
     let mut stack: Vec<(usize, usize, bool)> =
-        children(None).rev().map(|j| (j, 0, false)).collect();
+        kids[n].iter().rev().map(|&j| (j, 0, false)).collect();
     while let Some((j, depth, closing)) = stack.pop() {
         if closing {
-            let _ = writeln!(text, "{}}}", "  ".repeat(depth));
+            text.push_str("}\n");
             continue;
         }
         let mut channels = Vec::new();
@@ -421,8 +457,7 @@ fn bvh_text(
         );
         listed.push(j);
         stack.push((j, depth, true));
-        let kids: Vec<usize> = children(Some(j)).collect();
-        stack.extend(kids.into_iter().rev().map(|c| (c, depth + 1, false)));
+        stack.extend(kids[j].iter().rev().map(|&c| (c, depth + 1, false)));
     }
     let _ = writeln!(
         text,

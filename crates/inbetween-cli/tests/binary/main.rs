@@ -15,6 +15,7 @@ mod bvh_untrusted;
 mod diff;
 mod errors;
 mod fbx;
+mod fbx_untrusted;
 mod gltf;
 mod gltf_real;
 mod gltf_reduce;
