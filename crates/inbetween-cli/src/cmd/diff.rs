@@ -130,6 +130,29 @@ pub fn run(
             row.world = w;
         }
     }
+    // Positions too large to compose (offsets, translations or --shell near the largest
+    // float) make no number to report: an input error, never `inf` in the report.
+    for row in &rows {
+        let ext = |e: &Extent| [e.max, e.mean];
+        let measured = [
+            Some(&row.diff.angle),
+            row.diff.translation.as_ref(),
+            row.world.as_ref(),
+        ];
+        let what = ["angle", "translation difference", "world displacement"];
+        if let Some((_, w)) = measured
+            .iter()
+            .zip(what)
+            .find(|(e, _)| e.is_some_and(|e| ext(e).iter().any(|x| !x.is_finite())))
+        {
+            return Err(InputError::new(format!(
+                "diff: track \"{}\": its {w} is not a finite number: the skeleton's offsets, \
+                 translations or --shell are too large to compose in float64",
+                inbetween::error::shorten(&row.name)
+            ))
+            .into());
+        }
+    }
     let unit = args.input.angles;
     let bytes = match super::analyze::report_format(args.output_format, args.output.as_deref()) {
         ReportFormat::Text => text(&rows, unit).into_bytes(),

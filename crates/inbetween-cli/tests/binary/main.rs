@@ -23,6 +23,7 @@ mod gltf_tracks;
 mod gltf_untrusted;
 mod hard_cases;
 mod numbers;
+mod numeric_untrusted;
 mod output;
 mod plot;
 mod readers;

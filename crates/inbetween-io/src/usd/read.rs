@@ -363,6 +363,15 @@ fn samples(
                     return Err(bad(format!("[{j}]: a value beyond float32's range")));
                 }
             }
+            if width == 4 {
+                // A `quatd` of 1e300 (or 1e-300) is a rotation whose norm overflows (underflows)
+                // float64: scaled to its largest component first, as the other readers do.
+                let v = &mut values[start..];
+                let m = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                if m > 1e150 || (m > 0.0 && m < 1e-150) {
+                    v.iter_mut().for_each(|x| *x /= m);
+                }
+            }
         }
         out.push((code, values));
     }

@@ -144,6 +144,16 @@ pub fn reduce_world(
         measure_only = false;
         let posed = |f: usize, t: usize| poses[t][f];
         let points = point_displacements(skeleton, frames, &original, &posed, world.shell);
+        // World positions too large to compose (offsets, translations or the shell near the
+        // largest float) measure nothing: an input error, never keys written on a NaN.
+        if let Some((p, &(_, f))) = points.iter().enumerate().find(|(_, (d, _))| !d.is_finite()) {
+            return Err(input_err!(
+                "joint \"{}\": its world position at frame {f} is not a finite number: the \
+                 skeleton's offsets, translations or shell are too large to compose in float64",
+                crate::error::shorten(&skeleton.joints()[setup.point_joints[p]].name)
+            )
+            .into());
+        }
         // Per track, the least ratio of limit to displacement over the points below it.
         let mut slack = vec![f64::INFINITY; tracks.len()];
         for (p, &(d, _)) in points.iter().enumerate() {
