@@ -385,3 +385,80 @@ fn angles_beyond_a_billion_degrees_are_reduced_exactly() {
         "{got:?}"
     );
 }
+
+/// A two-axis joint at its sequence's gimbal lock (`Zrotation Xrotation` at X = ±90°, where Z
+/// and the unlisted Y align; `Xrotation Zrotation` at Z = 90°) and beside it, and a hinge: each
+/// written back with exactly its own angles (Z came back split with the unwritten axis: −45°
+/// as −7.5°). Consecutive angles differ by less than 180°, so continuous output keeps them.
+#[test]
+fn two_axis_joints_at_gimbal_lock_keep_their_own_angles() {
+    let dir = tempfile::tempdir().unwrap();
+    for (channels, rows) in [
+        (
+            "CHANNELS 2 Zrotation Xrotation",
+            vec![
+                [30.0, 90.0],
+                [-45.0, 90.0],
+                [120.0, 90.0],
+                [10.0, 89.9999],
+                [-60.0, 90.0],
+            ],
+        ),
+        (
+            "CHANNELS 2 Xrotation Zrotation",
+            vec![
+                [30.0, 90.0],
+                [-45.0, 90.0],
+                [100.0, 90.0],
+                [10.0, 90.00001],
+                [0.0, 90.0],
+            ],
+        ),
+        (
+            "CHANNELS 1 Yrotation",
+            vec![
+                [30.0, 0.0],
+                [170.0, 0.0],
+                [190.0, 0.0],
+                [300.0, 0.0],
+                [400.0, 0.0],
+            ],
+        ),
+    ] {
+        let width = if channels.contains("CHANNELS 2") {
+            2
+        } else {
+            1
+        };
+        let mut text = format!(
+            "HIERARCHY\nROOT Hips\n{{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition \
+             Zposition Zrotation Xrotation Yrotation\n  JOINT Wrist\n  {{\n    OFFSET 0 -5 0\n    \
+             {channels}\n    End Site\n    {{\n      OFFSET 0 -5 0\n    }}\n  }}\n}}\nMOTION\n\
+             Frames: {}\nFrame Time: 0.033333\n",
+            rows.len()
+        );
+        for r in &rows {
+            let own: Vec<String> = r[..width].iter().map(f64::to_string).collect();
+            text += &format!("0 0 0 0 0 0 {}\n", own.join(" "));
+        }
+        let file = dir.path().join("lock.bvh");
+        std::fs::write(&file, &text).unwrap();
+        let out = dir.path().join("out.bvh");
+        ok(&[os("interp"), file.as_os_str(), os("-o"), out.as_os_str()]);
+        let back = rows_of(&std::fs::read_to_string(&out).unwrap());
+        assert_eq!(back.len(), rows.len(), "{channels}");
+        for (got, want) in back.iter().zip(&rows) {
+            for k in 0..width {
+                assert!(
+                    (got[6 + k] - want[k]).abs() < 1e-9,
+                    "{channels}: {:?} for {want:?}",
+                    &got[6..]
+                );
+            }
+        }
+    }
+}
+
+fn rows_of(text: &str) -> Vec<Vec<f64>> {
+    rows(text)
+}

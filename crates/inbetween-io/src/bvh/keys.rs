@@ -100,6 +100,7 @@ pub fn write_keys<W: Write>(
                     EulerMode::Wrapped => seq.from_quat(key.rot),
                     _ => unwrap.next(key.rot),
                 };
+                let e = super::on_listed_axes(seq, &cols, key.rot, e);
                 for (c, a) in cols.iter().zip(e) {
                     if let Some(c) = c {
                         values[i * width + c] = a.to_degrees();

@@ -274,6 +274,7 @@ pub(crate) fn fill_joint_row(
     if let Some((seq, cols)) = rotation {
         // Continuous along the track, or (without an unwrapper) each triple in scipy's ranges.
         let angles = unwrap.map_or_else(|| seq.from_quat(q), |u| u.next(q));
+        let angles = on_listed_axes(seq, &cols, q, angles);
         for (c, a) in cols.iter().zip(angles) {
             if let Some(c) = c {
                 row[*c] = a.to_degrees();
@@ -287,4 +288,48 @@ pub(crate) fn fill_joint_row(
             }
         }
     }
+}
+
+/// The angles of a joint with fewer than three rotation channels: its sequence lists its own
+/// axes first and the others after (docs/spec.md §3, BVH), and only its own are written, so
+/// the triple must keep the unlisted angles at zero. `angles` (the regular or continuous triple)
+/// does, to rounding, for a rotation the joint can make — except at the sequence's gimbal lock,
+/// where the first and third axes align and the split between them is arbitrary (`Zrotation
+/// Xrotation` at X = 90° came back with another Z). There, and for a rotation the joint cannot
+/// make exactly, the angles are solved on the listed axes alone: one axis, the rotation's
+/// angle about it; two, the first angle turning the second axis where the rotation turns it,
+/// then the second angle about it. Each angle the nearest to `angles`' by whole turns.
+pub(crate) fn on_listed_axes(
+    seq: inbetween::rotation::EulerSeq,
+    cols: &[Option<usize>; 3],
+    q: glam::DQuat,
+    angles: [f64; 3],
+) -> [f64; 3] {
+    use glam::{DQuat, DVec3};
+    use std::f64::consts::TAU;
+    let listed = cols.iter().take_while(|c| c.is_some()).count();
+    let pinned = angles[listed..].iter().all(|a| a.abs() <= 1e-12);
+    if listed == 3 || listed == 0 || pinned {
+        return angles;
+    }
+    let letters = seq.as_str().as_bytes();
+    if letters[0].is_ascii_lowercase() {
+        // BVH sequences are intrinsic (the channels' order); an extrinsic one is not a joint's.
+        return angles;
+    }
+    let axis = |i: usize| match letters[i].to_ascii_lowercase() {
+        b'x' => DVec3::X,
+        b'y' => DVec3::Y,
+        _ => DVec3::Z,
+    };
+    let near = |a: f64, to: f64| a + TAU * ((to - a) / TAU).round();
+    let about = |r: DQuat, e: DVec3| 2.0 * r.xyz().dot(e).atan2(r.w);
+    let (e0, e1) = (axis(0), axis(1));
+    if listed == 1 {
+        return [near(about(q, e0), angles[0]), 0.0, 0.0];
+    }
+    let u = q * e1;
+    let a = e0.dot(e1.cross(u)).atan2(e1.dot(u));
+    let b = about(DQuat::from_axis_angle(e0, a).inverse() * q, e1);
+    [near(a, angles[0]), near(b, angles[1]), 0.0]
 }
