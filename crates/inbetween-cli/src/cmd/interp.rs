@@ -415,6 +415,17 @@ fn npz_shape(
         .map(|t| t.name().map_or(0, |n| n.chars().count()))
         .max()
         .unwrap_or(0);
+    let names = inbetween_io::write::npz::names_size(shape.tracks, longest);
+    if names > inbetween_io::write::npz::MAX_NAMES_BYTES {
+        return Err(InputError::new(format!(
+            "{source}: npz output stores track names at the longest name's width ({longest} \
+             characters), {names} bytes for {} tracks, more than {} bytes; shorten the names, \
+             or write npy, csv or json",
+            shape.tracks,
+            inbetween_io::write::npz::MAX_NAMES_BYTES
+        ))
+        .into());
+    }
     let size = inbetween_io::write::npz::npz_size(style.repr.width(), shape, longest);
     if size > inbetween_io::write::zip::MAX_BYTES {
         return Err(InputError::new(format!(

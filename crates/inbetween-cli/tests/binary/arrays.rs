@@ -427,3 +427,52 @@ fn numpy_reads_npz_and_npy_as_the_json_says() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// One 150 000-character track name among 200 tracks: names.npy stores every name at the
+/// longest's width (120 MB of padding), refused before anything is held or written (it
+/// allocated gigabytes and aborted, leaving the temporary file); shorter names are written.
+#[test]
+fn npz_names_of_absurd_width_are_refused_up_front() {
+    let dir = tempfile::tempdir().unwrap();
+    let doc = |long: usize| {
+        let tracks: Vec<serde_json::Value> = (0..200)
+            .map(|i| {
+                let name = if i == 0 {
+                    "n".repeat(long)
+                } else {
+                    format!("t{i}")
+                };
+                serde_json::json!({"name": name, "keys": [
+                    {"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "quat": [1, 0, 0, 0]}]})
+            })
+            .collect();
+        serde_json::json!({ "tracks": tracks }).to_string()
+    };
+    let input = dir.path().join("long.json");
+    let out = dir.path().join("out.npz");
+    std::fs::write(&input, doc(150_000)).unwrap();
+    let o = bin()
+        .arg("interp")
+        .arg(&input)
+        .args(["--fps", "30", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("at the longest name's width (150000 characters)"),
+        "{err}"
+    );
+    assert!(err.len() < 400, "{err}");
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert_eq!(left.len(), 1, "only the input: {left:?}");
+    std::fs::write(&input, doc(1_000)).unwrap();
+    bin()
+        .arg("interp")
+        .arg(&input)
+        .args(["--fps", "30", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+}

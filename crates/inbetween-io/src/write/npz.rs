@@ -41,6 +41,16 @@ pub struct NpzShape {
     pub positions: bool,
 }
 
+/// The most bytes `names.npy` may take: NumPy's fixed-width unicode gives every track the
+/// longest name's width (4 bytes a character), so one long name among many tracks would make
+/// gigabytes of padding.
+pub const MAX_NAMES_BYTES: u64 = 64 << 20;
+
+/// The bytes of `names.npy` for `tracks` names, the longest `name_chars` characters.
+pub fn names_size(tracks: usize, name_chars: usize) -> u64 {
+    (4 * name_chars.max(1) as u64).saturating_mul(tracks as u64)
+}
+
 /// The size in bytes of the archive [`NpzWriter`] writes for `shape` with `width` rotation
 /// values per frame and the longest track name `name_chars` characters long, or a little more
 /// (each `.npy` header counted as 128 bytes; saturating).
@@ -50,10 +60,7 @@ pub fn npz_size(width: usize, shape: NpzShape, name_chars: usize) -> u64 {
     let mut entries = vec![
         ("times.npy", 8 * shape.frames),
         ("frames.npy", 8 * shape.frames),
-        (
-            "names.npy",
-            (4 * name_chars.max(1) as u64).saturating_mul(shape.tracks as u64),
-        ),
+        ("names.npy", names_size(shape.tracks, name_chars)),
         ("rotations.npy", cells.saturating_mul(8 * width as u64)),
         ("fps.npy", 4 * 24),
         ("rotation.npy", 4 * 16),
