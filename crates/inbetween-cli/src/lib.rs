@@ -35,6 +35,20 @@ fn usage_error(e: &clap::Error, err: &mut dyn FnMut(&str)) -> u8 {
     2
 }
 
+/// The long options of `command` (`fps`, `translation-tolerance`, …), as the command line
+/// spells them without their `--`: what `inbetween.process_file` accepts.
+pub fn option_names(command: &str) -> Vec<String> {
+    use clap::CommandFactory;
+    Cli::command()
+        .find_subcommand(command)
+        .map(|c| {
+            c.get_arguments()
+                .filter_map(|a| a.get_long().map(str::to_string))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// Installs the handlers that remove an unfinished output's temporary file on SIGINT, SIGTERM
 /// and SIGHUP (the binary does; a host process such as Python keeps its own).
 pub fn install_signals() {

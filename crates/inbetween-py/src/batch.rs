@@ -11,6 +11,12 @@ use std::time::Instant;
 /// The commands that write a file.
 const COMMANDS: [&str; 3] = ["interp", "convert", "reduce"];
 
+/// Options of a batch of the command line, which one file does not take (`process_file`
+/// names its own input and output).
+const PER_BATCH: [&str; 8] = [
+    "out-dir", "jobs", "manifest", "refresh", "follow", "output", "more", "input",
+];
+
 /// Runs `inbetween <command> <path> -o <out> <options>` and returns its record (the batch
 /// manifest's: input, output, status, seconds, error, warnings). `options` maps a flag's name
 /// (`fps`, `scheme`, `translation_tolerance`; `_` for `-`) to its value: `True` gives the bare
@@ -31,14 +37,39 @@ pub fn process_file<'py>(
             "command: expected \"interp\", \"convert\" or \"reduce\", found \"{command}\""
         )));
     }
-    let mut args: Vec<OsString> = ["inbetween", command, path, "-o", out]
-        .iter()
-        .map(OsString::from)
-        .collect();
+    // Every path a path: a relative one that starts with `-` (`--help`, `-`) is written
+    // `./--help`, so that it is never read as a flag or as standard input.
+    let as_path = |p: &str| -> OsString {
+        if p.starts_with('-') {
+            format!("./{p}").into()
+        } else {
+            p.into()
+        }
+    };
+    let mut args: Vec<OsString> = vec![
+        "inbetween".into(),
+        command.into(),
+        as_path(path),
+        "-o".into(),
+        as_path(out),
+    ];
     if let Some(options) = options {
+        let known = inbetween_cli::option_names(command);
         for (k, v) in options.iter() {
             let name: String = k.extract()?;
-            let flag = format!("--{}", name.replace('_', "-"));
+            let long = name.replace('_', "-");
+            if !known.contains(&long) || PER_BATCH.contains(&long.as_str()) {
+                return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+                    "process_file: {} is not an option of {command}{}",
+                    crate::shown(&name),
+                    if PER_BATCH.contains(&long.as_str()) {
+                        " one file at a time (a batch's own option)"
+                    } else {
+                        ""
+                    }
+                )));
+            }
+            let flag = format!("--{long}");
             if v.is_none() {
                 continue;
             }
@@ -52,9 +83,9 @@ pub fn process_file<'py>(
                 Ok(list) if !v.is_instance_of::<pyo3::types::PyString>() => list,
                 _ => vec![v],
             };
+            // `--fps=-24`: a value is a value, whatever it starts with.
             for value in values {
-                args.push(flag.clone().into());
-                args.push(value.str()?.to_string().into());
+                args.push(format!("{flag}={}", value.str()?).into());
             }
         }
     }
@@ -88,10 +119,12 @@ pub fn process_file<'py>(
         (code, lines)
     });
     let seconds = (t0.elapsed().as_secs_f64() * 1e3).round() / 1e3;
+    // The located error; for an option value the command line refused, clap's `error: …`.
     let error = lines
         .iter()
         .rev()
         .find_map(|l| l.strip_prefix("inbetween: error: "))
+        .or_else(|| lines.iter().find_map(|l| l.strip_prefix("error: ")))
         .map(str::to_string);
     let warnings: Vec<String> = lines
         .iter()

@@ -51,6 +51,12 @@ pub(crate) fn message(e: &inbetween::InputError) -> String {
     })
 }
 
+/// A user's text in a message: control characters escaped, at most 100 characters quoted.
+pub(crate) fn shown(text: &str) -> String {
+    let escaped: String = text.chars().flat_map(char::escape_debug).collect();
+    format!("\"{}\"", inbetween::error::shorten(&escaped))
+}
+
 /// An [`InputError`] with `message`.
 pub(crate) fn input_error(message: impl Into<String>) -> PyErr {
     InputError::new_err(message.into())

@@ -25,8 +25,27 @@ pub fn frame_times<'py>(
         options::rate("fps_out", &fps_out)?,
     );
     let (a, b) = grid(n, fps_in, fps_out)?;
+    fits(b - a + 1, 1)?;
     let times: Vec<f64> = (a..=b).map(|k| fps_out.time_of(k)).collect();
     Ok(numpy::PyArray1::from_vec(py, times))
+}
+
+/// The most numbers a result of `resample` or `frame_times` may hold: 2²⁸ (2 GiB of float64),
+/// so that a grid too large for memory is a `ValueError` before anything is allocated, never
+/// an allocation failure that aborts the interpreter.
+pub const MAX_VALUES: i64 = 1 << 28;
+
+/// An error unless `frames` frames of `per_frame` numbers each fit in [`MAX_VALUES`].
+fn fits(frames: i64, per_frame: i64) -> PyResult<()> {
+    let values = frames.saturating_mul(per_frame);
+    if frames < 0 || values > MAX_VALUES {
+        return Err(input_error(format!(
+            "the result would hold {frames} frames of {per_frame} numbers, more than the \
+             {MAX_VALUES} numbers (2 GiB of float64) a result may hold: resample a shorter \
+             span, fewer joints or a lower rate"
+        )));
+    }
+    Ok(())
 }
 
 /// The output frames `(first, last)` for `n` input frames.
@@ -89,6 +108,8 @@ pub fn resample<'py>(
     );
     let (layout, quats): (Layout, _) = arrays::quats(&rotations, "rotations", scalar_first)?;
     let (first, last) = grid(layout.rows, fps_in, fps_out)?;
+    let joints = layout.joints.unwrap_or(1) as i64;
+    fits(last - first + 1, joints * if velocity { 7 } else { 4 })?;
     let frames = usize::try_from(last - first + 1).unwrap_or(0);
     let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
     let opts = options::curve(scheme, ends, path, fps_out)?;

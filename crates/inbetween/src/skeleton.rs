@@ -87,12 +87,14 @@ impl Skeleton {
     /// The skeleton of `joints`. Errors: a parent that does not come before its child, a track
     /// animating two joints, a value that is not finite.
     pub fn new(joints: Vec<Joint>) -> Result<Skeleton, InputError> {
-        let mut seen = Vec::new();
+        // Tracks seen, by a hash set: linear in the joints.
+        let mut seen = std::collections::HashSet::new();
+        let mut tracks = 0;
         for (i, j) in joints.iter().enumerate() {
             if j.parent.is_some_and(|p| p >= i) {
                 return Err(input_err!(
                     "joint {i} ({:?}): its parent comes after it",
-                    j.name
+                    crate::error::shorten(&j.name)
                 ));
             }
             let finite = j.translation.is_finite()
@@ -102,20 +104,19 @@ impl Skeleton {
             if !finite {
                 return Err(input_err!(
                     "joint {i} ({:?}): a value is not finite",
-                    j.name
+                    crate::error::shorten(&j.name)
                 ));
             }
             if let Some(t) = j.track {
-                if seen.contains(&t) {
+                if !seen.insert(t) {
                     return Err(input_err!(
                         "joint {i} ({:?}): track {t} already animates another joint",
-                        j.name
+                        crate::error::shorten(&j.name)
                     ));
                 }
-                seen.push(t);
+                tracks = tracks.max(t + 1);
             }
         }
-        let tracks = seen.iter().max().map_or(0, |m| m + 1);
         Ok(Skeleton { joints, tracks })
     }
 

@@ -138,3 +138,53 @@ fn usd_quaternions_near_the_float_limits_are_rotations() {
         );
     }
 }
+
+/// A chain of 6 000 joints: world-space reduce would compose 18 million joints along its
+/// points' chains (the root 1 deep, joint i i + 2 deep, the end site's point at the last joint:
+/// 6001·6002/2 + 6001 = 18 015 002) (and hold them: quadratic in the joints); refused before they are built,
+/// while per-joint reduce takes it.
+#[test]
+fn world_reduce_of_a_very_deep_chain_is_refused_up_front() {
+    let n = 6000;
+    let mut text = String::from(
+        "HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 6 Xposition Yposition Zposition Zrotation \
+         Xrotation Yrotation\n",
+    );
+    for i in 0..n {
+        text +=
+            &format!("JOINT j{i}\n{{\nOFFSET 0 1 0\nCHANNELS 3 Zrotation Xrotation Yrotation\n");
+    }
+    text += "End Site\n{\nOFFSET 0 1 0\n}\n";
+    text += &"}\n".repeat(n + 1);
+    text += "MOTION\nFrames: 2\nFrame Time: 0.033333\n";
+    for f in 0..2 {
+        let mut row = vec!["0 0 0 0 0 0".to_string()];
+        row.extend((0..n).map(|i| format!("{} 0 0", f * (i % 7))));
+        text += &(row.join(" ") + "\n");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("deep.bvh");
+    std::fs::write(&file, text).unwrap();
+    let out = dir.path().join("keys.json");
+    let o = bin()
+        .arg("reduce")
+        .arg(&file)
+        .args(["--position-tolerance", "1000", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("lie up to 6001 joints deep: 18015002 joints along their chains"),
+        "{err}"
+    );
+    assert!(!out.exists());
+    bin()
+        .arg("reduce")
+        .arg(&file)
+        .args(["--tolerance", "1", "--translation-tolerance", "1", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+}

@@ -495,7 +495,11 @@ def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], co
     ``"skipped"``, ``"failed"``), ``seconds``, ``error`` (a failed file's message, naming the
     file), ``exit_code`` (the command line's: 2 refused input, 1 internal error) and
     ``warnings``. A failed file is a record, not an exception, so that a map over a folder goes
-    on; an unknown ``command`` is an ``InputError``.
+    on; an unknown ``command`` is an ``InputError``, and an option that is not one of the
+    command's flags (or is a batch's own: ``out_dir``, ``jobs``, ``manifest``, ``refresh``,
+    ``follow``, ``output``) a ``TypeError``. ``path`` and ``out`` are always paths: a name that
+    starts with ``-`` (``"--help"``, ``"-"``) is a file of that name, and option values are
+    values whatever they start with (``fps="-24"`` is refused as a rate, not read as a flag).
     """
     return _inbetween.process_file(os.fspath(path), os.fspath(out), command, dict(options),
                                    refresh)

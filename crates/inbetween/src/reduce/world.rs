@@ -55,6 +55,11 @@ pub const TIGHTENING: f64 = 0.95;
 /// How many times the budgets grow by their slack once every point is within its limit.
 pub const LOOSENINGS: usize = 1;
 
+/// The most joints along the points' chains to the root (the points times their depth) a
+/// world-space reduce composes: 2²⁴, a skeleton of 4 000 joints in one chain (real ones hold
+/// a few thousand); a chain of 100 000 joints (5·10⁹) is refused before its chains are built.
+pub(super) const MAX_CHAIN_WORK: u64 = 1 << 24;
+
 /// A budget grows by its chains' slack (limit over displacement) to this power...
 pub const LOOSENING: f64 = 0.8;
 
@@ -318,6 +323,23 @@ impl<'a> Setup<'a> {
             .into());
         }
         let point_joints = skeleton.point_joints(world.shell.is_some());
+        // Each point is measured along its chain to the root: the work and the chains' memory
+        // grow with the points times their depth, bounded before anything is built.
+        let mut depth = vec![0u64; joints.len()];
+        for (i, j) in joints.iter().enumerate() {
+            depth[i] = j.parent.map_or(1, |p| depth[p] + 1);
+        }
+        let work: u64 = point_joints.iter().map(|&j| depth[j]).sum();
+        if work > MAX_CHAIN_WORK {
+            return Err(input_err!(
+                "the skeleton's {} points lie up to {} joints deep: {work} joints along their \
+                 chains to the root, more than the {MAX_CHAIN_WORK} a position tolerance \
+                 composes; reduce per joint (a rotation tolerance) instead",
+                point_joints.len(),
+                depth.iter().max().copied().unwrap_or(0)
+            )
+            .into());
+        }
         let chains: Vec<Vec<usize>> = point_joints
             .iter()
             .map(|&j| {
