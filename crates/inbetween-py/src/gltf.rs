@@ -161,7 +161,7 @@ fn names(clip: &GltfClip) -> String {
     let mut list: Vec<String> = all
         .iter()
         .take(20)
-        .map(|s| format!("{:?}", s.name))
+        .map(|s| format!("{:?}", inbetween::error::shorten(&s.name)))
         .collect();
     if all.len() > 20 {
         list.push(format!("… ({} in all)", all.len()));
