@@ -451,15 +451,14 @@ fn npz_names_of_absurd_width_are_refused_up_front() {
     let input = dir.path().join("long.json");
     let out = dir.path().join("out.npz");
     std::fs::write(&input, doc(150_000)).unwrap();
-    let o = bin()
-        .arg("interp")
-        .arg(&input)
-        .args(["--fps", "30", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = crate::support::stderr_of(
+        bin()
+            .arg("interp")
+            .arg(&input)
+            .args(["--fps", "30", "-o"])
+            .arg(&out),
+        2,
+    );
     assert!(
         err.contains("at the longest name's width (150000 characters)"),
         "{err}"

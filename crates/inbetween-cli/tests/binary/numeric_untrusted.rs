@@ -34,15 +34,14 @@ fn world_reduce_of_offsets_near_the_largest_float_is_refused() {
     let far = dir.path().join("far.bvh");
     std::fs::write(&far, far_clip("1e300")).unwrap();
     let out = dir.path().join("keys.json");
-    let o = bin()
-        .arg("reduce")
-        .arg(&far)
-        .args(["--position-tolerance", "1", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = crate::support::stderr_of(
+        bin()
+            .arg("reduce")
+            .arg(&far)
+            .args(["--position-tolerance", "1", "-o"])
+            .arg(&out),
+        2,
+    );
     assert!(
         err.contains("joint \"Spine\": its world position at frame"),
         "{err}"
@@ -76,16 +75,15 @@ fn diff_with_a_shell_near_the_largest_float_writes_no_inf() {
         .assert()
         .success();
     let report = dir.path().join("report.txt");
-    let o = bin()
-        .arg("diff")
-        .arg(&clip)
-        .arg(&keys)
-        .args(["--shell", "1e300", "-o"])
-        .arg(&report)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = crate::support::stderr_of(
+        bin()
+            .arg("diff")
+            .arg(&clip)
+            .arg(&keys)
+            .args(["--shell", "1e300", "-o"])
+            .arg(&report),
+        2,
+    );
     assert!(
         err.contains("world displacement is not a finite number"),
         "{err}"
@@ -166,15 +164,14 @@ fn world_reduce_of_a_very_deep_chain_is_refused_up_front() {
     let file = dir.path().join("deep.bvh");
     std::fs::write(&file, text).unwrap();
     let out = dir.path().join("keys.json");
-    let o = bin()
-        .arg("reduce")
-        .arg(&file)
-        .args(["--position-tolerance", "1000", "-o"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
+    let err = crate::support::stderr_of(
+        bin()
+            .arg("reduce")
+            .arg(&file)
+            .args(["--position-tolerance", "1000", "-o"])
+            .arg(&out),
+        2,
+    );
     assert!(
         err.contains("lie up to 6001 joints deep: 18015002 joints along their chains"),
         "{err}"

@@ -72,6 +72,16 @@ pub fn stdout_of(cmd: &mut assert_cmd::Command) -> String {
     String::from_utf8(out.stdout).expect("UTF-8 output")
 }
 
+/// Runs `cmd`, asserts it exited with `code` (printing its stderr if not), and returns its
+/// stderr.
+#[track_caller]
+pub fn stderr_of(cmd: &mut assert_cmd::Command, code: i32) -> String {
+    let out = cmd.output().expect("the binary runs");
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(code), "{err}");
+    err
+}
+
 /// Angle between two rotations in radians (q and −q are the same rotation).
 pub fn rot_angle(a: DQuat, b: DQuat) -> f64 {
     inbetween::rotation::quat::rotation_angle_between(a, b)
