@@ -10,6 +10,7 @@ mod arrays;
 mod batch;
 mod batch_untrusted;
 mod bvh;
+mod bvh_gimbal;
 mod bvh_stream;
 mod bvh_untrusted;
 mod diff;

@@ -890,6 +890,43 @@ Frame Time: 0.0333333
         assert!(parse_err(&text[..cut]).ends_with("found the end of the file"));
     }
 
+    /// A batch worker's small stack (256 KiB) reads a 20 000-deep chain and writes it back.
+    #[test]
+    fn a_deep_chain_reads_and_writes_on_a_small_stack() {
+        let depth = 20_000;
+        let mut text = String::from("HIERARCHY\nROOT r\n{\nOFFSET 0 0 0\nCHANNELS 1 Xrotation\n");
+        for i in 0..depth {
+            text.push_str(&format!(
+                "JOINT j{i}\n{{\nOFFSET 0 1 0\nCHANNELS 1 Zrotation\n"
+            ));
+        }
+        text.push_str(&"}\n".repeat(depth + 1));
+        text.push_str("MOTION\nFrames: 1\nFrame Time: 0.01\n");
+        text.push_str(&"5 ".repeat(depth + 1));
+        text.push('\n');
+        let joints = std::thread::Builder::new()
+            .stack_size(256 << 10)
+            .spawn(move || {
+                let (clip, _) = parse_ok(&text);
+                let mut out = Vec::new();
+                crate::bvh::write(
+                    &mut out,
+                    clip.hierarchy(),
+                    clip.fps(),
+                    clip.channel_count(),
+                    clip.values(),
+                )
+                .unwrap();
+                let (back, _) = parse_ok(std::str::from_utf8(&out).unwrap());
+                assert_eq!(back.values(), clip.values());
+                back.joints().len()
+            })
+            .unwrap()
+            .join()
+            .unwrap();
+        assert_eq!(joints, depth + 1);
+    }
+
     /// A reader that hands out at most `n` bytes at a time.
     struct Trickle<'a>(&'a [u8], usize);
 
