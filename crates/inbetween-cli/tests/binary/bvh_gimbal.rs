@@ -3,19 +3,7 @@
 //! 90°, where the continuous triple would trade Z for the missing Y). Read back by a plain
 //! reader written here; expected values are the file's own numbers.
 
-/// The rows after the `Frame Time` line, as numbers.
-fn rows(text: &str) -> Vec<Vec<f64>> {
-    let body = text.split_once("Frame Time:").unwrap().1;
-    body.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            l.split_ascii_whitespace()
-                .map(|x| x.parse().unwrap())
-                .collect()
-        })
-        .collect()
-}
+use crate::support::bvh_rows as rows;
 
 /// A root with `channels` (a hinge and a two-axis joint under it), one row per entry of `data`.
 fn clip(channels: [&str; 2], data: &[[f64; 3]]) -> String {

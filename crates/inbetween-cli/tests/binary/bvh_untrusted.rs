@@ -4,21 +4,8 @@
 //! code: `io::bvh::keys`, `io::bvh::frames`). Expected values are the files' own numbers or
 //! closed forms, read back by a plain reader written here (not `inbetween_io::bvh`).
 
+use crate::support::bvh_rows as rows;
 use std::path::Path;
-
-/// The rows after the `Frame Time` line, as numbers.
-fn rows(text: &str) -> Vec<Vec<f64>> {
-    let body = text.split_once("Frame Time:").unwrap().1;
-    body.lines()
-        .skip(1)
-        .filter(|l| !l.trim().is_empty())
-        .map(|l| {
-            l.split_ascii_whitespace()
-                .map(|x| x.parse().unwrap())
-                .collect()
-        })
-        .collect()
-}
 
 /// Runs the binary with `args`; (exit code, stderr).
 fn run(args: &[&std::ffi::OsStr]) -> (Option<i32>, String) {

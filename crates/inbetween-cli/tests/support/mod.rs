@@ -72,6 +72,20 @@ pub fn stdout_of(cmd: &mut assert_cmd::Command) -> String {
     String::from_utf8(out.stdout).expect("UTF-8 output")
 }
 
+/// A BVH text's rows after the `Frame Time` line, as numbers.
+pub fn bvh_rows(text: &str) -> Vec<Vec<f64>> {
+    let body = text.split_once("Frame Time:").unwrap().1;
+    body.lines()
+        .skip(1)
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            l.split_ascii_whitespace()
+                .map(|x| x.parse().unwrap())
+                .collect()
+        })
+        .collect()
+}
+
 /// Runs `cmd`, asserts it exited with `code` (printing its stderr if not), and returns its
 /// stderr.
 #[track_caller]

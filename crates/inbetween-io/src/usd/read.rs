@@ -27,12 +27,12 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     };
     // A Skeleton's animation: its own skel:animationSource, else its nearest ancestor's (a
     // SkelRoot's binding is inherited, as UsdSkel resolves it).
-    let binding = |skel: usize| -> Option<(&Prim, &Property)> {
+    let binding = |skel: usize| -> Option<(usize, &Property)> {
         let mut at = Some(skel);
         while let Some(k) = at {
             let prim = &layer.prims[k];
             if let Some(rel) = prim.property("skel:animationSource") {
-                return Some((prim, rel));
+                return Some((k, rel));
             }
             at = prim.parent;
         }
@@ -60,11 +60,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     let target = if target.starts_with('/') {
         target
     } else {
-        let bound = layer.prims.iter().position(|p| std::ptr::eq(p, bound_at));
-        format!(
-            "{}/{target}",
-            bound.map(|i| layer.path(i)).unwrap_or_default()
-        )
+        format!("{}/{target}", layer.path(bound_at))
     };
     let anim = layer
         .find(&target)

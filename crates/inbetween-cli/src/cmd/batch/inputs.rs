@@ -128,18 +128,8 @@ impl Expander<'_> {
     /// Walks the folder `root` (its real entries, then its links as the module says), adding
     /// the files whose relative path `keep` accepts.
     fn walk(&mut self, root: &Path, keep: &dyn Fn(&Path) -> bool) -> Result<(), Error> {
-        let canonical = std::fs::canonicalize(root).map_err(|e| {
-            InputError::new(format!(
-                "{}: cannot read the folder: {e}",
-                super::shown(root)
-            ))
-        })?;
-        let meta = std::fs::metadata(root).map_err(|e| {
-            InputError::new(format!(
-                "{}: cannot read the folder: {e}",
-                super::shown(root)
-            ))
-        })?;
+        let canonical = std::fs::canonicalize(root).map_err(|e| unreadable(root, e))?;
+        let meta = std::fs::metadata(root).map_err(|e| unreadable(root, e))?;
         // A named folder is walked even when it is the output folder (whose outputs the
         // collision check then weighs against its inputs); only folders below it are left out.
         if !self.dirs.insert(file_id(&meta, root)) {
@@ -169,21 +159,35 @@ impl Expander<'_> {
             let Ok(meta) = std::fs::metadata(&link.path) else {
                 continue;
             };
-            if meta.is_dir() {
-                let id = file_id(&meta, &link.path);
-                if !self.excluded.contains(&id) && self.dirs.insert(id) {
-                    self.walk_real(&link.path, link.relative, keep, &mut links)?;
-                }
-            } else if meta.is_file() {
-                if keep(&link.relative) {
-                    self.file(&link.path, link.relative, &meta);
-                }
-            } else if keep(&link.relative) {
-                let reason = format!("{} (never opened)", kind_of(&meta));
-                self.pass(&link.path, reason);
+            if self.place(&link.path, &link.relative, &meta, keep) {
+                self.walk_real(&link.path, link.relative, keep, &mut links)?;
             }
         }
         Ok(())
+    }
+
+    /// Takes an entry that is not a link (or a link's target) at `path`: a file `keep` accepts
+    /// is an input, anything else but a folder is passed over; true for a folder to walk (one
+    /// neither excluded nor walked before).
+    fn place(
+        &mut self,
+        path: &Path,
+        relative: &Path,
+        meta: &Metadata,
+        keep: &dyn Fn(&Path) -> bool,
+    ) -> bool {
+        if meta.is_dir() {
+            let id = file_id(meta, path);
+            return !self.excluded.contains(&id) && self.dirs.insert(id);
+        }
+        if !keep(relative) {
+        } else if meta.is_file() {
+            self.file(path, relative.to_path_buf(), meta);
+        } else {
+            let reason = format!("{} (never opened)", kind_of(meta));
+            self.pass(path, reason);
+        }
+        false
     }
 
     /// The real (not linked) entries below `dir`, depth first in name order; links are queued.
@@ -209,31 +213,25 @@ impl Expander<'_> {
                     path,
                     relative: rel,
                 });
-            } else if meta.is_dir() {
-                let id = file_id(&meta, &path);
-                if !self.excluded.contains(&id) && self.dirs.insert(id) {
-                    stack.push(entries(&path, &rel)?.into_iter());
-                }
-            } else if !keep(&rel) {
-            } else if meta.is_file() {
-                self.file(&path, rel, &meta);
-            } else {
-                let reason = format!("{} (never opened)", kind_of(&meta));
-                self.pass(&path, reason);
+            } else if self.place(&path, &rel, &meta, keep) {
+                stack.push(entries(&path, &rel)?.into_iter());
             }
         }
         Ok(())
     }
 }
 
+/// The error for a folder that cannot be read.
+fn unreadable(dir: &Path, e: std::io::Error) -> InputError {
+    InputError::new(format!(
+        "{}: cannot read the folder: {e}",
+        super::shown(dir)
+    ))
+}
+
 /// The entries of `dir` but hidden ones, in name order: (path, path relative to the walk's root).
 fn entries(dir: &Path, relative: &Path) -> Result<Vec<(PathBuf, PathBuf)>, Error> {
-    let read = std::fs::read_dir(dir).map_err(|e| {
-        InputError::new(format!(
-            "{}: cannot read the folder: {e}",
-            super::shown(dir)
-        ))
-    })?;
+    let read = std::fs::read_dir(dir).map_err(|e| unreadable(dir, e))?;
     let mut names: Vec<std::ffi::OsString> = read
         .filter_map(|e| e.ok().map(|e| e.file_name()))
         .filter(|n| !n.as_encoded_bytes().starts_with(b"."))

@@ -277,8 +277,10 @@ pub fn run(
             };
             let t0 = Instant::now();
             let mut warnings: Vec<String> = Vec::new();
+            // The error of the run, when it failed; a planned error is the plan's own.
+            let failed: Option<Error>;
             let (status, output, error) = match planned {
-                Err(e) => ("failed", None, Some(copy(e))),
+                Err(e) => ("failed", None, Some(e)),
                 Ok(output) => {
                     if !batch.refresh && newer(output, &job.input) {
                         ("skipped", Some(output), None)
@@ -303,15 +305,14 @@ pub fn run(
                                 })
                             })
                         });
-                        match result {
-                            Ok(()) => ("ok", Some(output), None),
-                            Err(e) => ("failed", Some(output), Some(e)),
-                        }
+                        failed = result.err();
+                        let status = if failed.is_some() { "failed" } else { "ok" };
+                        (status, Some(output), failed.as_ref())
                     }
                 }
             };
             let seconds = t0.elapsed().as_secs_f64();
-            let message = error.as_ref().map(crate::flags::error_text);
+            let message = error.map(crate::flags::error_text);
             bar.suspend(|| {
                 for w in &warnings {
                     eprintln!("inbetween: warning: {}", crate::cli::line(w));
@@ -400,15 +401,6 @@ pub fn run(
         Err(InputError::new(format!("{} of {all} inputs were refused", t.refused)).into())
     } else {
         Ok(())
-    }
-}
-
-/// A planned output's error again, for its record (the plan keeps its own).
-fn copy(e: &Error) -> Error {
-    match e {
-        Error::Input(i) => Error::Input(i.clone()),
-        Error::Io(io) => Error::Io(std::io::Error::new(io.kind(), io.to_string())),
-        Error::Internal(s) => Error::Internal(s.clone()),
     }
 }
 
