@@ -29,7 +29,7 @@ use crate::bvh::rate::frame_time_text;
 use crate::clip::Clip;
 use glam::{DQuat, DVec3};
 use inbetween::clock::Fps;
-use inbetween::error::{InputError, InputResult, Setting, shorten};
+use inbetween::error::{Error, InputError, InputResult, Setting, shorten};
 use inbetween::message;
 use inbetween::rotation::EulerSeq;
 use std::collections::HashMap;
@@ -86,7 +86,43 @@ pub struct FbxClip {
 
 /// Reads FBX bytes (`source` names them in messages) and the stack chosen by `animation` (a
 /// name, else an index; `None`: the first, with a warning when there are several).
-pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<FbxClip> {
+pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> Result<FbxClip, Error> {
+    read_back(sample(bytes, source, animation)?, source)
+}
+
+/// The clip of a sampled stack: its text read as BVH. Text that does not read back is the
+/// sampler's fault, not the file's: an internal error.
+fn read_back(sampled: Sampled, source: &str) -> Result<FbxClip, Error> {
+    let (clip, bvh_warnings) = crate::bvh::parse(&sampled.text, source).map_err(|e| {
+        Error::Internal(format!(
+            "{source}: internal error: the clip made of its FBX nodes does not read back: {}",
+            e.message()
+        ))
+    })?;
+    let mut warnings = sampled.warnings;
+    warnings.extend(bvh_warnings);
+    Ok(FbxClip {
+        clip,
+        stack: sampled.stack,
+        start: sampled.start,
+        unit_meters: sampled.unit_meters,
+        z_up: sampled.z_up,
+        warnings,
+    })
+}
+
+/// A stack sampled into BVH text, with what the text cannot say.
+struct Sampled {
+    text: String,
+    stack: String,
+    start: f64,
+    unit_meters: f64,
+    z_up: bool,
+    warnings: Vec<String>,
+}
+
+/// The chosen stack of FBX `bytes` sampled at its frames, as BVH text ([`bvh_text`]).
+fn sample(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<Sampled> {
     // ufbx's memory is bounded too, so that a small file cannot claim gigabytes.
     let limit = MEMORY_PER_BYTE
         .saturating_mul(bytes.len())
@@ -308,15 +344,8 @@ pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<
             false
         }
     };
-    let (clip, bvh_warnings) = crate::bvh::parse(&text, source).map_err(|e| {
-        input_err!(
-            "{source}: internal error: the clip made of its FBX nodes does not read back: {}",
-            e.message()
-        )
-    })?;
-    warnings.extend(bvh_warnings);
-    Ok(FbxClip {
-        clip,
+    Ok(Sampled {
+        text,
         stack: stack.element.name.to_string(),
         start,
         unit_meters: scene.settings.unit_meters,
@@ -496,4 +525,29 @@ fn bvh_text(
 /// A node's position in the scene's node list.
 fn node_index(node: &ufbx::Node) -> usize {
     node.element.typed_id as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sampled text the BVH reader refuses is the library's bug: exit 1, not the file's fault.
+    #[test]
+    fn text_that_does_not_read_back_is_an_internal_error() {
+        let sampled = Sampled {
+            text: "HIERARCHY\nROOT a\n{\n".to_string(),
+            stack: "Take 001".to_string(),
+            start: 0.0,
+            unit_meters: 0.01,
+            z_up: false,
+            warnings: Vec::new(),
+        };
+        match read_back(sampled, "clip.fbx") {
+            Err(Error::Internal(m)) => assert!(
+                m.starts_with("clip.fbx: internal error: the clip made of its FBX nodes"),
+                "{m}"
+            ),
+            other => panic!("expected an internal error, found {other:?}"),
+        }
+    }
 }

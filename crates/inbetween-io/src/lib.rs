@@ -29,7 +29,7 @@ pub mod write;
 use document::Document;
 use inbetween::clock::Fps;
 use inbetween::error::shorten;
-use inbetween::error::{InputError, InputResult, Setting};
+use inbetween::error::{Error, InputError, InputResult, Setting};
 use inbetween::message;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 #[allow(unused_imports)]
@@ -220,7 +220,7 @@ pub fn parse_bytes(
     path: Option<&Path>,
     format: Option<Format>,
     opts: &ReadOptions,
-) -> InputResult<(Document, Format)> {
+) -> Result<(Document, Format), Error> {
     if is_gltf(&bytes, path, format) {
         let dir = path.map(gltf_dir);
         let asset = gltf::Asset::from_slice(&bytes, source, dir.as_deref())?;
@@ -240,7 +240,8 @@ pub fn parse_bytes(
         return Err(input_err!(
             "{source}: binary USD (usdc, or a usdz package) is not read, only the text form: \
              write it as text first (usdcat {source} -o clip.usda)"
-        ));
+        )
+        .into());
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         input_err!(
@@ -325,7 +326,7 @@ pub fn read_path(
     path: &Path,
     format: Option<Format>,
     opts: &ReadOptions,
-) -> InputResult<(Document, Format)> {
+) -> Result<(Document, Format), Error> {
     read_path_limited(path, format, opts, DEFAULT_MAX_INPUT_BYTES)
 }
 
@@ -337,7 +338,7 @@ pub fn read_path_limited(
     format: Option<Format>,
     opts: &ReadOptions,
     limit: u64,
-) -> InputResult<(Document, Format)> {
+) -> Result<(Document, Format), Error> {
     let bytes = read_bytes_limited(path, limit)?;
     parse_bytes(bytes, &path.display().to_string(), Some(path), format, opts)
 }
@@ -370,10 +371,10 @@ pub fn read_document(
     source: &str,
     format: Format,
     opts: &ReadOptions,
-) -> InputResult<Document> {
+) -> Result<Document, Error> {
     match format {
-        Format::Csv => read::csv::read(text, source, opts),
-        Format::Json => read::json::read(text, source, opts),
+        Format::Csv => Ok(read::csv::read(text, source, opts)?),
+        Format::Json => Ok(read::json::read(text, source, opts)?),
         Format::Bvh => {
             let (clip, warnings) = bvh::parse(text, source)?;
             Ok(bvh::document::document(clip, source, warnings))
@@ -382,12 +383,12 @@ pub fn read_document(
             fbx::read(text.as_bytes(), source, None)?,
             source,
         )),
-        Format::Usd => usd::read::read(text, source),
+        Format::Usd => Ok(usd::read::read(text, source)?),
         Format::Gltf => {
             let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
             let clip = gltf::document::GltfClip::new(asset, None)?;
             let fps = opts.key_fps.unwrap_or(Fps::DEFAULT);
-            clip.document(fps, gltf::document::Mode::Frames)
+            Ok(clip.document(fps, gltf::document::Mode::Frames)?)
         }
     }
 }

@@ -159,7 +159,7 @@ fn run(files: &[PathBuf], format: Format, per_file: usize, seed: u64) -> (usize,
             let took = t.elapsed();
             match result {
                 Ok(Ok(())) => read += 1,
-                Ok(Err(e)) => {
+                Ok(Err(inbetween::Error::Input(e))) => {
                     assert!(
                         e.message().len() < 2000,
                         "{}: {what}: message of {} bytes",
@@ -168,6 +168,10 @@ fn run(files: &[PathBuf], format: Format, per_file: usize, seed: u64) -> (usize,
                     );
                     refused += 1
                 }
+                Ok(Err(e)) => panic!(
+                    "{} mutation {k} ({what}): not an input error: {e}",
+                    file.display()
+                ),
                 Err(_) => panic!(
                     "{} mutation {k} ({what}): the reader panicked",
                     file.display()

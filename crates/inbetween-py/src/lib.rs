@@ -62,6 +62,16 @@ pub(crate) fn input_error(message: impl Into<String>) -> PyErr {
     InputError::new_err(message.into())
 }
 
+/// A library error as Python raises it: the user's input an [`InputError`], I/O an `OSError`, a
+/// failed internal check a `RuntimeError`.
+pub(crate) fn error(e: inbetween::Error) -> PyErr {
+    match e {
+        inbetween::Error::Input(e) => input_error(message(&e)),
+        inbetween::Error::Io(e) => e.into(),
+        inbetween::Error::Internal(m) => pyo3::exceptions::PyRuntimeError::new_err(m),
+    }
+}
+
 #[pymodule]
 fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", m.py().get_type::<InputError>())?;

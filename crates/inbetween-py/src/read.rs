@@ -57,7 +57,7 @@ pub fn read<'py>(
             let source = path.display().to_string();
             inbetween_io::parse_bytes(bytes, &source, Some(Path::new(&path)), None, &opts)
         })
-        .map_err(located)?;
+        .map_err(crate::error)?;
     let frame_fps = doc.fps.unwrap_or(Fps::DEFAULT);
     let tracks = doc.tracks_shaped(frame_fps, Tcb::ZERO).map_err(located)?;
     let d = PyDict::new(py);

@@ -105,10 +105,7 @@ pub fn reduce<'py>(
             true => reduce_shared(&frames, &opts),
             false => reduce_each(&frames, &opts),
         })
-        .map_err(|e| match e {
-            inbetween::Error::Input(e) => input_error(crate::message(&e)),
-            other => pyo3::exceptions::PyRuntimeError::new_err(other.to_string()),
-        })?;
+        .map_err(crate::error)?;
     reduced.iter().map(|r| as_dict(py, r)).collect()
 }
 

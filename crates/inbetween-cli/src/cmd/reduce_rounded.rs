@@ -110,12 +110,13 @@ fn read_back(
         tracks: None,
     };
     let scheme = |_| args.scheme.map_or(inbetween::Scheme::Bezier, Into::into);
-    read_curves(&input, &args.curve, &scheme, &mut &bytes[..], &mut |_| {}).map_err(|e| {
-        InputError::new(format!(
+    read_curves(&input, &args.curve, &scheme, &mut &bytes[..], &mut |_| {}).map_err(|e| match e {
+        Error::Input(e) => InputError::new(format!(
             "--precision {digits}: the keys rounded to {digits} digits do not read back: {}",
             e.message()
         ))
-        .into()
+        .into(),
+        other => other,
     })
 }
 

@@ -94,7 +94,7 @@ pub fn read_input(
     (mode, translations): (Mode, bool),
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> Result<(Document, Format, Option<Arc<GltfClip>>), InputError> {
+) -> Result<(Document, Format, Option<Arc<GltfClip>>), inbetween::Error> {
     let opts = ReadOptions {
         from: args.from,
         angles: args.angles,
@@ -133,7 +133,8 @@ pub fn read_input(
             return Err(InputError::new(format!(
                 "--animation: {source} is neither glTF nor FBX; only a glTF asset's animations \
                  and an FBX scene's animation stacks can be chosen"
-            )));
+            ))
+            .into());
         }
         let (doc, format) =
             inbetween_io::parse_bytes(bytes, &source, path, args.input_format, &opts)?;
@@ -149,7 +150,8 @@ pub fn read_input(
         };
         return Err(InputError::new(format!(
             "{source}: --from {r}: {what}; --from says how CSV and JSON keys are written"
-        )));
+        ))
+        .into());
     }
     for w in &doc.warnings {
         warn(w);
@@ -270,7 +272,7 @@ pub fn read_curves(
     scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> Result<Curves, InputError> {
+) -> Result<Curves, inbetween::Error> {
     read_curves_in((Mode::Frames, true), input, curve, scheme, stdin, warn)
 }
 
@@ -283,7 +285,7 @@ pub fn read_curves_in(
     scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
-) -> Result<Curves, InputError> {
+) -> Result<Curves, inbetween::Error> {
     let (doc, format, gltf) = read_input(input, curve.fps, mode, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
     if let Some(w) = key_rate_warning(&doc, frame_fps) {
@@ -308,7 +310,8 @@ pub fn read_curves_in(
                     "{}: --path euler needs keys given as Euler angles in one sequence \
                      (--from euler:SEQ, or \"rotation\": \"euler:SEQ\" in JSON), found {found}",
                     track_label(&doc.source, t)
-                )));
+                ))
+                .into());
             }
         }
     }
@@ -320,7 +323,8 @@ pub fn read_curves_in(
                     "{}: time {} s is beyond the frame numbers --fps {fps} supports (2^53)",
                     doc.source,
                     num(time)
-                )));
+                ))
+                .into());
             }
         }
     }
@@ -341,7 +345,8 @@ pub fn read_curves_in(
                 "{flag}: expected at most {limit}, found {} {}/s",
                 num(unit.from_rad(speed)),
                 unit.as_str()
-            )));
+            ))
+            .into());
         }
     }
     let opts = curve_options(curve, scheme(format), fps, input.angles);

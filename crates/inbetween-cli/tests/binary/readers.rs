@@ -2,7 +2,7 @@
 //! most 60 characters of the user's text, and reading linear in the number of tracks.
 
 use crate::support::bin;
-use inbetween::{Fps, InputError};
+use inbetween::Fps;
 use inbetween_io::document::shorten;
 use inbetween_io::{
     DEFAULT_MAX_INPUT_BYTES, Format, ReadOptions, parse_bytes, read_limited, read_path_limited,
@@ -51,7 +51,10 @@ impl<R: Read> Read for Counting<R> {
 #[test]
 fn files_and_devices_are_read_up_to_the_limit() {
     let opts = ReadOptions::default();
-    let err = |r: Result<_, InputError>| r.map(|_| ()).unwrap_err().message().to_string();
+    let err = |r: Result<_, inbetween::Error>| match r.map(|_| ()) {
+        Err(inbetween::Error::Input(e)) => e.message(),
+        other => panic!("expected an input error, found {other:?}"),
+    };
     // A device without a size: read up to limit + 1 bytes, then refused.
     if Path::new("/dev/zero").exists() {
         assert_eq!(

@@ -41,7 +41,6 @@
 use super::banded::Banded;
 use super::hermite::Hermite;
 use super::{Blend, Segment};
-use crate::error::input_err;
 use crate::error::{InputError, InputResult, Setting};
 use crate::rotation::quat::exp;
 use crate::tangent::Knots;
@@ -599,7 +598,20 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
     report
 }
 
-/// Solves the minaccel problem for a track at `fps`.
+/// Solves the minaccel problem for a track at `fps` ([`Prepared`], then [`Prepared::solve`]).
+pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
+    Ok(Prepared::new(keys, fps)?.solve())
+}
+
+/// [`solve`], unless the grid (refined as [`Problem::new`] refines it) would have more than
+/// `limit` points: then `None`, found before any Newton iteration ([`Prepared::fits`]).
+pub fn solve_within(keys: &Knots, fps: f64, limit: usize) -> InputResult<Option<Solution>> {
+    let prepared = Prepared::new(keys, fps)?;
+    Ok(prepared.fits(limit).then(|| prepared.solve()))
+}
+
+/// A track's minaccel problem with its grid laid out and nothing iterated yet, so that a caller
+/// can see the grid's size before paying for the solve.
 ///
 /// A cyclic track solves the periodic problem (its seam an interior key like any other): the
 /// loop is repeated until [`SEAM_KEYS`] keys stand on each side of a middle copy, the repeated
@@ -607,83 +619,102 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
 /// free ends on it decays through every fixed key between them (by about 0.27 a key for a
 /// cubic spline, at worst ½), so at 40 keys it is below f64 resolution; a test checks the middle
 /// copy against its neighbours.
-pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
-    solve_within(keys, fps, MAX_GRID_POINTS)?
-        .ok_or_else(|| input_err!("internal error: a minaccel grid within its own cap was refused"))
+pub struct Prepared {
+    problem: Problem,
+    /// Copies of the loop in `problem` (1 for a track with ends).
+    copies: usize,
+    /// The span of the track's own keys: the middle copy of a loop.
+    span: Option<(f64, f64)>,
 }
 
-/// [`solve`], unless the grid (refined as [`Problem::new`] refines it) would have more than
-/// `limit` points: then `None`, found before any Newton iteration. A cyclic track's limit is
-/// per copy of its loop. `reduce` tests a segment within a limit ([`crate::reduce`]): a start
-/// curve that needs a finer grid than the frames turns more than a quarter turn between two of
-/// them, and its solve can take thousands of points and the whole iteration budget.
-pub fn solve_within(keys: &Knots, fps: f64, limit: usize) -> InputResult<Option<Solution>> {
-    if !keys.cyclic {
-        let problem = Problem::new(keys, fps)?;
-        return Ok((problem.grid_len <= limit).then(|| problem.solve()));
-    }
-    let n = keys.quats.len();
-    let segs = n - 1;
-    let reps = SEAM_KEYS.div_ceil(segs);
-    let period = keys.times[n - 1] - keys.times[0];
-    // The loop ends on the first key's rotation, on the same or the opposite sheet of S³.
-    let sign = if keys.quats[0].dot(keys.quats[n - 1]) < 0.0 {
-        -1.0
-    } else {
-        1.0
-    };
-    let copies = 2 * reps + 1;
-    let len = copies * segs + 1;
-    let mut unrolled = Knots {
-        times: Vec::with_capacity(len),
-        quats: Vec::with_capacity(len),
-        w: Vec::with_capacity(len),
-        w_in: Vec::with_capacity(len),
-        shaped: Vec::with_capacity(len),
-        cyclic: false,
-        start_given: false,
-        end_given: false,
-        chords: keys.chords.as_ref().map(|_| Vec::with_capacity(len - 1)),
-    };
-    for c in 0..copies {
-        // The middle copy (c = reps) has the track's own times and signs exactly.
-        let offset = (c as f64 - reps as f64) * period;
-        let s = if (c + reps).is_multiple_of(2) {
-            1.0
+impl Prepared {
+    /// The problem of `keys` at `fps`: fails as [`Problem::new`] fails.
+    pub fn new(keys: &Knots, fps: f64) -> InputResult<Prepared> {
+        if !keys.cyclic {
+            return Ok(Prepared {
+                problem: Problem::new(keys, fps)?,
+                copies: 1,
+                span: None,
+            });
+        }
+        let n = keys.quats.len();
+        let segs = n - 1;
+        let reps = SEAM_KEYS.div_ceil(segs);
+        let period = keys.times[n - 1] - keys.times[0];
+        // The loop ends on the first key's rotation, on the same or the opposite sheet of S³.
+        let sign = if keys.quats[0].dot(keys.quats[n - 1]) < 0.0 {
+            -1.0
         } else {
-            sign
+            1.0
         };
-        if c > 0 {
-            // The seam key is shared: it takes this copy's time, exact in the middle copy.
-            let last = unrolled.times.len() - 1;
-            unrolled.times[last] = keys.times[0] + offset;
+        let copies = 2 * reps + 1;
+        let len = copies * segs + 1;
+        let mut unrolled = Knots {
+            times: Vec::with_capacity(len),
+            quats: Vec::with_capacity(len),
+            w: Vec::with_capacity(len),
+            w_in: Vec::with_capacity(len),
+            shaped: Vec::with_capacity(len),
+            cyclic: false,
+            start_given: false,
+            end_given: false,
+            chords: keys.chords.as_ref().map(|_| Vec::with_capacity(len - 1)),
+        };
+        for c in 0..copies {
+            // The middle copy (c = reps) has the track's own times and signs exactly.
+            let offset = (c as f64 - reps as f64) * period;
+            let s = if (c + reps).is_multiple_of(2) {
+                1.0
+            } else {
+                sign
+            };
+            if c > 0 {
+                // The seam key is shared: it takes this copy's time, exact in the middle copy.
+                let last = unrolled.times.len() - 1;
+                unrolled.times[last] = keys.times[0] + offset;
+            }
+            for i in usize::from(c > 0)..n {
+                unrolled.times.push(keys.times[i] + offset);
+                unrolled.quats.push(keys.quats[i] * s);
+                unrolled.w.push(keys.w[i]);
+                unrolled.w_in.push(keys.w_in[i]);
+                unrolled.shaped.push(keys.shaped[i]);
+            }
+            if let (Some(all), Some(own)) = (&mut unrolled.chords, &keys.chords) {
+                all.extend_from_slice(own);
+            }
         }
-        for i in usize::from(c > 0)..n {
-            unrolled.times.push(keys.times[i] + offset);
-            unrolled.quats.push(keys.quats[i] * s);
-            unrolled.w.push(keys.w[i]);
-            unrolled.w_in.push(keys.w_in[i]);
-            unrolled.shaped.push(keys.shaped[i]);
-        }
-        if let (Some(all), Some(own)) = (&mut unrolled.chords, &keys.chords) {
-            all.extend_from_slice(own);
+        Ok(Prepared {
+            problem: Problem::new(&unrolled, fps)?,
+            copies,
+            span: Some((keys.times[0], keys.times[n - 1])),
+        })
+    }
+
+    /// Whether the grid has at most `limit` points (a loop: per copy of the loop). `reduce`
+    /// tests a segment within a limit ([`crate::reduce`]): a start curve that needs a finer grid
+    /// than the frames turns more than a quarter turn between two of them, and its solve can
+    /// take thousands of points and the whole iteration budget.
+    pub fn fits(&self, limit: usize) -> bool {
+        self.problem.grid_len <= limit.saturating_mul(self.copies)
+    }
+
+    /// Runs the Newton solver; a loop keeps its middle copy.
+    pub fn solve(self) -> Solution {
+        let whole = self.problem.solve();
+        let Some((t0, t1)) = self.span else {
+            return whole;
+        };
+        let lo = whole.times.partition_point(|&t| t < t0);
+        let hi = whole.times.partition_point(|&t| t <= t1);
+        let mut report = whole.report;
+        report.points = hi - lo;
+        Solution {
+            times: whole.times[lo..hi].to_vec(),
+            points: whole.points[lo..hi].to_vec(),
+            report,
         }
     }
-    let whole = Problem::new(&unrolled, fps)?;
-    if whole.grid_len > limit.saturating_mul(copies) {
-        return Ok(None);
-    }
-    let whole = whole.solve();
-    let (t0, t1) = (keys.times[0], keys.times[n - 1]);
-    let lo = whole.times.partition_point(|&t| t < t0);
-    let hi = whole.times.partition_point(|&t| t <= t1);
-    let mut report = whole.report;
-    report.points = hi - lo;
-    Ok(Some(Solution {
-        times: whole.times[lo..hi].to_vec(),
-        points: whole.points[lo..hi].to_vec(),
-        report,
-    }))
 }
 
 #[cfg(test)]

@@ -245,18 +245,29 @@ impl Curve {
     /// its grid for minaccel (which fails only for a grid larger than
     /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
     pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
-        Curve::new_within(track, opts, minaccel::MAX_GRID_POINTS)?.ok_or_else(|| {
-            InputError::new("internal error: a minaccel grid within its own cap was refused")
-        })
+        let built = Curve::build(track, opts, |_| Ok::<(), std::convert::Infallible>(()))?;
+        Ok(built.unwrap_or_else(|never| match never {}))
     }
 
     /// [`Curve::new`], unless the scheme is minaccel and its grid would have more than
-    /// `grid_limit` points ([`minaccel::solve_within`]): then `None`, before solving.
+    /// `grid_limit` points ([`minaccel::Prepared::fits`]): then `None`, before solving.
     pub(crate) fn new_within(
         track: &Track,
         opts: &CurveOptions,
         grid_limit: usize,
     ) -> InputResult<Option<Curve>> {
+        let built = Curve::build(track, opts, |p| {
+            if p.fits(grid_limit) { Ok(()) } else { Err(()) }
+        })?;
+        Ok(built.ok())
+    }
+
+    /// The curve of `track` under `opts`, unless `gate` refuses minaccel's prepared grid.
+    fn build<E>(
+        track: &Track,
+        opts: &CurveOptions,
+        gate: impl FnOnce(&minaccel::Prepared) -> Result<(), E>,
+    ) -> InputResult<Result<Curve, E>> {
         let given = [
             ("start", opts.ends.start.or(track.start_velocity())),
             ("end", opts.ends.end.or(track.end_velocity())),
@@ -346,14 +357,16 @@ impl Curve {
                 None,
             ),
             Scheme::MinAccel => {
-                let sol = minaccel::solve_within(&keys, opts.grid_rate.as_f64(), grid_limit)
-                    .map_err(|e| match &name {
+                let prepared = minaccel::Prepared::new(&keys, opts.grid_rate.as_f64()).map_err(
+                    |e| match &name {
                         Some(n) => e.at(format!("track \"{}\"", crate::error::shorten(n))),
                         None => e,
-                    })?;
-                let Some(sol) = sol else {
-                    return Ok(None);
-                };
+                    },
+                )?;
+                if let Err(refused) = gate(&prepared) {
+                    return Ok(Err(refused));
+                }
+                let sol = prepared.solve();
                 let pieces = Pieces::Grid {
                     times: sol.times,
                     points: sol.points,
@@ -370,7 +383,7 @@ impl Curve {
                 None,
             ),
         };
-        Ok(Some(Curve {
+        Ok(Ok(Curve {
             positions: track
                 .translations()
                 .map(|p| positions(track.times(), p, opts)),
