@@ -35,6 +35,12 @@ fn usage_error(e: &clap::Error, err: &mut dyn FnMut(&str)) -> u8 {
     2
 }
 
+/// The skip rule of a batch and of Python's `process_file`: whether `output` is a regular file
+/// modified after `input` (so the input need not be done again).
+pub fn up_to_date(output: &std::path::Path, input: &std::path::Path) -> bool {
+    cmd::batch::newer(output, input)
+}
+
 /// The long options of `command` (`fps`, `translation-tolerance`, …), as the command line
 /// spells them without their `--`: what `inbetween.process_file` accepts.
 pub fn option_names(command: &str) -> Vec<String> {

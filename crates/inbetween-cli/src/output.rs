@@ -13,6 +13,8 @@
 //!   replaced (so not atomic);
 //! - a directory, a socket, a loop of symbolic links, or a path whose directory does not exist
 //!   or is not a directory: an input error naming `PATH`.
+//! - a file the command reads (its input by any name, a skeleton file, a glTF input's buffers;
+//!   the caller passes them, [`files_read`]): an input error naming `PATH` and that file.
 //!
 //! Temporary files of uncommitted outputs are listed process-wide so that a signal handler can
 //! remove them with [`remove_temp_files`] before the process ends.
@@ -66,25 +68,27 @@ static REGISTRY: Mutex<Registry> = Mutex::new(Registry {
     closed: false,
 });
 
-/// Files no output may replace: those an input references (a glTF asset's buffers and
-/// images), as canonical paths.
-static PROTECTED: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
-
-/// Marks `files` (canonical paths, such as
-/// [`Asset::referenced_files`](inbetween_io::gltf::Asset::referenced_files)) as files the input
-/// reads: [`Output::open`] then refuses them as a destination (an input error), so that `-o`
-/// naming an asset's own `.bin` does not destroy the input.
-pub fn protect_inputs(files: &[PathBuf]) {
-    PROTECTED
-        .lock()
-        .unwrap_or_else(PoisonError::into_inner)
-        .extend_from_slice(files);
+/// The files a command reads, as [`Output::open`] protects them: each of `paths` that is a
+/// regular file (the input, a skeleton file; `None` and `-` are standard input, and a pipe or
+/// device is not replaced by an output, so nothing to protect) and the
+/// files an input references (`referenced`: a glTF asset's buffers and images, canonical, as
+/// [`Asset::referenced_files`](inbetween_io::gltf::Asset::referenced_files) gives them).
+pub fn files_read<'a>(
+    paths: impl IntoIterator<Item = Option<&'a Path>>,
+    referenced: &[PathBuf],
+) -> Vec<PathBuf> {
+    paths
+        .into_iter()
+        .flatten()
+        .filter(|p| p.as_os_str() != "-" && p.is_file())
+        .filter_map(|p| std::fs::canonicalize(p).ok())
+        .chain(referenced.iter().cloned())
+        .collect()
 }
 
-/// The protected file `target` is (through links or another name for it), if any.
-fn protected(target: &Path) -> Option<PathBuf> {
-    let list = PROTECTED.lock().unwrap_or_else(PoisonError::into_inner);
-    if list.is_empty() {
+/// The file of `reads` that `target` is (through links or another name for it), if any.
+fn protected(target: &Path, reads: &[PathBuf]) -> Option<PathBuf> {
+    if reads.is_empty() {
         return None;
     }
     let canonical = std::fs::canonicalize(target).ok()?;
@@ -98,7 +102,7 @@ fn protected(target: &Path) -> Option<PathBuf> {
     };
     #[cfg(not(unix))]
     let same = |p: &PathBuf| *p == canonical;
-    list.iter().find(|p| same(p)).cloned()
+    reads.iter().find(|p| same(p)).cloned()
 }
 
 fn registry() -> MutexGuard<'static, Registry> {
@@ -248,10 +252,11 @@ fn parent_dir(path: &Path) -> &Path {
 
 impl Output {
     /// Standard output (`None` or `-`), else the destination for `path` (see the [module
-    /// documentation](self)). A directory, a socket, a loop of symbolic links or a missing
-    /// directory is an [`Error::Input`] naming `path`; failing to create or open the file is an
-    /// [`Error::Io`] naming it.
-    pub fn open(path: Option<&Path>) -> Result<Output, Error> {
+    /// documentation](self)). A directory, a socket, a loop of symbolic links, a missing
+    /// directory, or one of the files the command reads (`reads`, [`files_read`]: writing it would
+    /// destroy the input) is an [`Error::Input`] naming `path`; failing to create or open the file
+    /// is an [`Error::Io`] naming it.
+    pub fn open(path: Option<&Path>, reads: &[PathBuf]) -> Result<Output, Error> {
         let stdout = || Output(Dest::Stdout(BufWriter::with_capacity(BUF, io::stdout())));
         let p = match path {
             Some(p) if p.as_os_str() != "-" => p,
@@ -289,10 +294,10 @@ impl Output {
             .into());
         }
         let target = resolve_links(p)?;
-        if let Some(input) = protected(&target) {
+        if let Some(input) = protected(&target, reads) {
             return Err(input_err!(
-                "-o {}: expected a new file, found {}, which the input references (writing it \
-                 would destroy the input)",
+                "-o {}: expected a new file, found {}, which the command reads (writing it would \
+                 destroy the input)",
                 p.display(),
                 input.display()
             )

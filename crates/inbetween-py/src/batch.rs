@@ -93,11 +93,7 @@ pub fn process_file<'py>(
     record.set_item("input", path)?;
     record.set_item("output", out)?;
     let t0 = Instant::now();
-    let newer = || {
-        let time = |p: &str| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-        matches!((time(out), time(path)), (Some(o), Some(i)) if o > i)
-    };
-    if !refresh && newer() {
+    if !refresh && inbetween_cli::up_to_date(Path::new(out), Path::new(path)) {
         record.set_item("status", "skipped")?;
         record.set_item("seconds", 0.0)?;
         return Ok(record);

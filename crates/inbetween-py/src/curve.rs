@@ -81,13 +81,23 @@ impl Curve {
     /// The rotations at times `t` (N,) with `order=0`, (N, 4) or (N, J, 4) unit quaternions;
     /// `order=1` angular velocity and `order=2` angular acceleration, (N, 3) or (N, J, 3),
     /// rad/s and rad/s², world frame.
-    #[pyo3(signature = (t, order = 0))]
+    #[pyo3(signature = (t, order = None))]
     fn __call__<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArrayDyn<'py, f64>,
-        order: u8,
+        order: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let order = match order {
+            None => 0,
+            Some(o) => crate::options::integer("order", &o, (0, 2))?.ok_or_else(|| {
+                input_error(format!(
+                    "order: expected 0 (rotation), 1 (angular velocity) or 2 (angular \
+                     acceleration), found {}",
+                    o.str().map_or_else(|_| "?".to_string(), |s| s.to_string())
+                ))
+            })?,
+        };
         let t = arrays::times(&t, "t")?;
         if let Some(bad) = t.iter().find(|x| !x.is_finite()) {
             return Err(input_error(format!(
@@ -121,7 +131,8 @@ impl Curve {
                 });
                 arrays::output_flat(py, data, 3, joints)
             }
-            2 => {
+            // 2, the last of the range `integer` let through.
+            _ => {
                 let data = py.detach(|| {
                     evaluate::<3>(curves, &t, |c, t, out| {
                         for (row, &x) in out.iter_mut().zip(t) {
@@ -131,10 +142,6 @@ impl Curve {
                 });
                 arrays::output_flat(py, data, 3, joints)
             }
-            _ => Err(input_error(format!(
-                "order: expected 0 (rotation), 1 (angular velocity) or 2 (angular \
-                 acceleration), found {order}"
-            ))),
         }
     }
 

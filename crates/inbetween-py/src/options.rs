@@ -47,6 +47,29 @@ pub fn path(name: &str) -> PyResult<PathMode> {
     }
 }
 
+/// An integer argument (a Python or numpy integer, not a bool or a float): `Some` within `lo..=hi`,
+/// `None` for any other integer, however large (the caller names its range); a `TypeError` for
+/// anything else.
+pub fn integer(what: &str, x: &Bound<'_, PyAny>, (lo, hi): (i64, i64)) -> PyResult<Option<i64>> {
+    if x.is_instance_of::<pyo3::types::PyBool>() {
+        return Err(pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what}: expected an integer, found a bool"
+        )));
+    }
+    let index = x.call_method0("__index__").map_err(|_| {
+        pyo3::exceptions::PyTypeError::new_err(format!(
+            "{what}: expected an integer, found {}",
+            x.get_type()
+                .name()
+                .map_or_else(|_| "an object".into(), |n| n.to_string())
+        ))
+    })?;
+    Ok(index
+        .extract::<i64>()
+        .ok()
+        .filter(|v| (lo..=hi).contains(v)))
+}
+
 /// A frame rate: an int, a string the command line accepts (`"24"`, `"29.97"`, `"30000/1001"`),
 /// a `fractions.Fraction` (anything with integer `numerator` and `denominator`), or a float
 /// taken as the decimal it prints as (`59.9999885559082` is 599999885559082/10¹³ frames per

@@ -16,10 +16,23 @@ use pyo3::prelude::*;
 #[pyfunction]
 pub fn frame_times<'py>(
     py: Python<'py>,
-    n: usize,
+    n: Bound<'py, PyAny>,
     fps_in: Bound<'py, PyAny>,
     fps_out: Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, numpy::PyArray1<f64>>> {
+    let Some(n) = crate::options::integer("n", &n, (i64::MIN, i64::MAX))? else {
+        return Err(input_error(format!(
+            "n: expected at least one frame and at most 2^63 - 1, found {}",
+            n.str()?
+        )));
+    };
+    if n < 1 {
+        return Err(input_error(format!(
+            "n: expected at least one frame, found {n}"
+        )));
+    }
+    // At most i64::MAX: a usize on every platform a wheel is built for.
+    let n = usize::try_from(n).unwrap_or(usize::MAX);
     let (fps_in, fps_out) = (
         options::rate("fps_in", &fps_in)?,
         options::rate("fps_out", &fps_out)?,

@@ -45,10 +45,17 @@ pub fn write<'py>(
     asset: Option<crate::gltf::SourceAsset>,
     to: &str,
     angles: &str,
-    precision: Option<usize>,
+    precision: Option<Bound<'py, PyAny>>,
     euler: &str,
     scalar_first: bool,
 ) -> PyResult<()> {
+    let precision = match precision {
+        None => None,
+        Some(p) => match crate::options::integer("precision", &p, (0, 17))? {
+            Some(p) => Some(p as usize),
+            None => return Err(input_error("precision: expected 0 to 17 digits")),
+        },
+    };
     let located = |e: inbetween::InputError| input_error(crate::message(&e));
     let source = path.display().to_string();
     let ext = path
@@ -82,9 +89,6 @@ pub fn write<'py>(
         OutputFormat::Doc(f) => f,
         _ => Format::Bvh, // frames on a grid
     };
-    if precision.is_some_and(|p| p > 17) {
-        return Err(input_error("precision: expected 0 to 17 digits"));
-    }
     let style = Style {
         repr: Repr::parse(to).map_err(|e| input_error(format!("to: {}", crate::message(&e))))?,
         angles: AngleUnit::parse(angles)

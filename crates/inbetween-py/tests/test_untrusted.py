@@ -90,3 +90,51 @@ def test_deep_usd_is_an_input_error_in_python(tmp_path):
     r = _in_subprocess(code)
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
     assert "nested deeper than 256 levels" in r.stdout, r.stdout
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda c: c(0.5, order=-1), r"order: expected 0 \(rotation\)"),
+    (lambda c: c(0.5, order=2**70), r"order: expected 0 \(rotation\)"),
+    (lambda c: inbetween.frame_times(-1, 30, 30), "n: expected at least one frame, found -1"),
+    (lambda c: inbetween.frame_times(2**70, 30, 30), "n: expected at least one frame and at most"),
+    (lambda c: inbetween.Curve([0, 1j], [[1, 0, 0, 0], [1, 0, 0, 0]]), "times: expected real"),
+])
+def test_integers_out_of_range_are_input_errors_not_overflow(call, message):
+    curve = inbetween.Curve([0.0, 1.0], [[1, 0, 0, 0], [0, 1, 0, 0]])
+    with pytest.raises(inbetween.InputError, match=message):
+        call(curve)
+
+
+def test_negative_precision_is_an_input_error(tmp_path):
+    clip = inbetween.Clip.from_arrays([0.0, 1.0], [[1, 0, 0, 0], [0, 1, 0, 0]])
+    with pytest.raises(inbetween.InputError, match="precision: expected 0 to 17 digits"):
+        inbetween.write(tmp_path / "x.csv", clip, precision=-1)
+    assert not (tmp_path / "x.csv").exists()
+
+
+def test_a_reduction_refuses_frames_of_another_shape():
+    q = np.tile([[1.0, 0, 0, 0], [0.0, 1, 0, 0]], (10, 1))
+    r = inbetween.reduce(q, 30, 1)
+    with pytest.raises(inbetween.InputError, match=r"rotations: expected .* \(20, 4\)"):
+        r.curve(q[:2])
+    with pytest.raises(inbetween.InputError, match="joint: expected None"):
+        r.key_times(5)
+    joints = inbetween.reduce(np.stack([q, q], axis=1), 30, 1)
+    with pytest.raises(inbetween.InputError, match="joint: expected a joint index"):
+        joints.key_times()
+
+
+def test_process_file_never_writes_over_its_input(tmp_path):
+    src = tmp_path / "keys.csv"
+    src.write_text("time,w,x,y,z\n0,1,0,0,0\n1,0,1,0,0\n")
+    before = src.read_bytes()
+    link = tmp_path / "link.csv"
+    link.symlink_to("keys.csv")
+    for out in (src, link):
+        r = inbetween.process_file(src, out, "convert")
+        assert r["status"] == "failed" and r["exit_code"] == 2, r
+        assert "which the command reads" in r["error"], r
+        assert src.read_bytes() == before
+    # An output path that is a folder is no output to be up to date: a failure, not a skip.
+    r = inbetween.process_file(src, tmp_path, "interp", fps=30)
+    assert r["status"] == "failed" and "directory" in r["error"], r

@@ -60,7 +60,7 @@ pub fn run(
         ReportFormat::Csv => csv_report(&rows, unit),
         ReportFormat::Json => json_report(&rows, unit),
     };
-    let mut out = Output::open(args.output.as_deref())?;
+    let mut out = Output::open(args.output.as_deref(), &input.reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(())

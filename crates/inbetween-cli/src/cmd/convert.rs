@@ -1,6 +1,6 @@
 //! `inbetween convert`: keys in, the same keys out in another representation and/or format.
 
-use super::settings::{key_rate_warning, output_format, rates, read_input};
+use super::settings::{files_read, key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use crate::output::Output;
 use inbetween::{Error, InputError};
@@ -10,6 +10,7 @@ use inbetween_io::gltf::document::Mode;
 use inbetween_io::write::write_keys;
 use inbetween_io::{Format, OutputFormat};
 use std::io::Read;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 /// `convert … --skeleton clip.bvh -o out.bvh`: the keys as the motion of the skeleton (of the
@@ -19,6 +20,7 @@ fn write_bvh(
     doc: &Document,
     template: Option<Arc<Clip>>,
     fps: inbetween::Fps,
+    reads: &[PathBuf],
 ) -> Result<(), Error> {
     let skeleton = match (template, &doc.skeleton) {
         (Some(t), _) => t,
@@ -32,7 +34,7 @@ fn write_bvh(
             .into());
         }
     };
-    let mut out = Output::open(args.output.output.as_deref())?;
+    let mut out = Output::open(args.output.output.as_deref(), reads)?;
     inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps, args.output.euler_mode())?;
     out.commit()?;
     Ok(())
@@ -45,7 +47,9 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
-    let (doc, in_format, _) = read_input(&args.input, args.fps, (Mode::Keys, true), stdin, warn)?;
+    let (doc, in_format, gltf) =
+        read_input(&args.input, args.fps, (Mode::Keys, true), stdin, warn)?;
+    let reads = files_read(&args.input, &[args.skeleton.as_deref()], gltf.as_deref());
     let template = args
         .skeleton
         .as_deref()
@@ -103,9 +107,9 @@ pub fn run(
     }
     let format = match chosen {
         OutputFormat::Doc(f) => f,
-        OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps),
+        OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps, &reads),
         OutputFormat::Usda => {
-            let mut out = Output::open(args.output.output.as_deref())?;
+            let mut out = Output::open(args.output.output.as_deref(), &reads)?;
             inbetween_io::usd::keys::write_keys(&mut out, &doc, frame_fps)?;
             out.commit()?;
             return Ok(());
@@ -148,7 +152,7 @@ pub fn run(
         warn(&w);
     }
     let style = super::settings::style(&args.input, &args.output);
-    let mut out = Output::open(args.output.output.as_deref())?;
+    let mut out = Output::open(args.output.output.as_deref(), &reads)?;
     write_keys(&mut out, &doc, format, style, frame_fps)?;
     out.commit()?;
     Ok(())

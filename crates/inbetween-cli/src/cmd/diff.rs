@@ -159,7 +159,8 @@ pub fn run(
         ReportFormat::Csv => csv(&rows, unit),
         ReportFormat::Json => json(&rows, unit),
     };
-    let mut out = Output::open(args.output.as_deref())?;
+    let reads = [&a.reads[..], &b.reads[..]].concat();
+    let mut out = Output::open(args.output.as_deref(), &reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(exceeded(&rows, args, unit))

@@ -48,7 +48,7 @@ pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) ->
         Error::Input(e) => Error::Input(e.at(&doc.source)),
         e => e,
     })?;
-    let mut out = Output::open(Some(&args.output))?;
+    let mut out = Output::open(Some(&args.output), &input.reads)?;
     out.write_all(text.as_bytes())?;
     out.commit()?;
     Ok(())

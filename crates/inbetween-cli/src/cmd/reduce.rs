@@ -12,6 +12,7 @@ use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
 use inbetween_io::{Format, OutputFormat};
 use std::io::Read;
+use std::path::PathBuf;
 
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
 pub fn run(
@@ -117,6 +118,7 @@ pub fn run(
         &out_doc,
         (format, style, frame_fps),
         (input.format, skeleton),
+        &input.reads,
         warn,
     )
 }
@@ -208,6 +210,7 @@ pub(super) fn write(
     doc: &Document,
     (format, style, frame_fps): (Format, Style, Fps),
     (input, skeleton): (Format, bool),
+    reads: &[PathBuf],
     warn: &mut dyn FnMut(&str),
 ) -> Result<(), Error> {
     if format == Format::Csv
@@ -215,7 +218,7 @@ pub(super) fn write(
     {
         warn(&w);
     }
-    let mut out = Output::open(args.output.output.as_deref())?;
+    let mut out = Output::open(args.output.output.as_deref(), reads)?;
     if output_format(&args.output, input) == OutputFormat::Usda {
         inbetween_io::usd::keys::write_keys(&mut out, doc, frame_fps)?;
     } else {

@@ -118,6 +118,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         &doc,
         (format, style, frame_fps),
         (Format::Bvh, true),
+        &super::settings::files_read(&args.input, &[], None),
         warn,
     ))
 }

@@ -50,7 +50,7 @@ pub(super) fn to_gltf(
     let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     check_written(args, input, clip, &keys, &originals, &bytes)?;
-    let mut out = Output::open(args.output.output.as_deref())?;
+    let mut out = Output::open(args.output.output.as_deref(), &input.reads)?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
     Ok(())

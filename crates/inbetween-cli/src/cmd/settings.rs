@@ -18,6 +18,7 @@ use inbetween_io::gltf::{Asset, ContainerFormat};
 use inbetween_io::write::Style;
 use inbetween_io::{Format, OutputFormat, ReadOptions};
 use std::io::Read;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 impl From<SchemeArg> for Scheme {
@@ -118,7 +119,6 @@ pub fn read_input(
         let dir = path.map(inbetween_io::gltf_dir);
         let asset =
             Asset::from_slice_limited(&bytes, &source, dir.as_deref(), args.max_input_bytes)?;
-        crate::output::protect_inputs(asset.referenced_files());
         let mut clip = GltfClip::new(asset, args.animation.as_deref())?;
         if !translations {
             clip = clip.without_translations();
@@ -262,6 +262,21 @@ pub struct Curves {
     pub opts: CurveOptions,
     /// A glTF input's asset and chosen animations.
     pub gltf: Option<Arc<GltfClip>>,
+    /// The files read ([`files_read`]), which no output may replace.
+    pub reads: Vec<PathBuf>,
+}
+
+/// The files a command reads, which [`Output::open`](crate::output::Output::open) refuses to
+/// replace: the input, `more` (a skeleton file, `diff`'s other input) and a glTF input's
+/// buffers and images.
+pub fn files_read(
+    input: &InputArgs,
+    more: &[Option<&Path>],
+    gltf: Option<&GltfClip>,
+) -> Vec<PathBuf> {
+    let referenced = gltf.map_or(&[][..], |c| c.asset().referenced_files());
+    let paths = std::iter::once(input.input.as_deref()).chain(more.iter().copied());
+    crate::output::files_read(paths, referenced)
 }
 
 /// Reads the input and validates it into tracks, with the output rate and the curve options;
@@ -350,6 +365,7 @@ pub fn read_curves_in(
         }
     }
     let opts = curve_options(curve, scheme(format), fps, input.angles);
+    let reads = files_read(input, &[], gltf.as_deref());
     Ok(Curves {
         doc,
         format,
@@ -357,6 +373,7 @@ pub fn read_curves_in(
         fps,
         opts,
         gltf,
+        reads,
     })
 }
 

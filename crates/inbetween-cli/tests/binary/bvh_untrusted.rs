@@ -301,7 +301,7 @@ fn positions_near_the_largest_float_are_interpolated_without_overflow() {
     std::fs::write(&unit, clip("1", "-1")).unwrap();
     for scheme in ["slerp", "hermite", "squad"] {
         let out = |name: &str, input: &Path, ext: &str, extra: &[&str]| {
-            let path = dir.path().join(format!("{name}.{ext}"));
+            let path = dir.path().join(format!("{name}-out.{ext}"));
             let mut args = vec![
                 os("interp"),
                 input.as_os_str(),

@@ -209,7 +209,7 @@ fn an_output_naming_a_file_the_asset_reads_is_refused() {
         ]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{target}: {err}");
-        assert!(err.contains("which the input references"), "{err}");
+        assert!(err.contains("which the command reads"), "{err}");
         assert_eq!(std::fs::read(dir.join("good.bin")).unwrap(), before);
     }
 }

@@ -467,3 +467,70 @@ fn a_failed_write_names_the_o_path() {
         "inbetween: error: -o /dev/full: cannot write: No space left on device (os error 28)\n"
     );
 }
+
+/// `-o` naming a file the command reads — its input by any name (itself, a symbolic link, a
+/// relative path), the skeleton of `--skeleton`, or `diff`'s other file — is refused before
+/// anything is written (exit 2, the file untouched): the run would destroy what it reads.
+#[test]
+fn an_output_that_is_a_file_the_command_reads_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("keys.json");
+    std::fs::copy(fixture(), &keys).unwrap();
+    std::os::unix::fs::symlink("keys.json", dir.path().join("link.json")).unwrap();
+    let skeleton = dir.path().join("skeleton.bvh");
+    std::fs::copy(
+        crate::support::fixtures().join("bvh/mixed_orders.bvh"),
+        &skeleton,
+    )
+    .unwrap();
+    let walk = skeleton.to_str().unwrap();
+    let runs: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["convert", "keys.json", "-o", "keys.json"], "keys.json"),
+        (
+            vec!["interp", "keys.json", "--fps", "30", "-o", "./link.json"],
+            "keys.json",
+        ),
+        (
+            vec!["interp", "link.json", "--fps", "30", "-o", "keys.json"],
+            "keys.json",
+        ),
+        (
+            vec!["reduce", "keys.json", "--tolerance", "1", "-o", "keys.json"],
+            "keys.json",
+        ),
+        (vec!["analyze", "keys.json", "-o", "keys.json"], "keys.json"),
+        (
+            vec!["diff", "keys.json", "link.json", "-o", "link.json"],
+            "keys.json",
+        ),
+        (
+            vec!["convert", walk, "--skeleton", walk, "-o", walk],
+            "skeleton.bvh",
+        ),
+        (
+            vec!["interp", walk, "--skeleton", walk, "-o", walk],
+            "skeleton.bvh",
+        ),
+    ];
+    for (args, file) in runs {
+        let path = dir.path().join(file);
+        let before = std::fs::read(&path).unwrap();
+        let o = Command::new(BIN)
+            .current_dir(dir.path())
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains("which the command reads"), "{args:?}: {err}");
+        assert_eq!(std::fs::read(&path).unwrap(), before, "{args:?}");
+        assert_eq!(names(dir.path()).len(), 3, "{args:?}: a file was left");
+    }
+    // Another file beside it is written as ever.
+    let o = Command::new(BIN)
+        .current_dir(dir.path())
+        .args(["convert", "keys.json", "-o", "copy.json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

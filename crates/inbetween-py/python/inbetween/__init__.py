@@ -12,6 +12,7 @@ prints as (``59.9999885559082``). Errors are ``InputError`` (a ``ValueError``).
 from __future__ import annotations
 
 import hashlib
+import operator
 import os
 from typing import Any, Dict, Mapping, Optional, Tuple, Union
 
@@ -28,6 +29,8 @@ Rate = Union[int, float, str, Any]
 
 def _array(x: Any, name: str) -> np.ndarray:
     """``x`` as a C-contiguous float64 array (no copy when it already is one)."""
+    if np.iscomplexobj(x):
+        raise InputError(f"{name}: expected real numbers, found complex ones")
     try:
         a = np.asarray(x, dtype=np.float64)
     except (TypeError, ValueError) as e:
@@ -182,16 +185,34 @@ class Reduction:
         self.max_position_error = None if p[0] is None else np.array(p)
         self._options = options
 
+    def _joint(self, joint: Optional[int]) -> int:
+        """The index of ``joint`` in ``keys``: ``None`` (or 0) for (T, 4) frames, else 0 … J − 1."""
+        if self.joints is None:
+            if joint not in (None, 0):
+                raise InputError(f"joint: expected None (the frames were (T, 4)), found {joint!r}")
+            return 0
+        if joint is None:
+            raise InputError(f"joint: expected a joint index from 0 to {self.joints - 1}, "
+                             f"found None")
+        if not 0 <= operator.index(joint) < self.joints:
+            raise IndexError(f"joint: expected 0 to {self.joints - 1}, found {joint}")
+        return operator.index(joint)
+
     def key_times(self, joint: Optional[int] = None) -> np.ndarray:
         """The key times (s) of ``joint`` (``None`` for (T, 4) frames): frame k at k/fps."""
-        keys = self.keys[joint or 0]
+        keys = self.keys[self._joint(joint)]
         return frame_times(int(keys[-1]) + 1, self.fps, self.fps)[keys]
 
     def curve(self, rotations: Any, joint: Optional[int] = None) -> "Curve":
         """The ``Curve`` of ``joint``'s keys (with their velocities) through the frames
         ``rotations`` that were reduced, with the scheme and options they were reduced for."""
         q, scalar_first = _rotations(rotations, self._options["scalar_first"]), self._options["scalar_first"]
-        keys = self.keys[joint or 0]
+        keys = self.keys[self._joint(joint)]
+        frames = int(keys[-1]) + 1
+        shape = (frames, 4) if self.joints is None else (frames, self.joints, 4)
+        if q.shape != shape:
+            raise InputError(f"rotations: expected the frames that were reduced, of shape "
+                             f"{shape}, found {q.shape}")
         q = q[keys] if joint is None else q[keys, joint]
         return Curve(self.key_times(joint), q, self._options["scheme"],
                      velocities=self.velocities[joint or 0], ends=self._options["ends"],

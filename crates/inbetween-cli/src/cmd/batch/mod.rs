@@ -450,8 +450,14 @@ pub fn extension(
     Ok(ext.into())
 }
 
-/// Whether `output` exists and was modified after `input`.
-fn newer(output: &Path, input: &Path) -> bool {
-    let time = |p: &Path| std::fs::metadata(p).and_then(|m| m.modified()).ok();
-    matches!((time(output), time(input)), (Some(o), Some(i)) if o > i)
+/// The skip rule: whether `output` is a regular file (through links) modified after `input`. A
+/// folder, device or FIFO at the output's path is never up to date: the command then refuses it.
+pub fn newer(output: &Path, input: &Path) -> bool {
+    let time = |p: &Path, file: bool| {
+        std::fs::metadata(p)
+            .ok()
+            .filter(|m| !file || m.is_file())
+            .and_then(|m| m.modified().ok())
+    };
+    matches!((time(output, true), time(input, false)), (Some(o), Some(i)) if o > i)
 }
