@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 MAX_CODE_LINES = 600
-LIBRARY_CRATES = ["crates/inbetween", "crates/inbetween-io"]
+LIBRARY_CRATES = ["crates/inbetween", "crates/inbetween-io", "crates/inbetween-commands"]
 ALL_CRATES = LIBRARY_CRATES + ["crates/inbetween-cli"]
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]*")
 

@@ -8,6 +8,7 @@ use crate::{input_error, options};
 use glam::DVec3;
 use inbetween::Fps;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+use inbetween_commands::output::Output;
 use inbetween_io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use inbetween_io::num::NumFormat;
 use inbetween_io::write::{EulerMode, Style};
@@ -128,10 +129,10 @@ pub fn write<'py>(
         ));
     }
     let doc = document(&source, &tracks, rate, format, scalar_first)?;
-    let io = |e: std::io::Error| input_error(format!("{source}: cannot write: {e}"));
-    let mut file = temp_file(&path).map_err(io)?;
+    let io = |e: std::io::Error| cannot_write(&source, e);
+    let mut file = Output::open(Some(&path), &[], "").map_err(crate::error)?;
     py.detach(|| -> PyResult<()> {
-        let out = std::io::BufWriter::new(file.as_file_mut());
+        let out = &mut file;
         let frames = rate.unwrap_or(Fps::DEFAULT);
         match (&skeleton, target) {
             (_, OutputFormat::Npy | OutputFormat::Npz) => {
@@ -149,37 +150,26 @@ pub fn write<'py>(
             .map_err(io),
         }
     })?;
-    file.persist(&path).map_err(|e| io(e.error))?;
+    file.commit().map_err(io)?;
     Ok(())
 }
 
-/// The folder of `path` (`.` for a bare file name), where its temporary file is made.
+/// An error writing `source`, naming it once (the output's own errors name it already).
+fn cannot_write(source: &str, e: std::io::Error) -> PyErr {
+    let m = e.to_string();
+    if m.starts_with(&format!("{source}: ")) {
+        input_error(m)
+    } else {
+        input_error(format!("{source}: cannot write: {m}"))
+    }
+}
+
+/// The folder of `path` (`.` for a bare file name), where a `.gltf`'s external files are.
 fn folder(path: &Path) -> PathBuf {
     match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
         _ => PathBuf::from("."),
     }
-}
-
-/// The temporary file `path` is written as before it is renamed over it, in its folder: with
-/// the mode of the file it replaces, else what any program's output gets (0666 less the
-/// umask; tempfile's own 0600 would leave the output unreadable to others), as the command
-/// line's output.
-fn temp_file(path: &Path) -> std::io::Result<tempfile::NamedTempFile> {
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".inbetween-").suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    let file = builder.tempfile_in(folder(path))?;
-    if let Ok(meta) = std::fs::metadata(path)
-        && meta.is_file()
-    {
-        file.as_file().set_permissions(meta.permissions())?;
-    }
-    Ok(file)
 }
 
 /// glTF output: the tracks written into `asset` ([`crate::gltf::bytes`]), atomically. The
@@ -218,13 +208,13 @@ fn write_gltf(
     }
     let doc = document(&source, tracks, None, Format::Json, scalar_first)?;
     let dir = folder(path);
-    let io = |e: std::io::Error| input_error(format!("{source}: cannot write: {e}"));
-    let mut file = temp_file(path).map_err(io)?;
+    let io = |e: std::io::Error| cannot_write(&source, e);
+    let mut file = Output::open(Some(path), &[], "").map_err(crate::error)?;
     py.detach(|| -> PyResult<()> {
         let bytes = crate::gltf::bytes(&doc, &asset, container, &dir)?;
-        std::io::Write::write_all(file.as_file_mut(), &bytes).map_err(io)
+        std::io::Write::write_all(&mut file, &bytes).map_err(io)
     })?;
-    file.persist(path).map_err(|e| io(e.error))?;
+    file.commit().map_err(io)?;
     Ok(())
 }
 

@@ -108,3 +108,22 @@ def test_a_new_file_gets_the_usual_mode_and_a_replaced_one_keeps_its_own(tmp_pat
     out.chmod(0o640)
     inbetween.write(out, clip)
     assert stat.S_IMODE(out.stat().st_mode) == 0o640
+
+
+def test_write_goes_through_the_command_lines_output(tmp_path):
+    """A link stays and its target is replaced, as `-o` does; a folder and a missing folder are
+    input errors naming the path; nothing is left behind."""
+    clip = inbetween.Clip.from_arrays([0.0, 1.0], [[1, 0, 0, 0], [0, 1, 0, 0]])
+    target = tmp_path / "target.csv"
+    target.write_text("old\n")
+    link = tmp_path / "link.csv"
+    link.symlink_to("target.csv")
+    inbetween.write(link, clip)
+    assert link.is_symlink()
+    assert target.read_text().startswith("track,time,w,x,y,z\n")
+    (tmp_path / "folder.csv").mkdir()
+    with pytest.raises(inbetween.InputError, match="folder.csv: expected a file, found a directory"):
+        inbetween.write(tmp_path / "folder.csv", clip)
+    with pytest.raises(inbetween.InputError, match="directory .*missing does not exist"):
+        inbetween.write(tmp_path / "missing" / "x.csv", clip)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["folder.csv", "link.csv", "target.csv"]

@@ -2,7 +2,6 @@
 
 use super::settings::read_curves;
 use crate::cli::{AnalyzeArgs, ReportFormat};
-use crate::output::Output;
 use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
@@ -60,7 +59,7 @@ pub fn run(
         ReportFormat::Csv => csv_report(&rows, unit),
         ReportFormat::Json => json_report(&rows, unit),
     };
-    let mut out = Output::open(args.output.as_deref(), &input.reads)?;
+    let mut out = crate::output::open(args.output.as_deref(), &input.reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(())

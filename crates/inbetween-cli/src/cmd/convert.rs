@@ -2,7 +2,6 @@
 
 use super::settings::{files_read, key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
-use crate::output::Output;
 use inbetween::{Error, InputError};
 use inbetween_io::clip::Clip;
 use inbetween_io::document::Document;
@@ -34,7 +33,7 @@ fn write_bvh(
             .into());
         }
     };
-    let mut out = Output::open(args.output.output.as_deref(), reads)?;
+    let mut out = crate::output::open(args.output.output.as_deref(), reads)?;
     inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps, args.output.euler_mode())?;
     out.commit()?;
     Ok(())
@@ -109,7 +108,7 @@ pub fn run(
         OutputFormat::Doc(f) => f,
         OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps, &reads),
         OutputFormat::Usda => {
-            let mut out = Output::open(args.output.output.as_deref(), &reads)?;
+            let mut out = crate::output::open(args.output.output.as_deref(), &reads)?;
             inbetween_io::usd::keys::write_keys(&mut out, &doc, frame_fps)?;
             out.commit()?;
             return Ok(());
@@ -152,7 +151,7 @@ pub fn run(
         warn(&w);
     }
     let style = super::settings::style(&args.input, &args.output);
-    let mut out = Output::open(args.output.output.as_deref(), &reads)?;
+    let mut out = crate::output::open(args.output.output.as_deref(), &reads)?;
     write_keys(&mut out, &doc, format, style, frame_fps)?;
     out.commit()?;
     Ok(())

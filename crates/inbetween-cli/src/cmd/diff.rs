@@ -3,7 +3,6 @@
 
 use super::settings::read_curves;
 use crate::cli::{DiffArgs, ReportFormat};
-use crate::output::Output;
 use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
 use inbetween::metrics::{aligned, format_sig};
 use inbetween::rotation::AngleUnit;
@@ -160,7 +159,7 @@ pub fn run(
         ReportFormat::Json => json(&rows, unit),
     };
     let reads = [&a.reads[..], &b.reads[..]].concat();
-    let mut out = Output::open(args.output.as_deref(), &reads)?;
+    let mut out = crate::output::open(args.output.as_deref(), &reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(exceeded(&rows, args, unit))

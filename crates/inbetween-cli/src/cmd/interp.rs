@@ -271,7 +271,7 @@ pub fn run(
     };
     let mut reads = input.reads.clone();
     reads.extend(crate::output::files_read([args.skeleton.as_deref()], &[]));
-    let out = WriteBehind::new(Output::open(args.output.output.as_deref(), &reads)?);
+    let out = WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
     let mut sink: Box<dyn Sink> = match format {
         OutputFormat::Bvh => {
             let frames = BvhFrames::new(out, skeleton.expect("checked above"), fps);
@@ -560,11 +560,13 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
                     r => r?,
                 };
                 warnings.extend(baked.iter().map(crate::flags::say));
-                let out = WriteBehind::new(Output::open(args.output.output.as_deref(), &reads)?);
+                let out =
+                    WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
                 frames.write(out, &clip)?.finish()?.commit()?;
             }
             OutputFormat::Doc(doc_format) => {
-                let out = WriteBehind::new(Output::open(args.output.output.as_deref(), &reads)?);
+                let out =
+                    WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
                 let style = super::settings::style(&args.input, &args.output);
                 let w = FrameWriter::new(out, doc_format, style, fps, true, false);
                 let positions = joints

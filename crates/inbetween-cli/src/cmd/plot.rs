@@ -3,7 +3,6 @@
 use super::settings::read_curves;
 use crate::chart::{What, svg};
 use crate::cli::{PlotArgs, WhatArg};
-use crate::output::Output;
 use inbetween::error::shorten;
 use inbetween::{Error, InputError, Scheme};
 use std::io::{Read, Write};
@@ -48,7 +47,7 @@ pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) ->
         Error::Input(e) => Error::Input(e.at(&doc.source)),
         e => e,
     })?;
-    let mut out = Output::open(Some(&args.output), &input.reads)?;
+    let mut out = crate::output::open(Some(&args.output), &input.reads)?;
     out.write_all(text.as_bytes())?;
     out.commit()?;
     Ok(())

@@ -3,7 +3,6 @@
 
 use super::settings::{Curves, output_format, rates, read_curves_in, tracks_take_translations};
 use crate::cli::{MethodArg, ReduceArgs};
-use crate::output::Output;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{CurveOptions, Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
@@ -218,7 +217,7 @@ pub(super) fn write(
     {
         warn(&w);
     }
-    let mut out = Output::open(args.output.output.as_deref(), reads)?;
+    let mut out = crate::output::open(args.output.output.as_deref(), reads)?;
     if output_format(&args.output, input) == OutputFormat::Usda {
         inbetween_io::usd::keys::write_keys(&mut out, doc, frame_fps)?;
     } else {

@@ -7,7 +7,6 @@
 use super::reduce::{FLOAT32_MARGIN, reduce_options, reduce_tracks};
 use super::settings::Curves;
 use crate::cli::ReduceArgs;
-use crate::output::Output;
 use glam::DQuat;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each, rotation_error};
 use inbetween::{Error, InputError, Scheme};
@@ -50,7 +49,7 @@ pub(super) fn to_gltf(
     let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     check_written(args, input, clip, &keys, &originals, &bytes)?;
-    let mut out = Output::open(args.output.output.as_deref(), &input.reads)?;
+    let mut out = crate::output::open(args.output.output.as_deref(), &input.reads)?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
     Ok(())
