@@ -5,6 +5,7 @@
 
 mod chart;
 mod cli;
+pub use inbetween_commands::record::{Record, Status};
 mod cmd;
 mod flags;
 mod output;
@@ -53,6 +54,60 @@ pub fn option_names(command: &str) -> Vec<String> {
                 .collect()
         })
         .unwrap_or_default()
+}
+
+/// One input of `interp`, `convert` or `reduce` run as a batch runs each input, for Python's
+/// `process_file`: `args` is the command line (program name, command, input, `-o OUTPUT`,
+/// options). Returns its record (the manifest line), the exit code the command line would give
+/// and its warnings (each escaped as on stderr). The input is skipped when its output is up to
+/// date ([`up_to_date`]), unless `refresh`; an option the command line refuses is a failed
+/// record with clap's message and exit code 2.
+pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Vec<String>) {
+    let mut cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            let text = cli::bounded(&e.render().to_string());
+            let first = text
+                .lines()
+                .find(|l| !l.trim().is_empty())
+                .unwrap_or_default();
+            let mut record = Record::new(String::new(), None, Status::Failed);
+            record.seconds = Some(0.0);
+            record.error = Some(first.strip_prefix("error: ").unwrap_or(first).to_string());
+            let lines = text.lines().map(cli::line).collect();
+            return (record, 2, lines);
+        }
+    };
+    cli.command.normalise();
+    let (input, output) = match &cli.command {
+        Command::Convert(a) => (a.input.input.clone(), a.output.output.clone()),
+        Command::Interp(a) => (a.input.input.clone(), a.output.output.clone()),
+        Command::Reduce(a) => (a.input.input.clone(), a.output.output.clone()),
+        _ => (None, None),
+    };
+    let one =
+        |_: &std::path::Path, _: &std::path::Path, warn: &mut dyn FnMut(&str)| match &cli.command {
+            Command::Convert(a) => cmd::convert::run(a, &mut std::io::empty(), warn),
+            Command::Interp(a) => cmd::interp::run(a, &mut std::io::empty(), warn),
+            Command::Reduce(a) => cmd::reduce::run(a, &mut std::io::empty(), warn),
+            _ => Err(inbetween::InputError::new(
+                "command: expected interp, convert or reduce, which write a file",
+            )
+            .into()),
+        };
+    let (Some(input), Some(output)) = (input, output) else {
+        let mut record = Record::new(String::new(), None, Status::Failed);
+        record.error = Some("an input and an output are needed".to_string());
+        return (record, 2, Vec::new());
+    };
+    let mut warnings = Vec::new();
+    let (record, error) = cmd::batch::run_job(&input, &output, refresh, &one, &mut warnings);
+    let code = error.as_ref().map_or(0, exit_status);
+    (
+        record,
+        code,
+        warnings.iter().map(|w| cli::line(w)).collect(),
+    )
 }
 
 /// Installs the handlers that remove an unfinished output's temporary file on SIGINT, SIGTERM

@@ -5,8 +5,6 @@
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::ffi::OsString;
-use std::path::Path;
-use std::time::Instant;
 
 /// The commands that write a file.
 const COMMANDS: [&str; 3] = ["interp", "convert", "reduce"];
@@ -89,49 +87,21 @@ pub fn process_file<'py>(
             }
         }
     }
+    let (line, code, warnings) = py.detach(move || inbetween_cli::process_one(args, refresh));
+    // The manifest's line, with the paths as given (`--help`, not the `./--help` it was run as).
     let record = PyDict::new(py);
+    if let serde_json::Value::Object(map) = line.to_json() {
+        for (k, v) in map {
+            match v {
+                serde_json::Value::String(s) => record.set_item(k, s)?,
+                serde_json::Value::Number(n) if n.is_f64() => record.set_item(k, n.as_f64())?,
+                serde_json::Value::Number(n) => record.set_item(k, n.as_u64())?,
+                _ => record.set_item(k, py.None())?,
+            }
+        }
+    }
     record.set_item("input", path)?;
     record.set_item("output", out)?;
-    let t0 = Instant::now();
-    if !refresh && inbetween_cli::up_to_date(Path::new(out), Path::new(path)) {
-        record.set_item("status", "skipped")?;
-        record.set_item("seconds", 0.0)?;
-        return Ok(record);
-    }
-    if let Some(dir) = Path::new(out)
-        .parent()
-        .filter(|d| !d.as_os_str().is_empty())
-    {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| crate::input_error(format!("{}: {e}", dir.display())))?;
-    }
-    let (code, lines) = py.detach(move || {
-        let mut lines: Vec<String> = Vec::new();
-        let code = inbetween::parallel::serially(|| {
-            inbetween_cli::run(args, &mut std::io::empty(), &mut |l| {
-                lines.push(l.to_string())
-            })
-        });
-        (code, lines)
-    });
-    let seconds = (t0.elapsed().as_secs_f64() * 1e3).round() / 1e3;
-    // The located error; for an option value the command line refused, clap's `error: …`.
-    let error = lines
-        .iter()
-        .rev()
-        .find_map(|l| l.strip_prefix("inbetween: error: "))
-        .or_else(|| lines.iter().find_map(|l| l.strip_prefix("error: ")))
-        .map(str::to_string);
-    let warnings: Vec<String> = lines
-        .iter()
-        .filter(|l| !l.starts_with("inbetween: error: "))
-        .cloned()
-        .collect();
-    record.set_item("status", if code == 0 { "ok" } else { "failed" })?;
-    record.set_item("seconds", seconds)?;
-    if let Some(e) = error.filter(|_| code != 0) {
-        record.set_item("error", e)?;
-    }
     record.set_item("exit_code", code)?;
     record.set_item("warnings", warnings)?;
     Ok(record)

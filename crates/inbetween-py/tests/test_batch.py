@@ -77,3 +77,36 @@ def test_the_dask_example_matches_the_command_lines_batch(tmp_path, cli):
     assert dask_tree == cli_tree
     lines = (tmp_path / "m.jsonl").read_text().splitlines()
     assert len(lines) == 4 and all('"status": "ok"' in l for l in lines)
+
+
+@pytest.mark.parametrize("command, options", [
+    ("interp", {"fps": 24}),
+    ("convert", {}),
+    ("reduce", {"tolerance": 0.5, "translation_tolerance": 0.1}),
+    ("reduce", {"position_tolerance": 0.5}),
+])
+def test_the_record_is_the_manifest_line(tmp_path, cli, command, options):
+    """One type makes both: every field of the command line's manifest line (frames, tracks,
+    keys, largest error, an error's text) is in process_file's record with the same value."""
+    import json
+    clips = _library(tmp_path)
+    (clips / "broken.bvh").write_text("HIERARCHY\nROOT a\n{\n")
+    flags = []
+    for k, v in options.items():
+        flags += [f"--{k.replace('_', '-')}", str(v)]
+    manifest = tmp_path / "manifest.jsonl"
+    subprocess.run([cli, command, str(clips), "--out-dir", str(tmp_path / "cli"),
+                    "--manifest", str(manifest), *flags], capture_output=True)
+    lines = [json.loads(l) for l in manifest.read_text().splitlines()]
+    assert len(lines) == 5 and {l["status"] for l in lines} >= {"ok", "failed"}, lines
+    for line in lines:
+        out = pathlib.Path(line["output"] or tmp_path / "none.json")
+        record = inbetween.process_file(line["input"], out, command, refresh=True, **options)
+        assert record.pop("exit_code") in ((0,) if line["status"] == "ok" else (1, 2))
+        assert isinstance(record.pop("warnings"), list)
+        record.pop("seconds"), line.pop("seconds")
+        if line["output"] is None:  # a planned failure has no output; process_file names its own
+            record["output"] = None
+        assert record == line
+        if line["status"] == "ok":
+            assert {"frames", "tracks"} <= set(record), record

@@ -58,8 +58,10 @@ pub fn run(
     // rate the clip they came from was captured at.
     let fps = args.fps.or(template.as_ref().map(|t| t.fps()));
     super::batch::note(|s| {
+        let keys: usize = doc.tracks.iter().map(|t| t.keys.len()).sum();
         s.tracks = Some(doc.tracks.len());
-        s.keys = Some(doc.tracks.iter().map(|t| t.keys.len()).sum());
+        s.frames = Some(keys as u64);
+        s.keys = Some(keys);
     });
     let (frame_fps, _) = rates(&doc, fps);
     for track in &doc.tracks {

@@ -5,6 +5,8 @@
 
 use crate::cli::BatchArgs;
 use inbetween::{Error, InputError};
+pub use inbetween_commands::record::Figures;
+use inbetween_commands::record::{Record, Status};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -17,32 +19,69 @@ pub use inputs::Job;
 /// The extensions of the input formats (a folder's other files are failed inputs).
 pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
 
-/// What one input came to, for its manifest line: set by the command run on it ([`note`]).
-#[derive(Debug, Clone, Default)]
-pub struct Stats {
-    /// Frames: written (`interp`, all tracks together) or read (`reduce`).
-    pub frames: Option<u64>,
-    /// Tracks.
-    pub tracks: Option<usize>,
-    /// Keys: kept (`reduce`) or written (`convert`), all tracks together.
-    pub keys: Option<usize>,
-    /// `reduce`: the largest error of any track, in `--angles` units (with `--distance`, a
-    /// length).
-    pub largest_error: Option<f64>,
-}
-
 std::thread_local! {
-    static STATS: std::cell::RefCell<Option<Stats>> = const { std::cell::RefCell::new(None) };
+    static STATS: std::cell::RefCell<Option<Figures>> = const { std::cell::RefCell::new(None) };
 }
 
-/// Records figures of the input being processed on this thread, when a batch runs it (else
-/// nothing).
-pub fn note(f: impl FnOnce(&mut Stats)) {
+/// Records figures of the input being processed on this thread, when it runs as one input of a
+/// batch or of `process_file` ([`run_job`]; else nothing).
+pub fn note(f: impl FnOnce(&mut Figures)) {
     STATS.with(|s| {
         if let Some(stats) = s.borrow_mut().as_mut() {
             f(stats)
         }
     });
+}
+
+/// Runs `one` on `input`, writing `output`, as a batch runs each of its inputs: skipped when
+/// `output` is up to date ([`newer`]) unless `refresh`, else the output's folder made and the
+/// command run, its figures noted ([`note`]) and its warnings pushed to `warnings`. The record
+/// (its `error` the error's text as the command line shows it), and the error.
+pub fn run_job(
+    input: &Path,
+    output: &Path,
+    refresh: bool,
+    one: &OneInput<'_>,
+    warnings: &mut Vec<String>,
+) -> (Record, Option<Error>) {
+    let t0 = Instant::now();
+    let mut record = Record::new(
+        input.display().to_string(),
+        Some(output.display().to_string()),
+        Status::Ok,
+    );
+    if !refresh && newer(output, input) {
+        record.status = Status::Skipped;
+        record.seconds = Some(0.0);
+        record.reason = Some("its output is newer (--refresh redoes it)".into());
+        return (record, None);
+    }
+    let made = output
+        .parent()
+        .map_or(Ok(()), std::fs::create_dir_all)
+        .map_err(|e| {
+            Error::Io(std::io::Error::new(
+                e.kind(),
+                format!("{}: cannot make its folder: {e}", shown(output)),
+            ))
+        });
+    STATS.with(|s| *s.borrow_mut() = Some(Figures::default()));
+    let result = made.and_then(|()| {
+        inbetween::parallel::serially(|| {
+            one(input, output, &mut |w: &str| warnings.push(w.to_string()))
+        })
+    });
+    let figures = STATS.with(|s| s.borrow_mut().take());
+    record.seconds = Some((t0.elapsed().as_secs_f64() * 1e3).round() / 1e3);
+    match result {
+        Ok(()) => record.figures = figures,
+        Err(e) => {
+            record.status = Status::Failed;
+            record.error = Some(crate::flags::error_text(&e));
+            return (record, Some(e));
+        }
+    }
+    (record, None)
 }
 
 /// The command on one input: `(input, output, warn)`.
@@ -235,12 +274,9 @@ pub fn run(
             shown(&p.path),
             p.reason
         );
-        manifest.write(&serde_json::json!({
-            "input": p.path.display().to_string(),
-            "output": null,
-            "status": "skipped",
-            "reason": p.reason,
-        }));
+        let mut record = Record::new(p.path.display().to_string(), None, Status::Skipped);
+        record.reason = Some(p.reason.to_string());
+        manifest.write(&record.to_json());
     }
     let threads = batch
         .jobs
@@ -275,82 +311,31 @@ pub fn run(
             let Some((job, planned)) = order.get(i).map(|&(_, k)| (&jobs[k], &outputs[k])) else {
                 break;
             };
-            let t0 = Instant::now();
             let mut warnings: Vec<String> = Vec::new();
-            // The error of the run, when it failed; a planned error is the plan's own.
-            let failed: Option<Error>;
-            let (status, output, error) = match planned {
-                Err(e) => ("failed", None, Some(e)),
-                Ok(output) => {
-                    if !batch.refresh && newer(output, &job.input) {
-                        ("skipped", Some(output), None)
-                    } else {
-                        let made = output
-                            .parent()
-                            .map_or(Ok(()), std::fs::create_dir_all)
-                            .map_err(|e| {
-                                Error::Io(std::io::Error::new(
-                                    e.kind(),
-                                    format!(
-                                        "--out-dir: cannot make the folder of {}: {e}",
-                                        shown(output)
-                                    ),
-                                ))
-                            });
-                        STATS.with(|s| *s.borrow_mut() = Some(Stats::default()));
-                        let result = made.and_then(|()| {
-                            inbetween::parallel::serially(|| {
-                                one(&job.input, output, &mut |w: &str| {
-                                    warnings.push(w.to_string())
-                                })
-                            })
-                        });
-                        failed = result.err();
-                        let status = if failed.is_some() { "failed" } else { "ok" };
-                        (status, Some(output), failed.as_ref())
-                    }
+            let (record, failed) = match planned {
+                Err(e) => {
+                    let mut record =
+                        Record::new(job.input.display().to_string(), None, Status::Failed);
+                    record.seconds = Some(0.0);
+                    record.error = Some(crate::flags::error_text(e));
+                    (record, None)
                 }
+                Ok(output) => run_job(&job.input, output, batch.refresh, one, &mut warnings),
             };
-            let seconds = t0.elapsed().as_secs_f64();
-            let message = error.map(crate::flags::error_text);
+            // The error of the run, when it failed; a planned error is the plan's own.
+            let error = failed.as_ref().or(planned.as_ref().err());
             bar.suspend(|| {
                 for w in &warnings {
                     eprintln!("inbetween: warning: {}", crate::cli::line(w));
                 }
-                if let Some(m) = &message {
+                if let Some(m) = &record.error {
                     eprintln!("inbetween: error: {}", crate::cli::line(m));
                 }
             });
-            let mut record = serde_json::json!({
-                "input": job.input.display().to_string(),
-                "output": output.map(|o| o.display().to_string()),
-                "status": status,
-                "seconds": (seconds * 1e3).round() / 1e3,
-            });
-            if status == "skipped" {
-                record["reason"] = "its output is newer (--refresh redoes it)".into();
-            }
-            let stats = STATS
-                .with(|s| s.borrow_mut().take())
-                .filter(|_| error.is_none());
-            if let Some(st) = stats {
-                let mut put = |k: &str, v: Option<serde_json::Value>| {
-                    if let Some(v) = v {
-                        record[k] = v;
-                    }
-                };
-                put("frames", st.frames.map(Into::into));
-                put("tracks", st.tracks.map(Into::into));
-                put("keys", st.keys.map(Into::into));
-                put("largest_error", st.largest_error.map(Into::into));
-            }
-            if let Some(m) = message {
-                record["error"] = serde_json::Value::from(m);
-            }
             // The line whole, in one write, under the lock a signal waits for.
             if manifest.file.is_some() {
                 crate::output::hold_now();
-                manifest.write(&record);
+                manifest.write(&record.to_json());
             }
             // The output and its line are both written: a signal may end the process now.
             crate::output::release_commit();
@@ -358,8 +343,8 @@ pub fn run(
             let mut t = tally
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner);
-            match (&error, status) {
-                (None, "skipped") => t.skipped += 1,
+            match (&error, record.status) {
+                (None, Status::Skipped) => t.skipped += 1,
                 (None, _) => t.ok += 1,
                 (Some(Error::Input(_)), _) => t.refused += 1,
                 (Some(Error::Io(_)), _) => t.unwritten += 1,
