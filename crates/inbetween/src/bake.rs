@@ -95,7 +95,7 @@ pub struct BakeOptions {
 }
 
 /// Tolerance for "a blend comes within 1e-9 of an antipode" (docs/spec.md §4.3).
-pub const ANTIPODE_TOL: f64 = 1e-9;
+pub(crate) const ANTIPODE_TOL: f64 = 1e-9;
 
 /// Streams every frame of `curve` on the grid of `fps` (frames `k` with `k/fps` in the curve's
 /// span, ±1e-9 s) into `sink`, between `begin_track` and `end_track`. Warnings (a blend near an

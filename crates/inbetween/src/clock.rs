@@ -32,7 +32,7 @@ use crate::error::input_err;
 use std::fmt;
 
 /// Largest accepted rate, frames per second.
-pub const MAX_FPS: f64 = 1e7;
+pub(crate) const MAX_FPS: f64 = 1e7;
 
 /// Tolerance in seconds for a frame to count as inside a track or on a key (docs/spec.md §3).
 pub const TIME_TOL: f64 = 1e-9;
@@ -281,7 +281,7 @@ impl Fps {
 }
 
 /// How close, in frame periods, a key must be to a frame it misses for a warning (§3).
-pub const NEAR_MISS: f64 = 1e-3;
+pub(crate) const NEAR_MISS: f64 = 1e-3;
 
 impl Fps {
     /// The frame nearest time `t`.
@@ -309,7 +309,7 @@ impl Fps {
     }
 
     /// The frames a span `[t0, t1]` just misses: the frame before `t0` and the frame after `t1`
-    /// when they are within [`NEAR_MISS`] frame periods of the key (and so not written, being more
+    /// when they are within `NEAR_MISS` frame periods of the key (and so not written, being more
     /// than 1e-9 s outside). Keys computed from a rounded frame time (`0.0333333` s) land there.
     pub fn near_misses(&self, t0: f64, t1: f64) -> (Option<i64>, Option<i64>) {
         let (first, last) = self.frames_between(t0, t1);

@@ -142,7 +142,7 @@ pub fn world_diff(
 /// Per point of [`Skeleton::points`] (in its order, with the shell's points when `shell` is
 /// given), its largest world displacement between `a` and `b` over `frames` frames and the first
 /// frame where it occurs (a NaN counts as infinite).
-pub fn point_displacements(
+pub(crate) fn point_displacements(
     skeleton: &Skeleton,
     frames: usize,
     a: &dyn Poses,

@@ -15,8 +15,8 @@
 //! `--angles` (degrees by default).
 //!
 //! The energy is taken on a grid finer than the frames where the keys are dense
-//! ([`energy_rate`]: at least [`ENERGY_SAMPLES_PER_KEY`] samples per key interval on average,
-//! at most [`MAX_ENERGY_MULTIPLE`] times the frame rate): on the frames alone, keys at every
+//! ([`energy_rate`]: at least `ENERGY_SAMPLES_PER_KEY` samples per key interval on average,
+//! at most `MAX_ENERGY_MULTIPLE` times the frame rate): on the frames alone, keys at every
 //! frame (motion capture) are every sample, and every scheme through them had the same energy.
 
 use crate::clock::Fps;
@@ -61,15 +61,15 @@ pub struct Metrics {
 const SAMPLES_PER_FRAME: f64 = 8.0;
 
 /// The fewest samples per key interval, on average, that the energy is taken on.
-pub const ENERGY_SAMPLES_PER_KEY: u64 = 8;
+pub(crate) const ENERGY_SAMPLES_PER_KEY: u64 = 8;
 
 /// The largest multiple of the frame rate the energy is taken at.
-pub const MAX_ENERGY_MULTIPLE: u64 = 8;
+pub(crate) const MAX_ENERGY_MULTIPLE: u64 = 8;
 
 /// The rate whose grid the energy of a curve through `key_times` is taken on: `m·fps`, with
 /// `m` the smallest whole number for which the keys' mean interval `(t_n − t_1)/(n − 1)` holds
-/// at least [`ENERGY_SAMPLES_PER_KEY`] grid intervals, at most [`MAX_ENERGY_MULTIPLE`] (and
-/// never past the highest rate, [`crate::clock::MAX_FPS`]). Keys 8 or more frames apart on
+/// at least `ENERGY_SAMPLES_PER_KEY` grid intervals, at most `MAX_ENERGY_MULTIPLE` (and
+/// never past the highest rate, `MAX_FPS`). Keys 8 or more frames apart on
 /// average give `fps` itself; keys at every frame give `8·fps`, so that the grid sees the
 /// curve between keys.
 ///
@@ -181,7 +181,7 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
 /// The figures of every track's curve under each of `schemes` (track by track, each track's
 /// schemes in order), measured as [`measure`] measures them (minaccel solved on the grid of
 /// [`energy_rate`], whatever the options' grid rate), the tracks shared out among the
-/// machine's cores (at most [`crate::reduce::MAX_THREADS`] threads); a curve that cannot be built is its error in that
+/// machine's cores (at most `MAX_THREADS` (8) threads); a curve that cannot be built is its error in that
 /// place. The same whatever the number of threads.
 pub fn measure_each(
     tracks: &[Track],

@@ -3,7 +3,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Most threads that independent work (tracks) is shared out among.
-pub const MAX_THREADS: usize = 8;
+pub(crate) const MAX_THREADS: usize = 8;
 
 std::thread_local! {
     /// Set by [`serially`]: this thread's [`map`]s run on it alone.
@@ -21,7 +21,7 @@ pub fn serially<R>(f: impl FnOnce() -> R) -> R {
 }
 
 /// `f` of every item, in the items' order: the items are taken in order as threads come free
-/// (one per core, at most [`MAX_THREADS`], never more than the items), so the result is the
+/// (one per core, at most `MAX_THREADS`, never more than the items), so the result is the
 /// same whatever the number of threads. One core, or one item, runs on the calling thread.
 pub fn map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
     if SERIAL.with(std::cell::Cell::get) {

@@ -1,7 +1,7 @@
 //! A validated track: keyframe times and rotations that every scheme can interpolate.
 //!
 //! The constructors are the only way in, so a [`Track`] is known to hold keys whose
-//! times are finite, strictly increasing and at least [`MIN_KEY_GAP`] apart, with finite unit
+//! times are finite, strictly increasing and at least `MIN_KEY_GAP` apart, with finite unit
 //! quaternions; nothing downstream re-checks. The same time rule serves the readers of keyframe
 //! documents ([`check_times`]), so a file and a program are held to one contract.
 
@@ -13,14 +13,14 @@ use std::fmt;
 /// Smallest accepted time between consecutive keys, in seconds: closer keys would make the chord
 /// tangent `log(q_{i+1} q_i⁻¹)/Δ` overflow (at denormal Δ) or meaningless; the frame tolerance
 /// is 1e-9 s.
-pub const MIN_KEY_GAP: f64 = 1e-12;
+pub(crate) const MIN_KEY_GAP: f64 = 1e-12;
 
 /// How far a rotation's norm may be from 1 (it is used as given, not renormalised).
-pub const UNIT_TOL: f64 = 1e-6;
+pub(crate) const UNIT_TOL: f64 = 1e-6;
 
 /// How far the rotation of a key's Euler triple may be from the key's rotation, rad
 /// ([`Track::with_euler_angles`]).
-pub const EULER_TOL: f64 = 1e-6;
+pub(crate) const EULER_TOL: f64 = 1e-6;
 
 /// Why a [`Track`] could not be built. Indices count keys from 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -53,7 +53,7 @@ pub enum TrackError {
         /// The previous key's time, s.
         previous: f64,
     },
-    /// A time is after its predecessor by less than [`MIN_KEY_GAP`].
+    /// A time is after its predecessor by less than `MIN_KEY_GAP`.
     TooClose {
         /// The key.
         index: usize,
@@ -62,7 +62,7 @@ pub enum TrackError {
         /// The previous key's time, s.
         previous: f64,
     },
-    /// A rotation is not a finite unit quaternion (norm within [`UNIT_TOL`] of 1).
+    /// A rotation is not a finite unit quaternion (norm within `UNIT_TOL` of 1).
     NotUnit {
         /// The key.
         index: usize,
@@ -198,7 +198,7 @@ impl fmt::Display for TrackError {
 
 impl std::error::Error for TrackError {}
 
-/// Checks key times: finite, strictly increasing, consecutive keys at least [`MIN_KEY_GAP`]
+/// Checks key times: finite, strictly increasing, consecutive keys at least `MIN_KEY_GAP`
 /// apart (any number of keys). The time rule of [`Track::new`], for readers that also accept
 /// one-key tracks.
 pub fn check_times(times: &[f64]) -> Result<(), TrackError> {
@@ -268,8 +268,8 @@ impl Track {
     /// A track from key times (seconds) and rotations (unit quaternions), one per key.
     ///
     /// Refuses fewer than two keys (a joint that does not move is [`Track::constant`]),
-    /// mismatched lengths, non-finite, unsorted, duplicate or closer-than-[`MIN_KEY_GAP`] times,
-    /// and quaternions that are not finite and of unit norm (within [`UNIT_TOL`]).
+    /// mismatched lengths, non-finite, unsorted, duplicate or closer-than-`MIN_KEY_GAP` times,
+    /// and quaternions that are not finite and of unit norm (within `UNIT_TOL`).
     pub fn new(times: Vec<f64>, rotations: Vec<DQuat>) -> Result<Track, TrackError> {
         if times.len() != rotations.len() {
             return Err(TrackError::LengthMismatch {
@@ -396,7 +396,7 @@ impl Track {
     /// triple per key in `seq`. They are what `PathMode::Euler` builds its chords from (the turns
     /// the angles make between keys, docs/spec.md §4.3), and where a continuous Euler output in
     /// the same sequence starts. Each triple must be finite, within ±1e15 rad, and give its key's
-    /// rotation within [`EULER_TOL`] rad.
+    /// rotation within `EULER_TOL` rad.
     ///
     /// ```
     /// use inbetween::{EulerSeq, Track};

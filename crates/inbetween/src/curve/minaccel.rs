@@ -29,7 +29,7 @@
 //! the predicted decrease is
 //! below what `E` resolves in f64, full steps are taken while the gradient keeps shrinking. The
 //! start is the `hermite` curve on the grid. It stops when the projected gradient `‖Jᵀr‖` is ≤ 1e-9 of its value at the
-//! start (or ≤ 1e-14), and reports when it does not within [`MAX_ITERATIONS`].
+//! start (or ≤ 1e-14), and reports when it does not within `MAX_ITERATIONS`.
 //!
 //! The grid is refined where neighbouring points of the start curve would be more than 45° apart
 //! on S³ (the paper's §5 keeps them within 90° against aliasing), and so that a phantom point
@@ -48,19 +48,19 @@ use glam::{DQuat, DVec3, DVec4};
 use std::f64::consts::FRAC_PI_4;
 
 /// Largest grid the solver accepts (about 300 bytes a point while solving).
-pub const MAX_GRID_POINTS: usize = 2_000_000;
+pub(crate) const MAX_GRID_POINTS: usize = 2_000_000;
 
 /// Iteration budget of the Newton solver.
-pub const MAX_ITERATIONS: usize = 100;
+pub(crate) const MAX_ITERATIONS: usize = 100;
 /// Relative projected-gradient tolerance (docs/spec.md §4.4). A gradient at the f64 rounding floor of
 /// its own computation also counts as converged (e.g. when the start is already the optimum).
-pub const REL_TOL: f64 = 1e-9;
+pub(crate) const REL_TOL: f64 = 1e-9;
 /// Absolute projected-gradient tolerance (docs/spec.md §4.4).
-pub const ABS_TOL: f64 = 1e-14;
+pub(crate) const ABS_TOL: f64 = 1e-14;
 
 /// A cyclic track is solved on its loop repeated until at least this many keys stand on each
 /// side of the middle period ([`solve`]).
-pub const SEAM_KEYS: usize = 40;
+pub(crate) const SEAM_KEYS: usize = 40;
 
 /// What the solver did.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,7 +77,7 @@ pub struct Report {
     pub gradient_start: f64,
     /// Norm of the projected gradient at the result.
     pub gradient: f64,
-    /// The gradient fell to [`REL_TOL`] of its start (or to the f64 floor, [`ABS_TOL`]).
+    /// The gradient fell to `REL_TOL` of its start (or to the f64 floor, `ABS_TOL`).
     pub converged: bool,
 }
 
@@ -121,7 +121,7 @@ fn s3_angle(a: DQuat, b: DQuat) -> f64 {
 
 impl Problem {
     /// The grid for `keys` at `fps` frames per second, started on the hermite curve. Fails when
-    /// the grid would need more than [`MAX_GRID_POINTS`] points (a very high rate, or end
+    /// the grid would need more than `MAX_GRID_POINTS` points (a very high rate, or end
     /// velocities of very many turns per segment).
     pub fn new(keys: &Knots, fps: f64) -> InputResult<Problem> {
         let too_many = |steps: &[usize]| {
@@ -598,16 +598,9 @@ fn newton(times: &[f64], pts: &mut [DQuat], fixed: &[bool]) -> Report {
     report
 }
 
-/// Solves the minaccel problem for a track at `fps` ([`Prepared`], then [`Prepared::solve`]).
+/// Solves the minaccel problem for a track at `fps` (`Prepared`, then `solve`).
 pub fn solve(keys: &Knots, fps: f64) -> InputResult<Solution> {
     Ok(Prepared::new(keys, fps)?.solve())
-}
-
-/// [`solve`], unless the grid (refined as [`Problem::new`] refines it) would have more than
-/// `limit` points: then `None`, found before any Newton iteration ([`Prepared::fits`]).
-pub fn solve_within(keys: &Knots, fps: f64, limit: usize) -> InputResult<Option<Solution>> {
-    let prepared = Prepared::new(keys, fps)?;
-    Ok(prepared.fits(limit).then(|| prepared.solve()))
 }
 
 /// A track's minaccel problem with its grid laid out and nothing iterated yet, so that a caller
@@ -619,7 +612,7 @@ pub fn solve_within(keys: &Knots, fps: f64, limit: usize) -> InputResult<Option<
 /// free ends on it decays through every fixed key between them (by about 0.27 a key for a
 /// cubic spline, at worst ½), so at 40 keys it is below f64 resolution; a test checks the middle
 /// copy against its neighbours.
-pub struct Prepared {
+pub(crate) struct Prepared {
     problem: Problem,
     /// Copies of the loop in `problem` (1 for a track with ends).
     copies: usize,
@@ -629,7 +622,7 @@ pub struct Prepared {
 
 impl Prepared {
     /// The problem of `keys` at `fps`: fails as [`Problem::new`] fails.
-    pub fn new(keys: &Knots, fps: f64) -> InputResult<Prepared> {
+    pub(crate) fn new(keys: &Knots, fps: f64) -> InputResult<Prepared> {
         if !keys.cyclic {
             return Ok(Prepared {
                 problem: Problem::new(keys, fps)?,
@@ -695,12 +688,12 @@ impl Prepared {
     /// tests a segment within a limit ([`crate::reduce`]): a start curve that needs a finer grid
     /// than the frames turns more than a quarter turn between two of them, and its solve can
     /// take thousands of points and the whole iteration budget.
-    pub fn fits(&self, limit: usize) -> bool {
+    pub(crate) fn fits(&self, limit: usize) -> bool {
         self.problem.grid_len <= limit.saturating_mul(self.copies)
     }
 
     /// Runs the Newton solver; a loop keeps its middle copy.
-    pub fn solve(self) -> Solution {
+    pub(crate) fn solve(self) -> Solution {
         let whole = self.problem.solve();
         let Some((t0, t1)) = self.span else {
             return whole;

@@ -7,7 +7,7 @@
 //! per frame.
 //!
 //! Every blend is the geodesic of S³ between its two points, never hemisphere-flipped, so the
-//! curve is continuous in S³ (docs/spec.md §4.3); [`antipode_gap`] finds where a blend's two points come
+//! curve is continuous in S³ (docs/spec.md §4.3); `antipode_gap` finds where a blend's two points come
 //! close to antipodal and the geodesic between them stops being well defined.
 //!
 //! [`Curve`] ([`piecewise`]) is a whole track's curve under any scheme, minaccel included, as a
@@ -210,7 +210,7 @@ impl Blend {
 /// 0 or 1 and is its first or second point whatever the geodesic, so no jump can happen there
 /// (a spin whose arcs are antipodal exactly at a key, such as `--path euler` spins, is not
 /// reported).
-pub fn antipode_gap<S: Segment>(seg: &S) -> Option<(f64, f64)> {
+pub(crate) fn antipode_gap<S: Segment>(seg: &S) -> Option<(f64, f64)> {
     if seg.blend_bound() < std::f64::consts::PI - 1e-6 {
         return None;
     }

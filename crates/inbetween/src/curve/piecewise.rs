@@ -45,7 +45,7 @@ pub enum Side {
 pub const MAX_SPEED: f64 = 1e15;
 
 /// How far apart (rad) the first and last key of a cyclic track may be.
-pub const CYCLIC_TOL: f64 = 1e-6;
+pub(crate) const CYCLIC_TOL: f64 = 1e-6;
 
 /// Step in `u` of the finite differences.
 const H: f64 = 1e-3;
@@ -243,7 +243,7 @@ pub(crate) fn segment_rotation(keys: &Knots, scheme: Scheme, blend: Blend, t: f6
 impl Curve {
     /// Builds the curve of `track` under `opts`: tangents for the segment schemes, the solve on
     /// its grid for minaccel (which fails only for a grid larger than
-    /// [`minaccel::MAX_GRID_POINTS`]; the message names the track).
+    /// `MAX_GRID_POINTS`; the message names the track).
     pub fn new(track: &Track, opts: &CurveOptions) -> InputResult<Curve> {
         let built = Curve::build(track, opts, |_| Ok::<(), std::convert::Infallible>(()))?;
         Ok(built.unwrap_or_else(|never| match never {}))

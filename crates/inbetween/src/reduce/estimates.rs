@@ -11,7 +11,7 @@ use super::*;
 /// is `log(q_j q_i⁻¹)`, so a frame whose sign is flipped against its neighbour is reached the
 /// long way round. For the shortest path, pass them each in the hemisphere of the one before
 /// ([`crate::tangent::apply_path`]), as [`reduce`] does.
-pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
+pub(crate) fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
     let n = quats.len();
     if n < 2 {
         return vec![DVec3::ZERO; n];
@@ -39,18 +39,18 @@ pub fn frame_velocities(times: &[f64], quats: &[DQuat]) -> Vec<DVec3> {
 }
 
 /// How many velocity estimates a key may choose from ([`velocity_estimates`]).
-pub const ESTIMATES: usize = 6;
+pub(crate) const ESTIMATES: usize = 6;
 
 /// Each frame's angular velocity estimates (rad/s, world frame), the derivative at the frame of
 /// the polynomial through the frame and neighbours in the log map, for six stencils, in order:
-/// centred (the previous and next frame: [`frame_velocities`], one-sided at the ends), backward
+/// centred (the previous and next frame: `frame_velocities`, one-sided at the ends), backward
 /// and forward first order (the previous, the next frame), backward and forward second order
 /// (the two previous, the two next frames), wide centred (the frames two before and two after,
 /// which passes over the quantisation of a file's numbers). Where a stencil runs off the track,
 /// the centred estimate stands in. On smooth motion they agree to first or second order; where
 /// the motion turns sharply (a foot strike, a hit) the one-sided ones are the velocities arriving
 /// and leaving, which let a key there start or end a long segment. The quaternions are taken as
-/// the curve connects them, as in [`frame_velocities`].
+/// the curve connects them, as in `frame_velocities`.
 ///
 /// Each frame's four steps in the log map (to the frames one and two before and after) are
 /// computed once and shared by the stencils that use them: the same values, to the bit, as

@@ -531,7 +531,7 @@ pub(super) const HELD_TOLERANCE: f64 = 1e-9;
 /// evaluation against `interp`'s forward differences, a velocity written to the last digit)
 /// moves it by about `π·ε/gap`, and at the antipode itself by anything up to half a turn. A
 /// segment nearer than this is never feasible, and verification splits it (docs/spec.md §4.7).
-pub const ANTIPODE_MARGIN: f64 = 1e-3;
+pub(crate) const ANTIPODE_MARGIN: f64 = 1e-3;
 
 /// Where the blends of segment `piece` of `curve` come within [`ANTIPODE_MARGIN`] of an
 /// antipode: the `u` where they come nearest.

@@ -25,8 +25,8 @@
 //! - **Optimal**: each frame first takes its *preferred* estimate, the one from which a segment
 //!   starting there reaches farthest (`preferred_estimates`); then a shortest path over the
 //!   frames, an edge `i → j` wherever the segment `i..j` alone meets the tolerance (segments up
-//!   to [`optimal_window`] frames: twice greedy's longest segment on the track, at most
-//!   [`OPTIMAL_WINDOW`]): the fewest keys, among key sets whose keys carry their preferred
+//!   to `optimal_window` frames: twice greedy's longest segment on the track, at most
+//!   `OPTIMAL_WINDOW`): the fewest keys, among key sets whose keys carry their preferred
 //!   estimates and whose segments fit the window, whose segments each meet it. Slerp (one
 //!   estimate, or none) has no window: an exact early cut (`SlerpSpeeds`) ends the search
 //!   from a key, so its result is exactly minimal. Elsewhere (minaccel,
@@ -58,37 +58,37 @@ mod shared;
 mod verify;
 mod world;
 
-pub use estimates::{ESTIMATES, frame_velocities, velocity_estimates};
-pub use frames::ANTIPODE_MARGIN;
+pub(crate) use estimates::ESTIMATES;
+#[cfg(test)]
+use estimates::frame_velocities;
+pub use estimates::velocity_estimates;
 use frames::Frames;
 use frames::error;
 pub use frames::error as rotation_error;
 use greedy::{farthest_by, greedy_keys};
-pub use optimal::optimal_window;
+pub(crate) use optimal::optimal_window;
 use optimal::{Edge, SlerpSpeeds, optimal_keys, shortest_path};
-pub use shared::{reduce_shared, reduce_shared_each};
+pub use shared::reduce_shared;
+pub(crate) use shared::reduce_shared_each;
 pub use verify::curve_errors;
 use verify::{Errors, shared_verified};
-pub use world::{
-    Budget, LOOSENING, LOOSENINGS, MAX_LOOSENING, MAX_ROUNDS, MIN_ANGLE, MIN_GROWTH, PROBE_FRAMES,
-    START, TIGHTENING, TRANSLATION_SHARE, WorldReduced, WorldTolerance, reduce_world,
-};
+pub use world::{Budget, WorldReduced, WorldTolerance, reduce_world};
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
 /// refinement of the frame grid), plus [`SEGMENT_GRID_SLACK`] points; a segment whose start curve
 /// needs more is not feasible (docs/spec.md §4.7).
-pub const SEGMENT_GRID_FACTOR: usize = 2;
+pub(crate) const SEGMENT_GRID_FACTOR: usize = 2;
 
 /// Grid points a minaccel segment test may use beyond [`SEGMENT_GRID_FACTOR`] times its steps
 /// (the extra steps beside keys with their own velocities, and phantom points).
-pub const SEGMENT_GRID_SLACK: usize = 8;
+pub(crate) const SEGMENT_GRID_SLACK: usize = 8;
 
 /// Longest segment (frames) the optimal method considers.
-pub const OPTIMAL_WINDOW: usize = 600;
+pub(crate) const OPTIMAL_WINDOW: usize = 600;
 
 /// The optimal method considers segments up to this many times the longest segment of the
 /// track's greedy keys ([`optimal_window`]).
-pub const OPTIMAL_GREEDY_FACTOR: usize = 2;
+pub(crate) const OPTIMAL_GREEDY_FACTOR: usize = 2;
 
 /// How keys are chosen.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -293,7 +293,7 @@ impl<'a> TrackFrames<'a> {
 }
 
 /// Reduces each track on its own ([`reduce`]), the tracks shared out among the machine's cores
-/// (at most [`MAX_THREADS`] threads, tracks taken in order as threads come free). The result is
+/// (at most `MAX_THREADS` (8) threads, tracks taken in order as threads come free). The result is
 /// in the tracks' order and the same whatever the number of threads; on errors, the first
 /// track's error.
 pub fn reduce_each(
@@ -309,7 +309,11 @@ pub fn reduce_each(
 /// frames' key times where given), rotations, velocities, translations where the frames have
 /// them, and Euler angles for `--path euler`. The curve [`Curve::new`] builds from it with the
 /// options the track was reduced for is the curve reduce verified.
-pub fn kept_track(track: &TrackFrames<'_>, r: &Reduced, opts: &CurveOptions) -> InputResult<Track> {
+pub(crate) fn kept_track(
+    track: &TrackFrames<'_>,
+    r: &Reduced,
+    opts: &CurveOptions,
+) -> InputResult<Track> {
     let key_times = track.key_times.unwrap_or(track.times);
     let t: Vec<f64> = r.keys.iter().map(|&i| key_times[i]).collect();
     let q: Vec<DQuat> = r.keys.iter().map(|&i| track.rotations[i]).collect();
@@ -324,15 +328,6 @@ pub fn kept_track(track: &TrackFrames<'_>, r: &Reduced, opts: &CurveOptions) -> 
         out = out.with_euler_angles(seq, r.keys.iter().map(|&i| e[i]).collect())?;
     }
     Ok(out)
-}
-
-/// Most threads [`reduce_each`] uses.
-pub use crate::parallel::MAX_THREADS;
-
-/// Whether a scheme's segments are determined by their two keys alone when both carry
-/// velocities (so that greedy's and optimal's segment checks are exact).
-pub fn local_with_velocities(scheme: Scheme) -> bool {
-    !matches!(scheme, Scheme::MinAccel)
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use super::*;
 /// The longest segment (frames) the optimal method considers on a track whose greedy keys are
 /// `greedy`: [`OPTIMAL_GREEDY_FACTOR`] times greedy's longest segment, at most
 /// [`OPTIMAL_WINDOW`].
-pub fn optimal_window(greedy: &[usize]) -> usize {
+pub(crate) fn optimal_window(greedy: &[usize]) -> usize {
     let longest = greedy.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(1);
     (OPTIMAL_GREEDY_FACTOR * longest).min(OPTIMAL_WINDOW)
 }

@@ -18,7 +18,7 @@ pub fn reduce_shared(
 /// [`reduce_shared`] with each track's own tolerances: `opts[t]` is track `t`'s, and all must
 /// agree on everything but `tolerance` and `translation_tolerance` (the curve, the error's
 /// measure, velocities, method).
-pub fn reduce_shared_each(
+pub(crate) fn reduce_shared_each(
     tracks: &[TrackFrames<'_>],
     opts: &[ReduceOptions],
 ) -> Result<Vec<Reduced>, Error> {

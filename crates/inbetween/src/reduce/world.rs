@@ -41,19 +41,19 @@ use glam::DAffine3;
 /// The budgets start from each chain's limit split as if its tracks' errors added up to
 /// `k^START` of one (`k` tracks on the chain): ½ would be errors adding like independent random
 /// ones; a little less starts within the limits on most clips, and saves a round.
-pub const START: f64 = 0.4;
+pub(crate) const START: f64 = 0.4;
 
 /// A loosening reduces again only the tracks whose budget it grows by more than this factor.
-pub const MIN_GROWTH: f64 = 1.05;
+pub(crate) const MIN_GROWTH: f64 = 1.05;
 
 /// The share of a track's budget given to its translation, when it has translations to reduce.
-pub const TRANSLATION_SHARE: f64 = 0.25;
+pub(crate) const TRANSLATION_SHARE: f64 = 0.25;
 
 /// Each round scales the budgets on a chain that missed by this much more than the miss.
-pub const TIGHTENING: f64 = 0.95;
+pub(crate) const TIGHTENING: f64 = 0.95;
 
 /// How many times the budgets grow by their slack once every point is within its limit.
-pub const LOOSENINGS: usize = 1;
+pub(crate) const LOOSENINGS: usize = 1;
 
 /// The most joints along the points' chains to the root (the points times their depth) a
 /// world-space reduce composes: 2²⁴, a skeleton of 4 000 joints in one chain (real ones hold
@@ -61,19 +61,19 @@ pub const LOOSENINGS: usize = 1;
 pub(super) const MAX_CHAIN_WORK: u64 = 1 << 24;
 
 /// A budget grows by its chains' slack (limit over displacement) to this power...
-pub const LOOSENING: f64 = 0.8;
+pub(crate) const LOOSENING: f64 = 0.8;
 
 /// ...the slack counted up to this.
-pub const MAX_LOOSENING: f64 = 4.0;
+pub(crate) const MAX_LOOSENING: f64 = 4.0;
 
 /// The most frames of a track the probe of the weights reduces.
-pub const PROBE_FRAMES: usize = 1000;
+pub(crate) const PROBE_FRAMES: usize = 1000;
 
 /// Rounds after which every budget still above the rigorous split is set to it.
-pub const MAX_ROUNDS: usize = 24;
+pub(crate) const MAX_ROUNDS: usize = 24;
 
 /// The smallest rotation tolerance a budget may come to (rad): what reduce can verify.
-pub const MIN_ANGLE: f64 = 1e-9;
+pub(crate) const MIN_ANGLE: f64 = 1e-9;
 
 /// What `reduce --position-tolerance` guarantees.
 #[derive(Debug, Clone, PartialEq)]
@@ -86,7 +86,7 @@ pub struct WorldTolerance {
     /// Reduce the tracks' translations under their budgets; else they are kept exactly (the
     /// tracks' positions then only pose the skeleton).
     pub translations: bool,
-    /// One set of key times for all tracks ([`reduce_shared_each`]).
+    /// One set of key times for all tracks (`reduce_shared_each`).
     pub shared_keys: bool,
     /// The rotation error (rad) each track's keys may gain where they are written (float32 in
     /// glTF): every point's limit is tightened by what that error can move it.

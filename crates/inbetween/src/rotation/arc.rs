@@ -73,7 +73,7 @@ impl Arc {
     }
 
     /// The arc from `a` (u = 0) to `b` (u = 1) whose step is the branch of `log(b a⁻¹)` nearest
-    /// `target` ([`crate::rotation::quat::log_near`]): `exp(u·X)·a`. With `--path euler` the arcs
+    /// `target` (`log_near`): `exp(u·X)·a`. With `--path euler` the arcs
     /// inside a segment that stand in for part of a spin take it, so they keep its turns.
     pub fn near(a: DQuat, b: DQuat, target: glam::DVec3) -> Arc {
         let x = crate::rotation::quat::log_near(b * a.conjugate(), target);
@@ -173,7 +173,7 @@ impl Iterator for ArcSteps {
 }
 
 /// Angle between two unit quaternions as points of S³ (not as rotations).
-pub fn s3_angle(a: DQuat, b: DQuat) -> f64 {
+pub(crate) fn s3_angle(a: DQuat, b: DQuat) -> f64 {
     (a - b).length().atan2((a + b).length()) * 2.0
 }
 

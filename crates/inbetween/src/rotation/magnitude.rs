@@ -71,7 +71,7 @@ pub fn angle_to_rad(a: f64, unit: super::AngleUnit) -> Option<f64> {
 /// when the product is a normal f64 (or a factor is zero), else the same notation computed from the factors'
 /// decimal mantissas and exponents, so that a value beyond f64's range still shows its digits
 /// (`product_num(&[2.0, 1e308], None)` is `2e308`, not `inf`).
-pub fn product_num(factors: &[f64], precision: Option<usize>) -> String {
+pub(crate) fn product_num(factors: &[f64], precision: Option<usize>) -> String {
     let p: f64 = factors.iter().product();
     let fmt = |x: f64| match precision {
         Some(d) => format!("{x:.d$e}"),

@@ -12,10 +12,10 @@ use crate::rotation::magnitude::product_num;
 use glam::{DMat3, DQuat, DVec3};
 
 /// Largest accepted Frobenius norm of `RᵀR − I` before projection (docs/spec.md §2).
-pub const ORTHONORMAL_TOL: f64 = 1e-3;
+pub(crate) const ORTHONORMAL_TOL: f64 = 1e-3;
 
 /// Builds the matrix from row-major entries.
-pub fn from_rows(m: [[f64; 3]; 3]) -> DMat3 {
+pub(crate) fn from_rows(m: [[f64; 3]; 3]) -> DMat3 {
     DMat3::from_cols(
         DVec3::new(m[0][0], m[1][0], m[2][0]),
         DVec3::new(m[0][1], m[1][1], m[2][1]),
@@ -24,7 +24,7 @@ pub fn from_rows(m: [[f64; 3]; 3]) -> DMat3 {
 }
 
 /// Row-major entries of a matrix.
-pub fn to_rows(m: &DMat3) -> [[f64; 3]; 3] {
+pub(crate) fn to_rows(m: &DMat3) -> [[f64; 3]; 3] {
     let t = m.transpose();
     [
         t.x_axis.to_array(),
@@ -83,7 +83,7 @@ fn deviation(n: &DMat3, c: f64) -> f64 {
 }
 
 /// Frobenius norm of `RᵀR − I`.
-pub fn orthonormality_error(m: &DMat3) -> f64 {
+pub(crate) fn orthonormality_error(m: &DMat3) -> f64 {
     deviation(m, 1.0)
 }
 

@@ -117,7 +117,7 @@ impl QuatOrder {
 }
 
 /// Smallest accepted quaternion norm.
-pub const MIN_QUAT_NORM: f64 = 1e-6;
+pub(crate) const MIN_QUAT_NORM: f64 = 1e-6;
 /// Norm deviation from 1 above which a quaternion draws a warning.
 pub const QUAT_NORM_WARN: f64 = 1e-3;
 

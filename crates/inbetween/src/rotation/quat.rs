@@ -37,7 +37,7 @@ pub fn log(q: DQuat) -> DVec3 {
 }
 
 /// Below this norm of its vector part a unit quaternion counts as `±1`: its log has no axis.
-pub const NO_AXIS: f64 = 1e-12;
+pub(crate) const NO_AXIS: f64 = 1e-12;
 
 /// The branch of the half-angle logarithm of the unit quaternion `q` nearest `target`: among
 /// `n·(θ + 2πk)`, `k ∈ ℤ`, with `θ·n = log(q)`, the one nearest `target` (every one has
@@ -45,21 +45,8 @@ pub const NO_AXIS: f64 = 1e-12;
 /// `target`'s direction. `--path euler` draws the arcs inside a segment with it (docs/spec.md
 /// §4.3), so that an arc standing in for part of a spin keeps the spin's turns.
 ///
-/// ```
-/// use inbetween::rotation::quat::{exp, log_near};
-/// use glam::{DQuat, DVec3};
-/// use std::f64::consts::PI;
-///
-/// // A 300° turn about z: log is a half angle of 150° about z, and its branches 150° + 360°k.
-/// // Nearest a target of −200° it is −210° (a turn of −420°, which is also +300°).
-/// let q = DQuat::from_rotation_z(300f64.to_radians());
-/// let v = log_near(q, DVec3::new(0.0, 0.0, -200f64.to_radians()));
-/// assert!((v.z + 210f64.to_radians()).abs() < 1e-14);
-/// // −1 (a full turn) nearest a target along y: π about y.
-/// assert_eq!(log_near(-DQuat::IDENTITY, DVec3::new(0.0, 3.0, 0.0)), DVec3::new(0.0, PI, 0.0));
-/// assert!((exp(log_near(q, DVec3::new(0.0, 0.0, 9.0))) - q).length() < 1e-14);
-/// ```
-pub fn log_near(q: DQuat, target: DVec3) -> DVec3 {
+/// (The examples of the documentation are a unit test, `log_near_picks_the_branch_nearest_the_target`.)
+pub(crate) fn log_near(q: DQuat, target: DVec3) -> DVec3 {
     let tau = 2.0 * std::f64::consts::PI;
     let v = DVec3::new(q.x, q.y, q.z);
     let s = v.length();
@@ -95,19 +82,13 @@ pub fn pure_mul(v: DVec3, q: DQuat) -> DQuat {
     DQuat::from_xyzw(v.x, v.y, v.z, 0.0) * q
 }
 
-/// Vector part of `V q⁻¹` for a tangent `V` at unit `q` (so that `V = w q`).
-pub fn tangent_to_pure(tangent: DQuat, q: DQuat) -> DVec3 {
-    let p = tangent * q.conjugate();
-    DVec3::new(p.x, p.y, p.z)
-}
-
 /// The point `f` of the way along the great arc of S³ from unit `a` to unit `b`:
 /// `exp(f · log(b a⁻¹)) a`, computed in R⁴ as `cos(fΩ) a + sin(fΩ) ê` with `Ω = ∠(a, b)` and `ê`
 /// the unit direction of `b − (a·b) a`. No hemisphere flip: when `a·b < 0` the arc is longer
 /// than 90° on S³ (the long way round in SO(3)), as docs/spec.md §4.3 requires.
 ///
 /// When `a` and `b` are antipodal the arc is undefined; this returns the arc through the
-/// direction [`log`] chooses for `−1`, and [`near_antipode`] lets callers warn.
+/// direction [`log`] chooses for `−1`.
 ///
 /// ```
 /// use inbetween::rotation::quat::geodesic;
@@ -136,13 +117,6 @@ pub fn geodesic(a: DQuat, b: DQuat, f: f64) -> DQuat {
     let omega = s.atan2(d);
     let (sn, cs) = (f * omega).sin_cos();
     a * cs + perp * (sn / s)
-}
-
-/// True when `a` and `b` are within `tol` of antipodal (`‖a + b‖ < tol`), where the geodesic
-/// between them is ill-defined.
-#[inline]
-pub fn near_antipode(a: DQuat, b: DQuat, tol: f64) -> bool {
-    (a + b).length() < tol
 }
 
 /// Angle in radians between two rotations (in SO(3), so `q` and `−q` are the same rotation).
@@ -207,5 +181,22 @@ mod tests {
         assert!(mid.dot(a).abs() < 0.3, "{mid}");
         let direct = exp(log(b * a.conjugate()) * 0.5) * a;
         assert!((mid - direct).length() < TOL);
+    }
+
+    #[test]
+    fn log_near_picks_the_branch_nearest_the_target() {
+        use std::f64::consts::PI;
+
+        // A 300° turn about z: log is a half angle of 150° about z, and its branches 150° + 360°k.
+        // Nearest a target of −200° it is −210° (a turn of −420°, which is also +300°).
+        let q = DQuat::from_rotation_z(300f64.to_radians());
+        let v = log_near(q, DVec3::new(0.0, 0.0, -200f64.to_radians()));
+        assert!((v.z + 210f64.to_radians()).abs() < 1e-14);
+        // −1 (a full turn) nearest a target along y: π about y.
+        assert_eq!(
+            log_near(-DQuat::IDENTITY, DVec3::new(0.0, 3.0, 0.0)),
+            DVec3::new(0.0, PI, 0.0)
+        );
+        assert!((exp(log_near(q, DVec3::new(0.0, 0.0, 9.0))) - q).length() < 1e-14);
     }
 }

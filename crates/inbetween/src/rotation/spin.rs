@@ -4,7 +4,7 @@
 //! Between keys `e_s` and `e_{s+1}` (radians, as written), the angles interpolated linearly,
 //! `e(σ) = e_s + σ(e_{s+1} − e_s)`, describe a motion `R(σ)` with world-frame angular velocity
 //! `ω(σ)` per unit `σ`. Its swept angle `A = ∫₀¹ ‖ω‖ dσ` and net rotation vector `W = ∫₀¹ ω dσ`
-//! (composite Simpson, [`PANELS`] panels) pick the chord among the rotation vectors that carry
+//! (composite Simpson, `PANELS` panels) pick the chord among the rotation vectors that carry
 //! key `s` to key `s+1`: the shortest rotation's axis `n` (angle `φ ∈ [0, π]`), signed to agree
 //! with `W`, and the length `ψ` nearest `A` among those of that sign (`φ + 360°k` along `n`,
 //! `360°k − φ` against it). The identity has no axis: `W`'s direction is taken. For a single-axis
@@ -17,7 +17,7 @@ use std::f64::consts::{PI, TAU};
 
 /// Simpson panels of the sweep integrals (even). The integrals only choose among lengths 360°
 /// apart (and, for the identity, give a direction), so a coarse rule is ample.
-pub const PANELS: usize = 256;
+pub(crate) const PANELS: usize = 256;
 
 /// The unit vector of an axis letter.
 fn axis(letter: u8) -> DVec3 {
@@ -64,7 +64,7 @@ fn omega(seq: EulerSeq, e: [f64; 3], de: [f64; 3]) -> DVec3 {
 
 /// `(A, W)`: the angle swept (rad) and the net rotation vector of the linear Euler motion from
 /// `e0` to `e1` (radians) in `seq`.
-pub fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
+pub(crate) fn sweep(seq: EulerSeq, e0: DVec3, e1: DVec3) -> (f64, DVec3) {
     sweep_with(seq, e0, e1, PANELS)
 }
 
@@ -95,13 +95,13 @@ fn sweep_with(seq: EulerSeq, e0: DVec3, e1: DVec3, panels: usize) -> (f64, DVec3
 /// of the angle swept whatever the motion's length, far inside [`SIGN_MARGIN`] (where `‖ω‖` has
 /// a kink, at a gimbal-locked stop, the swept angle's error is at most about `h²·(Σ|Δe_i|)²` =
 /// 0.016 rad, a quarter of [`TIE_MARGIN`]'s 0.063 rad).
-pub const PANELS_PER_QUARTER_RADIAN: usize = 2;
+pub(crate) const PANELS_PER_QUARTER_RADIAN: usize = 2;
 
 /// How clear the coarse rule's sign must be: `|n·W|` above this fraction of the angle swept.
-pub const SIGN_MARGIN: f64 = 1e-3;
+pub(crate) const SIGN_MARGIN: f64 = 1e-3;
 
 /// How clear the coarse rule's length must be: the candidates' tie this many turns away.
-pub const TIE_MARGIN: f64 = 1e-2;
+pub(crate) const TIE_MARGIN: f64 = 1e-2;
 
 /// The chord along `n` (the shortest rotation's axis, angle `phi`) that the sweep `(swept,
 /// net)` picks, and whether the choice is clear by `margins` (sign, tie; see [`chord`]).
@@ -136,8 +136,8 @@ fn pick(n: DVec3, phi: f64, (swept, net): (f64, DVec3), margins: (f64, f64)) -> 
 /// ```
 ///
 /// Between keys that differ, the sweep is first integrated on a coarse rule
-/// ([`PANELS_PER_QUARTER_RADIAN`], while that is fewer than [`PANELS`]); where its choice is
-/// clear ([`SIGN_MARGIN`], [`TIE_MARGIN`]) it is the [`PANELS`] rule's choice, and the chord the
+/// (`PANELS_PER_QUARTER_RADIAN`, while that is fewer than `PANELS`); where its choice is
+/// clear (`SIGN_MARGIN`, `TIE_MARGIN`) it is the `PANELS` rule's choice, and the chord the
 /// same to the bit (the chord depends on the integrals only through the choice).
 pub fn chord(seq: EulerSeq, e0: DVec3, e1: DVec3, q0: DQuat, q1: DQuat) -> DVec3 {
     let mut d = q1 * q0.conjugate();

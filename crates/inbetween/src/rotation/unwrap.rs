@@ -46,7 +46,7 @@ use std::f64::consts::{FRAC_PI_2, PI, TAU};
 /// rad just outside, ≤ 1e-7 rad beyond 1e-9). The test is on the middle angle because it is the
 /// well-conditioned quantity; `cos b` or `sin b` would do as well, but scipy's 1e-7 would break
 /// the rebuild budget by five orders of magnitude.
-pub const GIMBAL_LOCK_TOL: f64 = 1e-13;
+pub(crate) const GIMBAL_LOCK_TOL: f64 = 1e-13;
 
 /// The Euler triple of `q` in `seq` nearest `prev` (all angles in radians, in the order of the
 /// letters): among both solutions of the sequence, each angle plus any multiple of 2π, the one at
@@ -57,7 +57,7 @@ pub const GIMBAL_LOCK_TOL: f64 = 1e-13;
 /// angle exactly half a turn from the previous one goes to the representative [`f64::round`]
 /// picks (half-way rounds away from zero in turns).
 ///
-/// **Gimbal lock.** When the middle angle is within [`GIMBAL_LOCK_TOL`] of its singular value
+/// **Gimbal lock.** When the middle angle is within `GIMBAL_LOCK_TOL` of its singular value
 /// (±π/2 for Tait–Bryan, 0 or π for proper Euler), the rotation fixes only the middle angle and
 /// `a + σc` modulo 2π, with σ = ±1 set by the sequence and the singularity. The middle angle is
 /// then exactly the singular value (the representative nearest `prev[1]`), and (a, c) is the point
