@@ -187,7 +187,7 @@ impl Joint {
     }
 
     /// The name of the joint's track: its [`name`](Joint::name), made unique among the
-    /// hierarchy's joints by [`unique_names`](crate::names::unique_names) with the joint's
+    /// hierarchy's joints by `unique_names` with the joint's
     /// index in [`Clip::joints`] (docs/spec.md §3, *BVH*): the first joint of a name keeps it,
     /// a later one is `name#<index>` (then `name#<index>#2`, … when that is taken).
     pub fn track_name(&self) -> &str {
@@ -270,7 +270,7 @@ impl Clip {
         self.frame_time
     }
 
-    /// The exact rate recovered from the frame time ([`crate::bvh::rate::rate_from_frame_time`]): 120 for
+    /// The exact rate recovered from the frame time (`rate_from_frame_time`): 120 for
     /// `.0083333`.
     pub fn fps(&self) -> Fps {
         self.fps

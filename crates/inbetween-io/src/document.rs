@@ -142,7 +142,7 @@ pub enum KeyOrigin {
 }
 
 /// A track's keys as Euler angles: the sequence, and each key's triple as written (radians).
-pub type EulerKeys = (inbetween::rotation::EulerSeq, Vec<DVec3>);
+pub(crate) type EulerKeys = (inbetween::rotation::EulerSeq, Vec<DVec3>);
 
 /// One track as read.
 #[derive(Debug, Clone, PartialEq)]
@@ -175,7 +175,7 @@ pub struct DocTrack {
 impl DocTrack {
     /// Records the just-pushed key's own velocity and TCB values (the lists stay empty until a
     /// key has one, then are filled for every key).
-    pub fn push_shape(&mut self, velocity: Option<DVec3>, tcb: [Option<f64>; 3]) {
+    pub(crate) fn push_shape(&mut self, velocity: Option<DVec3>, tcb: [Option<f64>; 3]) {
         push_shape(
             &mut self.velocities,
             &mut self.tcb,
@@ -237,7 +237,7 @@ pub fn push_shape(
 }
 
 /// Records key `n − 1`'s optional value in a list that stays empty until a key has one.
-pub fn push_sparse(list: &mut Vec<Option<DVec3>>, n: usize, value: Option<DVec3>) {
+pub(crate) fn push_sparse(list: &mut Vec<Option<DVec3>>, n: usize, value: Option<DVec3>) {
     if value.is_some() || !list.is_empty() {
         list.resize(n - 1, None);
         list.push(value);

@@ -38,27 +38,27 @@ use std::fmt::Write as _;
 /// The samples (frames × nodes) a clip read from FBX may take at least: 2²² (about 1 GB at
 /// the peak of reading), so that a stack declaring an absurd span is refused before it is
 /// sampled...
-pub const MIN_SAMPLE_BUDGET: u64 = 1 << 22;
+pub(crate) const MIN_SAMPLE_BUDGET: u64 = 1 << 22;
 
 /// ...or this many per byte of the file, where that is more (a file whose curves are baked at
 /// every frame holds several bytes per sample, so a long real take is read whole).
-pub const SAMPLES_PER_BYTE: u64 = 8;
+pub(crate) const SAMPLES_PER_BYTE: u64 = 8;
 
 /// Sampling evaluates every animation layer of the stack at each sample: the samples times the
 /// layers may be at most this many times the sample budget.
-pub const LAYER_WORK_FACTOR: u64 = 4;
+pub(crate) const LAYER_WORK_FACTOR: u64 = 4;
 
 /// ufbx may use this many bytes of memory per byte of the file (each of its two allocators)...
-pub const MEMORY_PER_BYTE: usize = 32;
+pub(crate) const MEMORY_PER_BYTE: usize = 32;
 
 /// ...and at least this many.
-pub const MIN_MEMORY_LIMIT: usize = 256 << 20;
+pub(crate) const MIN_MEMORY_LIMIT: usize = 256 << 20;
 
 /// How far apart (relative) two scales may be and still be the same: a few float32 steps.
-pub const SCALE_TOLERANCE: f64 = 1e-5;
+pub(crate) const SCALE_TOLERANCE: f64 = 1e-5;
 
 /// Whether `bytes` look like FBX: the binary magic, or an ASCII file's `; FBX` header comment.
-pub fn is_fbx(bytes: &[u8]) -> bool {
+pub(crate) fn is_fbx(bytes: &[u8]) -> bool {
     bytes.starts_with(b"Kaydara FBX Binary") || {
         let head = &bytes[..bytes.len().min(64)];
         let text = String::from_utf8_lossy(head);

@@ -159,7 +159,7 @@ pub struct ReadOptions {
     /// `--quat-order`: component order of JSON quaternion arrays.
     pub quat_order: QuatOrder,
     /// `--delimiter`: the CSV field delimiter (`,`, `;` or tab); by default detected from the
-    /// header line ([`read::csv::detect_delimiter`]).
+    /// header line (`detect_delimiter`).
     pub delimiter: Option<u8>,
 }
 
@@ -256,7 +256,7 @@ pub fn parse_bytes(
 }
 
 /// Whether bytes are FBX: the format as given, else `path`'s extension, else the bytes
-/// ([`fbx::is_fbx`]).
+/// (`is_fbx`).
 pub fn is_fbx_input(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> bool {
     format
         .or_else(|| path.and_then(Format::from_path))

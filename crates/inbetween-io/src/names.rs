@@ -13,12 +13,8 @@ use std::collections::HashSet;
 /// Unique names for objects named `given` with indices `ids` (same length), by the rule of the
 /// module documentation. Linear in the number of names (hash sets).
 ///
-/// ```
-/// use inbetween_io::names::unique_names;
-/// let names = unique_names(&["a#2", "a", "a"], &[0, 1, 2]);
-/// assert_eq!(names, ["a#2", "a", "a#2#2"]);
-/// ```
-pub fn unique_names<S: AsRef<str>>(given: &[S], ids: &[usize]) -> Vec<String> {
+/// (Its example is a unit test: `unique_names_example`.)
+pub(crate) fn unique_names<S: AsRef<str>>(given: &[S], ids: &[usize]) -> Vec<String> {
     assert_eq!(given.len(), ids.len(), "one id per name");
     let all: HashSet<&str> = given.iter().map(AsRef::as_ref).collect();
     let mut taken: HashSet<String> = HashSet::with_capacity(given.len());
@@ -86,5 +82,15 @@ mod tests {
         let names = unique_names(&given, &ids);
         assert!(distinct(&names));
         assert_eq!(names[0], "x");
+    }
+}
+
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn unique_names_example() {
+        use crate::names::unique_names;
+        let names = unique_names(&["a#2", "a", "a"], &[0, 1, 2]);
+        assert_eq!(names, ["a#2", "a", "a#2#2"]);
     }
 }

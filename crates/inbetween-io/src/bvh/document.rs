@@ -6,7 +6,7 @@
 //! `euler:ZXY`; one or two rotation channels are that sequence completed, the missing angles 0:
 //! [`Joint::rotation`]), its Euler angles kept as written (so that `--path euler` and continuous
 //! Euler output start from them; an angle beyond ±1e9° is first reduced exactly modulo 360°:
-//! [`angle_to_rad`]), and its position channels, if any, as the key's translation
+//! `angle_to_rad`), and its position channels, if any, as the key's translation
 //! (an axis without a channel at 0). A joint with position channels only is a track of identity
 //! rotations carrying those positions. Joints without channels have no track.
 
@@ -19,13 +19,13 @@ use std::sync::Arc;
 
 /// Angles beyond this many degrees are reduced exactly modulo 360° before anything else
 /// ([`angle_to_rad`]).
-pub const REDUCE_BEYOND_DEG: f64 = 1e9;
+pub(crate) const REDUCE_BEYOND_DEG: f64 = 1e9;
 
 /// A BVH angle (degrees) in radians: converted as it is up to ±[`REDUCE_BEYOND_DEG`] (so the
 /// turns between rows are kept; the conversion's error stays below 1e-8 rad), and beyond it
 /// first reduced exactly modulo 360° (`%` of two finite f64 is exact), as CSV and JSON degrees
 /// are: `1e200` is 128°, where the radians of `1e200` would carry an error of many turns.
-pub fn angle_to_rad(deg: f64) -> f64 {
+pub(crate) fn angle_to_rad(deg: f64) -> f64 {
     if deg.abs() > REDUCE_BEYOND_DEG {
         (deg % 360.0).to_radians()
     } else {
@@ -57,7 +57,7 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
 
 /// The track of one joint of `clip` (see the module documentation); `None` for a joint without
 /// rotation or position channels.
-pub fn joint_track(clip: &Clip, joint: &Joint) -> Option<DocTrack> {
+pub(crate) fn joint_track(clip: &Clip, joint: &Joint) -> Option<DocTrack> {
     let rotation = joint.rotation();
     let position = joint.position();
     if rotation.is_none() && position.is_none() {
@@ -99,7 +99,7 @@ pub fn joint_track(clip: &Clip, joint: &Joint) -> Option<DocTrack> {
     })
 }
 
-/// The track of one joint of `clip` both as the clip's [`document`] holds it ([`joint_track`])
+/// The track of one joint of `clip` both as the clip's [`document`] holds it (`joint_track`)
 /// and validated exactly as [`Document::tracks_shaped`] validates it there (`source` names the
 /// file in errors, `tcb` as there): one joint at a time, for a caller that reads the joints
 /// apart and needs the keys as read beside the track. `Ok(None)` for a joint that is not a track.

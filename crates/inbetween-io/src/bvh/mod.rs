@@ -28,13 +28,13 @@
 //! Xrotation Yrotation` rotates by `R = Rz·Rx·Ry`, the intrinsic sequence in the listed order,
 //! which is [`EulerSeq::parse("ZXY")`](inbetween::EulerSeq::parse) ([`Joint::rotation`]). Frame `i` is at
 //! `i / rate` seconds ([`Clip::time_of`]), the rate being recovered from the rounded
-//! `Frame Time` by [`rate::rate_from_frame_time`].
+//! `Frame Time` by `rate_from_frame_time`.
 //!
 //! - [`read`]: the parser, [`parse`]: text → [`Clip`] and located warnings; [`parse_reader`]:
 //!   the same from a reader in pieces, never holding the text.
 //! - [`resample`]: a clip resampled one joint at a time (`interp`'s lean path).
 //! - [`rate`]: `Frame Time` ↔ an exact [`Fps`](inbetween::Fps).
-//! - [`mod@write`]: [`write()`](write::write) and the streaming [`BvhWriter`].
+//! - [`mod@write`]: [`write()`](write::write) and the streaming `BvhWriter`.
 //!
 //! ```
 //! use inbetween_io::bvh;
@@ -67,7 +67,7 @@ pub mod resample;
 pub mod write;
 
 pub use read::{parse, parse_reader};
-pub use write::{BvhWriter, write};
+pub use write::write;
 
 pub use crate::clip::{Channel, Clip, Joint};
 

@@ -1,32 +1,21 @@
 //! `Frame Time` ↔ an exact rate.
 //!
 //! Writers round the frame time (`0.0333333`, `.0083333`, `0.0416667`), so `1 / frame time` is
-//! never the rate the motion was sampled at. [`rate_from_frame_time`] recovers it: the nearest
-//! of [`STANDARD_RATES`] when `1 / frame time` is within [`RATE_TOLERANCE`] (relative) of it,
+//! never the rate the motion was sampled at. `rate_from_frame_time` recovers it: the nearest
+//! of `STANDARD_RATES` when `1 / frame time` is within `RATE_TOLERANCE` (relative) of it,
 //! else the decimal exactly as written (`0.0125` is 80 fps, `0.011` is 1000/11 fps).
-//! [`frame_time_text`] writes a rate back: the exact decimal when `1 / rate` has one of at most
-//! [`MAX_EXACT_DECIMALS`] decimals (`0.01`, `0.008`, `0.04`), else 9 significant digits
+//! `frame_time_text` writes a rate back: the exact decimal when `1 / rate` has one of at most
+//! `MAX_EXACT_DECIMALS` decimals (`0.01`, `0.008`, `0.04`), else 9 significant digits
 //! (`0.0333333333`), which read back to the same rate.
 //!
-//! ```
-//! use inbetween_io::bvh::rate::{frame_time_text, rate_from_frame_time};
-//!
-//! let fps = rate_from_frame_time("0.0333667")?;
-//! assert_eq!((fps.num(), fps.den()), (30000, 1001));
-//! assert_eq!(frame_time_text(fps), "0.0333666667");
-//! assert_eq!(rate_from_frame_time(&frame_time_text(fps))?, fps);
-//! let fps = rate_from_frame_time("0.011")?;
-//! assert_eq!((fps.num(), fps.den()), (1000, 11));
-//! assert_eq!(frame_time_text(fps), "0.011");
-//! # Ok::<(), inbetween::InputError>(())
-//! ```
+//! (Its example is a unit test: `module_example`.)
 
 use inbetween::clock::Fps;
 use inbetween::error::{InputResult, shorten};
 
 /// The rates a rounded frame time snaps to, as `(num, den)`: the integer rates of film, video,
 /// games and motion capture, and the NTSC `N·1000/1001` ratios of 24, 30, 48, 60, 120 and 240.
-pub const STANDARD_RATES: [(u64, u64); 18] = [
+pub(crate) const STANDARD_RATES: [(u64, u64); 18] = [
     (12, 1),
     (15, 1),
     (24, 1),
@@ -50,18 +39,18 @@ pub const STANDARD_RATES: [(u64, u64); 18] = [
 /// How close `1 / frame time` must be to a standard rate, relative, to be taken as it: 1e-4
 /// (a frame time rounded to 6 significant digits is within 1e-6; neighbouring standard rates,
 /// 30 and 30000/1001, are 1e-3 apart).
-pub const RATE_TOLERANCE: f64 = 1e-4;
+pub(crate) const RATE_TOLERANCE: f64 = 1e-4;
 
 /// The most decimals of a frame time [`frame_time_text`] writes exactly (`0.0125`); a rate
 /// whose frame time needs more (or does not terminate) gets 9 significant digits.
-pub const MAX_EXACT_DECIMALS: u32 = 12;
+pub(crate) const MAX_EXACT_DECIMALS: u32 = 12;
 
 /// The exact rate of a `Frame Time` value as written (seconds per frame): a standard rate
 /// when within [`RATE_TOLERANCE`], else `1 / frame time` with the frame time read as the
 /// exact decimal written. Accepts what files write: `0.0333333`, `.0083333`, `8.3333e-3`, an
 /// optional `+`. Errors (unlocated; the parser adds the line): not a number, not finite, zero
 /// or negative, or a rate outside what [`Fps`] accepts.
-pub fn rate_from_frame_time(text: &str) -> InputResult<Fps> {
+pub(crate) fn rate_from_frame_time(text: &str) -> InputResult<Fps> {
     let t = text.trim();
     let x: f64 = t.parse().map_err(|_| {
         input_err!(
@@ -168,7 +157,7 @@ fn exact_decimal(text: &str) -> Option<(u128, i64)> {
 /// [`MAX_EXACT_DECIMALS`] decimals (`0.01`, `0.008`, `0.0125`, `2`), else rounded to 9
 /// significant digits (`0.0333333333`, `0.00833333333`, `0.0333666667`) — enough for
 /// [`rate_from_frame_time`] to recover any standard rate.
-pub fn frame_time_text(fps: Fps) -> String {
+pub(crate) fn frame_time_text(fps: Fps) -> String {
     let (num, den) = (fps.num() as u128, fps.den() as u128);
     // den/num terminates iff num = 2^a·5^b; it then has max(a, b) decimals.
     let (mut rest, mut twos, mut fives) = (num, 0u32, 0u32);
@@ -298,5 +287,22 @@ mod tests {
             let six = format!("{:.6e}", d as f64 / n as f64);
             assert_eq!(rate_from_frame_time(&six).unwrap(), fps, "{six}");
         }
+    }
+}
+
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn module_example() -> Result<(), inbetween::InputError> {
+        use crate::bvh::rate::{frame_time_text, rate_from_frame_time};
+
+        let fps = rate_from_frame_time("0.0333667")?;
+        assert_eq!((fps.num(), fps.den()), (30000, 1001));
+        assert_eq!(frame_time_text(fps), "0.0333666667");
+        assert_eq!(rate_from_frame_time(&frame_time_text(fps))?, fps);
+        let fps = rate_from_frame_time("0.011")?;
+        assert_eq!((fps.num(), fps.den()), (1000, 11));
+        assert_eq!(frame_time_text(fps), "0.011");
+        Ok(())
     }
 }

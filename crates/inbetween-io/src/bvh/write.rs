@@ -10,12 +10,12 @@
 //! ```
 //!
 //! Each number is first rounded to 12 significant digits and to at most 10 decimals
-//! ([`bvh_round`]), then written as the shortest decimal that reads back as that f64 (integers
+//! (`bvh_round`), then written as the shortest decimal that reads back as that f64 (integers
 //! without `.0`, −0 as `0`); lines end as the hierarchy's do: `\r\n` when its first line ends
 //! so (a file written on Windows comes back with one line ending throughout), else `\n`. The rounding is far above the noise of an angle
 //! that went through a quaternion (about 1e-13 degrees) and far below anything a skeleton can
 //! show (1e-10 degrees), so an angle the source wrote as `10` or `-11.725488` is written so again
-//! rather than `9.99999999999999` or `-11.725488000000004`. The writer streams: [`BvhWriter`] takes one row at a time
+//! rather than `9.99999999999999` or `-11.725488000000004`. The writer streams: `BvhWriter` takes one row at a time
 //! and buffers at most about 64 KiB. Like the other writers, it never writes a non-finite
 //! value: it fails with an [`io::Error`] of kind `InvalidData` (`internal error: …`) instead.
 
@@ -33,16 +33,8 @@ const POW10: [f64; 11] = [1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10
 /// that decimal, so that the shortest round-trip digits of the result are that decimal's.
 /// Values of 10^12 and more are left as they are.
 ///
-/// ```
-/// use inbetween_io::bvh::write::bvh_round;
-///
-/// assert_eq!(bvh_round(9.999999999999998), 10.0);
-/// assert_eq!(bvh_round(-11.725488000000004), -11.725488);
-/// assert_eq!(bvh_round(1.4e-15), 0.0);
-/// assert_eq!(bvh_round(123456.78901234567), 123456.789012);
-/// assert_eq!(bvh_round(1.0 / 3.0), 0.3333333333);
-/// ```
-pub fn bvh_round(x: f64) -> f64 {
+/// (Its example is a unit test: `bvh_round_example`.)
+pub(crate) fn bvh_round(x: f64) -> f64 {
     let a = x.abs();
     if a >= 1e12 {
         // No decimals are left to round (and no such value is an angle or a skeleton's length).
@@ -65,22 +57,8 @@ pub fn bvh_round(x: f64) -> f64 {
 /// `frames` rows announced in it, then [`BvhWriter::finish`] (which flushes; dropping the
 /// writer without it loses the buffered rows).
 ///
-/// ```
-/// use inbetween::Fps;
-/// use inbetween_io::bvh::BvhWriter;
-///
-/// let hierarchy = "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Zrotation\n}\n";
-/// let mut w = BvhWriter::new(Vec::new(), hierarchy, Fps::new(100, 1)?, 1, 2)?;
-/// w.row(&[0.5])?;
-/// w.row(&[-90.0])?;
-/// let bytes = w.finish()?;
-/// assert_eq!(
-///     String::from_utf8(bytes).unwrap(),
-///     format!("{hierarchy}MOTION\nFrames: 2\nFrame Time: 0.01\n0.5\n-90\n")
-/// );
-/// # Ok::<(), Box<dyn std::error::Error>>(())
-/// ```
-pub struct BvhWriter<W: Write> {
+/// (Its example is a unit test: `bvhwriter_example`.)
+pub(crate) struct BvhWriter<W: Write> {
     out: W,
     buf: Vec<u8>,
     num: NumWriter,
@@ -107,7 +85,7 @@ impl<W: Write> BvhWriter<W> {
     /// Writes the header: `hierarchy` as given (followed by a line end if it has none),
     /// `MOTION`, `Frames: <frames>` and the `Frame Time` of `fps`. Each row must then have
     /// `channels` values (at least one).
-    pub fn new(
+    pub(crate) fn new(
         out: W,
         hierarchy: &str,
         fps: Fps,
@@ -145,7 +123,7 @@ impl<W: Write> BvhWriter<W> {
     }
 
     /// Writes one row: `channels` finite values.
-    pub fn row(&mut self, values: &[f64]) -> io::Result<()> {
+    pub(crate) fn row(&mut self, values: &[f64]) -> io::Result<()> {
         if values.len() != self.channels {
             return Err(invalid(
                 io::ErrorKind::InvalidInput,
@@ -197,7 +175,7 @@ impl<W: Write> BvhWriter<W> {
 
     /// Writes what is buffered, flushes, and returns the destination. An error if fewer rows
     /// were written than announced in `Frames:`.
-    pub fn finish(mut self) -> io::Result<W> {
+    pub(crate) fn finish(mut self) -> io::Result<W> {
         if self.written != self.frames {
             return Err(invalid(
                 io::ErrorKind::InvalidInput,
@@ -214,7 +192,7 @@ impl<W: Write> BvhWriter<W> {
 }
 
 /// Writes a whole BVH file: `hierarchy`, then `values` (row-major, `channels` per row) at
-/// `fps`. See [`BvhWriter`] for the layout.
+/// `fps`. See `BvhWriter` for the layout.
 pub fn write<W: Write>(
     out: W,
     hierarchy: &str,
@@ -395,5 +373,36 @@ mod tests {
         }
         let e = write(Broken, H, fps(30, 1), 3, &[0.0; 3]).unwrap_err();
         assert_eq!(e.kind(), io::ErrorKind::BrokenPipe);
+    }
+}
+
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn bvhwriter_example() -> Result<(), Box<dyn std::error::Error>> {
+        use crate::bvh::write::BvhWriter;
+        use inbetween::Fps;
+
+        let hierarchy = "HIERARCHY\nROOT a\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Zrotation\n}\n";
+        let mut w = BvhWriter::new(Vec::new(), hierarchy, Fps::new(100, 1)?, 1, 2)?;
+        w.row(&[0.5])?;
+        w.row(&[-90.0])?;
+        let bytes = w.finish()?;
+        assert_eq!(
+            String::from_utf8(bytes).unwrap(),
+            format!("{hierarchy}MOTION\nFrames: 2\nFrame Time: 0.01\n0.5\n-90\n")
+        );
+        Ok(())
+    }
+
+    #[test]
+    fn bvh_round_example() {
+        use crate::bvh::write::bvh_round;
+
+        assert_eq!(bvh_round(9.999999999999998), 10.0);
+        assert_eq!(bvh_round(-11.725488000000004), -11.725488);
+        assert_eq!(bvh_round(1.4e-15), 0.0);
+        assert_eq!(bvh_round(123456.78901234567), 123456.789012);
+        assert_eq!(bvh_round(1.0 / 3.0), 0.3333333333);
     }
 }

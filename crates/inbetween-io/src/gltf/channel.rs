@@ -309,20 +309,13 @@ impl Channel<DVec3> {
 /// last place of float32 at `frame_time` (the spacing of float32 numbers just above
 /// `|frame_time|`), so that keys exported at a rate come back on their frames.
 ///
-/// ```
-/// use inbetween_io::gltf::on_frame;
-/// let frame = 0.75; // frame 3 at 4 fps, a float32 exactly
-/// assert!(on_frame((7.0f64 / 30.0) as f32, 7.0 / 30.0)); // frame 7 at 30 fps, rounded to float32
-/// assert!(on_frame(frame as f32, frame));
-/// assert!(on_frame(f32::from_bits((frame as f32).to_bits() + 2), frame));
-/// assert!(!on_frame(f32::from_bits((frame as f32).to_bits() + 3), frame));
-/// ```
-pub fn on_frame(key: f32, frame_time: f64) -> bool {
+/// (Its example is a unit test: `on_frame_example`.)
+pub(crate) fn on_frame(key: f32, frame_time: f64) -> bool {
     (f64::from(key) - frame_time).abs() <= 2.0 * f32_ulp(frame_time)
 }
 
 /// The spacing of float32 numbers at `|x|` (from the float32 nearest `|x|` to the next one up).
-pub fn f32_ulp(x: f64) -> f64 {
+pub(crate) fn f32_ulp(x: f64) -> f64 {
     let f = (x.abs() as f32).min(f32::MAX);
     let next = f32::from_bits(f.to_bits() + 1);
     f64::from(next) - f64::from(f)
@@ -331,14 +324,8 @@ pub fn f32_ulp(x: f64) -> f64 {
 /// `key` as seconds: the time of the nearest frame of `fps` when [`on_frame`] with it, else the
 /// key widened exactly to f64.
 ///
-/// ```
-/// use inbetween::Fps;
-/// use inbetween_io::gltf::snap_key_time;
-/// let fps = Fps::new(30, 1).unwrap();
-/// assert_eq!(snap_key_time(0.1f32, fps), fps.time_of(3)); // 0.1f32 is 0.10000000149…
-/// assert_eq!(snap_key_time(0.11f32, fps), f64::from(0.11f32));
-/// ```
-pub fn snap_key_time(key: f32, fps: crate::Fps) -> f64 {
+/// (Its example is a unit test: `snap_key_time_example`.)
+pub(crate) fn snap_key_time(key: f32, fps: crate::Fps) -> f64 {
     let t = f64::from(key);
     if !fps.in_range(t) {
         return t;
@@ -516,5 +503,33 @@ mod tests {
         assert!(on_frame(100.0 + 2f32.powi(-16), 100.0));
         assert!(!on_frame(100.0 + 3.0 * 2f32.powi(-17), 100.0));
         assert_eq!(f32_ulp(0.0), f64::from(f32::from_bits(1)));
+    }
+}
+
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn snap_key_time_example() {
+        use crate::gltf::snap_key_time;
+        use inbetween::Fps;
+        let fps = Fps::new(30, 1).unwrap();
+        assert_eq!(snap_key_time(0.1f32, fps), fps.time_of(3)); // 0.1f32 is 0.10000000149…
+        assert_eq!(snap_key_time(0.11f32, fps), f64::from(0.11f32));
+    }
+
+    #[test]
+    fn on_frame_example() {
+        use crate::gltf::channel::on_frame;
+        let frame = 0.75; // frame 3 at 4 fps, a float32 exactly
+        assert!(on_frame((7.0f64 / 30.0) as f32, 7.0 / 30.0)); // frame 7 at 30 fps, rounded to float32
+        assert!(on_frame(frame as f32, frame));
+        assert!(on_frame(
+            f32::from_bits((frame as f32).to_bits() + 2),
+            frame
+        ));
+        assert!(!on_frame(
+            f32::from_bits((frame as f32).to_bits() + 3),
+            frame
+        ));
     }
 }

@@ -5,14 +5,14 @@
 //!
 //! - Names: the target node's name (`node<index>` for a node without one) when one animation is
 //!   chosen, else `animation/node` with the animation's name (its index when it has none), made
-//!   unique by [`crate::names::unique_names`] with the node index (a later duplicate gets
+//!   unique by `unique_names` with the node index (a later duplicate gets
 //!   `#<node index>`, then `#<node index>#2`, …, never a name given or taken earlier). Names are
 //!   labels: a track is mapped back to its channel through [`GltfClip::source_of`], a hash of
 //!   these unique names, and [`GltfClip::source`] by position.
 //! - Times: float32 seconds; a key within two float32 ulps of a frame time of the rate is on
-//!   that frame ([`super::snap_key_time`]), so that keys exported at a rate come back exactly;
+//!   that frame (`snap_key_time`), so that keys exported at a rate come back exactly;
 //!   when that would not keep the times strictly increasing (two keys near one frame), the
-//!   keys involved keep their stored times ([`snapped_times`]).
+//!   keys involved keep their stored times (`snapped_times`).
 //! - `LINEAR`: the values are the track's keys, for the scheme of the command.
 //! - `STEP` and `CUBICSPLINE` ([`Mode::Frames`], [`Mode::Sampled`]): the sampler defines its
 //!   own curve, which `interp` samples at every frame of the animation's span while writing
@@ -21,7 +21,7 @@
 //!   frame that hold it (a `STEP` frame holds the last key at or before it, on the snapped
 //!   times), which slerp reproduces at every frame: bounded by the input, whatever the rate. A
 //!   `CUBICSPLINE` track is, for `interp` ([`Mode::Sampled`]), its vertices `v_k` with the
-//!   angular velocities of their tangents ([`tangent_velocity`]), and for `analyze`, `plot`
+//!   angular velocities of their tangents (`tangent_velocity`), and for `analyze`, `plot`
 //!   and `reduce` ([`Mode::Frames`]) the curve at every frame. A `CUBICSPLINE` rotation whose
 //!   4-vector comes near zero between two keys has no rotation there: an input error.
 //! - [`Mode::Keys`] (for `convert`): every sampler's keys; a `CUBICSPLINE` key carries the
@@ -84,7 +84,7 @@ pub struct TrackSource {
 /// [`Mode::Frames`] (`analyze`, `plot`, `reduce`), over all of them: about 600 MB of keys. A
 /// 4 kB asset whose key times run to 10⁵ s took 47 s and 10 GB at 1000 fps (found by the
 /// `gltf_reader` fuzz target).
-pub const MAX_BAKED_FRAMES: u64 = 4_000_000;
+pub(crate) const MAX_BAKED_FRAMES: u64 = 4_000_000;
 
 /// An asset with its chosen animations, read and checked.
 #[derive(Debug)]
@@ -691,7 +691,7 @@ fn keyed(
 /// and the later ones keep their stored times, and when a later one is stored before the
 /// frame, the earlier ones keep theirs too (so keys 1 ulp apart just below a frame are both
 /// kept as stored, in order).
-pub fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
+pub(crate) fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
     let mut out: Vec<f64> = Vec::with_capacity(times.len());
     for &t in times {
         let s = snap_key_time(t, fps);
@@ -722,14 +722,8 @@ pub fn snapped_times(times: &[f32], fps: Fps) -> Vec<f64> {
 /// segment-duration factor of `m0 = (t_{k+1} − t_k)·b_k` cancels with `ds/dt`), and ends at
 /// key `k + 1` with `p'(t_{k+1}) = a_{k+1}` (the in-tangent).
 ///
-/// ```
-/// use glam::{DQuat, DVec3};
-/// use inbetween_io::gltf::document::tangent_velocity;
-/// // q(t) = rotation about z by 2t: dq/dt at t = 0 is (0, 0, 1, 0) (x y z w).
-/// let w = tangent_velocity(DQuat::IDENTITY, DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0));
-/// assert!((w - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-15);
-/// ```
-pub fn tangent_velocity(v: DQuat, m: DQuat) -> DVec3 {
+/// (Its example is a unit test: `tangent_velocity_example`.)
+pub(crate) fn tangent_velocity(v: DQuat, m: DQuat) -> DVec3 {
     let (p, d) = (DVec4::from(v), DVec4::from(m));
     // m ⊗ conj(v), vector part (Hamilton product, x y z w).
     let (pv, dv) = (p.truncate(), d.truncate());
@@ -804,5 +798,17 @@ mod tests {
         let want = tangent_velocity(q0, dq);
         let got = tangent_velocity(ch.values()[1], b);
         assert!((got - want).length() < 1e-4, "{got} vs {want}");
+    }
+}
+
+#[cfg(test)]
+mod examples {
+    #[test]
+    fn tangent_velocity_example() {
+        use crate::gltf::document::tangent_velocity;
+        use glam::{DQuat, DVec3};
+        // q(t) = rotation about z by 2t: dq/dt at t = 0 is (0, 0, 1, 0) (x y z w).
+        let w = tangent_velocity(DQuat::IDENTITY, DQuat::from_xyzw(0.0, 0.0, 1.0, 0.0));
+        assert!((w - DVec3::new(0.0, 0.0, 2.0)).length() < 1e-15);
     }
 }

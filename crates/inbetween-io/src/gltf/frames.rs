@@ -119,7 +119,7 @@ impl<W: Write> GltfFrames<W> {
 }
 
 /// The most bytes of new samplers a glTF bake may add (`u32::MAX`, a `.glb`'s limit).
-pub const MAX_NEW_BYTES: u64 = u32::MAX as u64;
+pub(crate) const MAX_NEW_BYTES: u64 = u32::MAX as u64;
 
 /// Checks, before anything is written, that the frames of every chosen animation at `fps`
 /// have distinct float32 times. An animation whose span holds no frame (a pose: one key at
@@ -127,7 +127,7 @@ pub const MAX_NEW_BYTES: u64 = u32::MAX as u64;
 /// which.
 ///
 /// It also refuses, before any frame is baked, a bake whose new samplers would take more than
-/// [`MAX_NEW_BYTES`] (4 GiB, what a `.glb` can hold; a `.gltf`'s data URI is held to it too):
+/// `MAX_NEW_BYTES` (4 GiB, what a `.glb` can hold; a `.gltf`'s data URI is held to it too):
 /// a float32 time per frame and a float32 quaternion per frame and rotation channel.
 pub fn check_grid(clip: &GltfClip, fps: Fps) -> InputResult<Vec<String>> {
     let src = clip.asset().source();

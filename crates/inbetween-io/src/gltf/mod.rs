@@ -46,10 +46,8 @@ pub mod keys;
 mod prune;
 mod write;
 
-pub use channel::{
-    Channel, Interpolation, RotationChannel, SignFlips, TranslationChannel, f32_ulp, on_frame,
-    snap_key_time,
-};
+pub(crate) use channel::snap_key_time;
+pub use channel::{Channel, Interpolation, RotationChannel, SignFlips, TranslationChannel};
 pub(crate) use json::has_asset_member;
 pub use write::{ContainerFormat, Resampled, Values};
 

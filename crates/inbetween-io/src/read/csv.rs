@@ -327,7 +327,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
 /// The delimiter of a CSV document without `--delimiter`: of `,`, `;` and tab, the one that
 /// occurs most often outside double quotes in the header line (the first line that is not
 /// blank); ties go to the first of `,`, `;`, tab; none at all is `,`.
-pub fn detect_delimiter(text: &str) -> u8 {
+pub(crate) fn detect_delimiter(text: &str) -> u8 {
     let header = text
         .lines()
         .find(|l| !l.trim().is_empty())

@@ -17,7 +17,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 /// USD's default `timeCodesPerSecond` when a layer gives neither it nor `framesPerSecond`.
-pub const DEFAULT_TIME_CODES_PER_SECOND: f64 = 24.0;
+pub(crate) const DEFAULT_TIME_CODES_PER_SECOND: f64 = 24.0;
 
 /// Reads `.usda` text into a document (see the module documentation).
 pub fn read(text: &str, source: &str) -> InputResult<Document> {
@@ -215,14 +215,6 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         unit_meters: Some(unit.unwrap_or(0.01)),
         z_up: Some(layer.word("upAxis").is_some_and(|a| a == "Z")),
     })
-}
-
-/// Whether text is a USD text layer: it starts with `#usda`.
-pub fn is_usda(bytes: &[u8]) -> bool {
-    bytes
-        .strip_prefix("\u{feff}".as_bytes())
-        .unwrap_or(bytes)
-        .starts_with(b"#usda")
 }
 
 /// A `timeCodesPerSecond` as an exact rate: `n/1001` where it is one (`29.97002997002997` is

@@ -164,7 +164,7 @@ pub fn parse(text: &str, source: &str) -> InputResult<Layer> {
 
 /// The properties a skeletal animation is read from; the parser keeps only these (the others
 /// are parsed, checked and dropped, so a layer's meshes and shaders cost no memory).
-pub const KEPT_PROPERTIES: [&str; 5] = [
+pub(crate) const KEPT_PROPERTIES: [&str; 5] = [
     "joints",
     "restTransforms",
     "rotations",
@@ -175,7 +175,7 @@ pub const KEPT_PROPERTIES: [&str; 5] = [
 /// How deep prims, lists, tuples and metadata may nest: real layers nest a few dozen levels;
 /// the parser recurses once per level, so the bound is what keeps a hostile file from
 /// overflowing the stack (on a batch worker's 2 MiB thread too).
-pub const MAX_NESTING: usize = 256;
+pub(crate) const MAX_NESTING: usize = 256;
 
 /// The parser: tokens are lexed as they are needed (at most two ahead), so no token list is
 /// held beside the text.

@@ -21,7 +21,7 @@
 //! A time code is a frame number at the clip's rate (`timeCodesPerSecond` its exact value as a
 //! double: 30000/1001 is `29.97002997002997`). A joint that no track animates holds its rest
 //! rotation and translation at every sample. Joint names become USD identifiers
-//! ([`usd_name`]). Values are written as USD stores them — float32 rotations and translations,
+//! (`usd_name`). Values are written as USD stores them — float32 rotations and translations,
 //! half scales — each as the shortest decimal that reads back as that float.
 
 use glam::{DQuat, DVec3};
@@ -34,7 +34,7 @@ use std::io::{self, Write};
 /// A joint name as a USD identifier: every character other than an ASCII letter, digit or `_`
 /// becomes `_`, a leading digit (or an empty name) gets a `_` before it. `Bone.001` is
 /// `Bone_001`, `mixamorig:Hips` is `mixamorig_Hips`.
-pub fn usd_name(name: &str) -> String {
+pub(crate) fn usd_name(name: &str) -> String {
     let mut s: String = name
         .chars()
         .map(|c| {
@@ -56,7 +56,7 @@ pub fn usd_name(name: &str) -> String {
 /// path, so that a USD input's joints keep their paths. Where two joints would share a path,
 /// the later gets `_<its index>` (and `_2`, `_3`, … after that while the path is taken): no
 /// two joints are ever written with one path.
-pub fn joint_paths(skeleton: &Skeleton) -> Vec<String> {
+pub(crate) fn joint_paths(skeleton: &Skeleton) -> Vec<String> {
     let mut paths: Vec<String> = Vec::with_capacity(skeleton.joints().len());
     let mut seen = HashSet::new();
     for (i, j) in skeleton.joints().iter().enumerate() {
@@ -85,7 +85,7 @@ pub fn joint_paths(skeleton: &Skeleton) -> Vec<String> {
 /// One track's samples: a rotation at each time code and, for a track with translations, a
 /// position.
 #[derive(Debug, Clone, Default)]
-pub struct TrackSamples {
+pub(crate) struct TrackSamples {
     /// Rotation at each sample.
     pub rotations: Vec<DQuat>,
     /// Position at each sample, when the track has translations.
@@ -105,7 +105,7 @@ pub struct Stage {
 /// time codes (frame numbers at `fps`, increasing), `tracks[t]` the samples of track `t` (a
 /// value per code), `stage` the length unit and up axis. Errors (`InvalidInput`, internal): a
 /// track count or sample count that does not match, a value that is not finite.
-pub fn write_usda<W: Write>(
+pub(crate) fn write_usda<W: Write>(
     mut out: W,
     skeleton: &Skeleton,
     fps: Fps,

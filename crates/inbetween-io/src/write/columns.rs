@@ -7,7 +7,7 @@ use inbetween::rotation::{MAX_WIDTH, Repr};
 
 /// Formats one rotation's values (CSV: comma-separated; JSON: an array) into `out`.
 #[derive(Clone)]
-pub struct RotationFormatter {
+pub(crate) struct RotationFormatter {
     style: Style,
     nums: NumWriter,
     vals: [f64; MAX_WIDTH],
@@ -15,7 +15,7 @@ pub struct RotationFormatter {
 
 impl RotationFormatter {
     /// A formatter for `style`.
-    pub fn new(style: Style) -> Self {
+    pub(crate) fn new(style: Style) -> Self {
         RotationFormatter {
             style,
             nums: NumWriter::new(style.num),
@@ -33,7 +33,7 @@ impl RotationFormatter {
     /// The values of `q` in the style's representation (JSON component order for quaternions);
     /// Euler angles from `euler` when given.
     #[inline]
-    pub fn values(&mut self, q: DQuat, euler: Option<[f64; 3]>) -> &[f64] {
+    pub(crate) fn values(&mut self, q: DQuat, euler: Option<[f64; 3]>) -> &[f64] {
         let repr = self.style.repr;
         self.fill(q, euler);
         let w = repr.width();
@@ -52,7 +52,7 @@ impl RotationFormatter {
     /// Appends `q` as CSV cells, each preceded by a comma (quaternions always `w,x,y,z`).
     /// Returns whether every value was finite (the caller discards the bytes otherwise).
     #[inline]
-    pub fn csv(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
+    pub(crate) fn csv(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
         // CSV columns are named, so quaternions are always w,x,y,z.
         let repr = self.style.repr;
         self.fill(q, euler);
@@ -76,7 +76,7 @@ impl RotationFormatter {
 
     /// Appends `q` as a JSON member: `"quat": [w, x, y, z]`, a matrix as rows, etc. Returns
     /// whether every value was finite (the caller discards the bytes otherwise).
-    pub fn json(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
+    pub(crate) fn json(&mut self, out: &mut Vec<u8>, q: DQuat, euler: Option<[f64; 3]>) -> bool {
         let key = self.style.repr.json_key();
         let mut vals = [0.0; MAX_WIDTH];
         let n = {

@@ -53,7 +53,7 @@ pub fn header(rows: u64, cols: usize) -> Vec<u8> {
 
 /// The `.npy` v1.0 header for a C-order array of dtype `descr` (`<f8`, `<i8`, `|b1`, `<U12`) and
 /// `shape` (empty: a 0-d array), padded to a multiple of 64 bytes.
-pub fn array_header(descr: &str, shape: &[u64]) -> Vec<u8> {
+pub(crate) fn array_header(descr: &str, shape: &[u64]) -> Vec<u8> {
     let shape = match shape {
         [n] => format!("({n},)"),
         _ => {

@@ -12,12 +12,12 @@ pub const MAX_BYTES: u64 = u32::MAX as u64;
 
 /// The fixed header sizes: local file header, central directory header, end record (without
 /// the names).
-pub const LOCAL_HEADER: u64 = 30;
+pub(crate) const LOCAL_HEADER: u64 = 30;
 const CENTRAL_HEADER: u64 = 46;
 const END_RECORD: u64 = 22;
 
 /// The bytes of an archive whose entries have these names and data sizes.
-pub fn archive_size(entries: &[(usize, u64)]) -> u64 {
+pub(crate) fn archive_size(entries: &[(usize, u64)]) -> u64 {
     entries
         .iter()
         .map(|&(name, data)| LOCAL_HEADER + CENTRAL_HEADER + 2 * name as u64 + data)
@@ -27,7 +27,7 @@ pub fn archive_size(entries: &[(usize, u64)]) -> u64 {
 
 /// CRC-32 (ISO-HDLC: reflected polynomial 0xEDB88320, initial and final value 0xFFFFFFFF), as
 /// zip stores it, continued from `crc` (0 to start) over `bytes`.
-pub fn crc32(crc: u32, bytes: &[u8]) -> u32 {
+pub(crate) fn crc32(crc: u32, bytes: &[u8]) -> u32 {
     const TABLE: [u32; 256] = {
         let mut table = [0u32; 256];
         let mut i = 0;
@@ -63,7 +63,7 @@ struct Entry {
 }
 
 /// Writes stored entries one after another, then the central directory on [`ZipWriter::finish`].
-pub struct ZipWriter<W: Write> {
+pub(crate) struct ZipWriter<W: Write> {
     w: W,
     entries: Vec<Entry>,
     offset: u64,
@@ -80,7 +80,7 @@ fn too_large(what: &str) -> io::Error {
 
 impl<W: Write> ZipWriter<W> {
     /// An archive written to `w`.
-    pub fn new(w: W) -> Self {
+    pub(crate) fn new(w: W) -> Self {
         ZipWriter {
             w,
             entries: Vec::new(),
@@ -89,7 +89,7 @@ impl<W: Write> ZipWriter<W> {
     }
 
     /// Writes an entry `name` (ASCII) whose data is `parts`, one after another.
-    pub fn entry(&mut self, name: &str, parts: &[&[u8]]) -> io::Result<()> {
+    pub(crate) fn entry(&mut self, name: &str, parts: &[&[u8]]) -> io::Result<()> {
         debug_assert!(name.is_ascii());
         let size: u64 = parts.iter().map(|p| p.len() as u64).sum();
         let crc = parts.iter().fold(0, |c, p| crc32(c, p));
@@ -124,7 +124,7 @@ impl<W: Write> ZipWriter<W> {
     }
 
     /// Writes the central directory and its end record; returns the writer.
-    pub fn finish(mut self) -> io::Result<W> {
+    pub(crate) fn finish(mut self) -> io::Result<W> {
         let start = self.offset;
         let mut cd = Vec::new();
         for e in &self.entries {

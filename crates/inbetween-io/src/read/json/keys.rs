@@ -32,11 +32,16 @@ impl fmt::Display for Unit {
 
 /// A key with both `time` and `frame` (interp's output) is at its `time`; when the rate of its
 /// frame numbers is known, the two must agree within this many seconds.
-pub const FRAME_TIME_AGREEMENT: f64 = 1e-9;
+pub(crate) const FRAME_TIME_AGREEMENT: f64 = 1e-9;
 
 /// Checks that frame `frame` at `rate` is at `time` (within [`FRAME_TIME_AGREEMENT`]), for a key
 /// that gives both; `rate_from` says where the rate comes from, for the message.
-pub fn check_frame_time(frame: f64, time: f64, rate: Fps, rate_from: RateFrom) -> InputResult<()> {
+pub(crate) fn check_frame_time(
+    frame: f64,
+    time: f64,
+    rate: Fps,
+    rate_from: RateFrom,
+) -> InputResult<()> {
     let at = rate.frame_to_time(frame);
     if (at - time).abs() <= FRAME_TIME_AGREEMENT {
         return Ok(());
@@ -61,7 +66,7 @@ pub fn check_frame_time(frame: f64, time: f64, rate: Fps, rate_from: RateFrom) -
 
 /// Where the rate of a document's `frame` values comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum RateFrom {
+pub(crate) enum RateFrom {
     /// The document's own `"fps"`.
     Declared,
     /// The reader's options ([`ReadOptions::key_fps`]).

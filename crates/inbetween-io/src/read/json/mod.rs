@@ -28,7 +28,7 @@ use wire::{DocWire, FpsWire};
 mod keys;
 mod wire;
 
-pub use keys::{FRAME_TIME_AGREEMENT, RateFrom, check_frame_time};
+pub(crate) use keys::{RateFrom, check_frame_time};
 
 /// serde_json's message without the " at line L column C" it appends.
 fn serde_message(e: &serde_json::Error) -> String {
