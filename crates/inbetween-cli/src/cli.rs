@@ -734,23 +734,7 @@ pub fn bounded(msg: &str) -> String {
     out
 }
 
-/// `text` with its control characters escaped (`\n`, `\t`, `\u{1b}`): a line of stderr that
-/// quotes a file name or an input's bytes cannot move the cursor, colour or clear the terminal,
-/// or forge a line of its own.
-pub fn printable(text: &str) -> String {
-    if !text.chars().any(char::is_control) {
-        return text.to_string();
-    }
-    let mut out = String::with_capacity(text.len() + 8);
-    for c in text.chars() {
-        if c.is_control() {
-            out.extend(c.escape_default());
-        } else {
-            out.push(c);
-        }
-    }
-    out
-}
+pub use inbetween_commands::shown::printable;
 
 /// At most this many characters of a line of stderr; the rest is cut, saying how much.
 pub const MAX_LINE_CHARS: usize = 2000;
@@ -791,12 +775,10 @@ pub fn line(text: &str) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{MAX_LINE_CHARS, bounded, line, printable};
+    use super::{MAX_LINE_CHARS, bounded, line};
 
     #[test]
     fn lines_escape_control_characters_and_cut_long_runs() {
-        assert_eq!(printable("a\nb\u{1b}[2Jc\td"), "a\\nb\\u{1b}[2Jc\\td");
-        assert_eq!(printable("plain é"), "plain é");
         let long = "x".repeat(300_000);
         let l = line(&format!("k.json:1: bad value \"{long}\" here"));
         assert!(l.starts_with("k.json:1: bad value \"xxx"), "{l}");

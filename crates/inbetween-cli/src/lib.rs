@@ -36,12 +36,6 @@ fn usage_error(e: &clap::Error, err: &mut dyn FnMut(&str)) -> u8 {
     2
 }
 
-/// The skip rule of a batch and of Python's `process_file`: whether `output` is a regular file
-/// modified after `input` (so the input need not be done again).
-pub fn up_to_date(output: &std::path::Path, input: &std::path::Path) -> bool {
-    cmd::batch::newer(output, input)
-}
-
 /// The long options of `command` (`fps`, `translation-tolerance`, …), as the command line
 /// spells them without their `--`: what `inbetween.process_file` accepts.
 pub fn option_names(command: &str) -> Vec<String> {
@@ -60,7 +54,7 @@ pub fn option_names(command: &str) -> Vec<String> {
 /// `process_file`: `args` is the command line (program name, command, input, `-o OUTPUT`,
 /// options). Returns its record (the manifest line), the exit code the command line would give
 /// and its warnings (each escaped as on stderr). The input is skipped when its output is up to
-/// date ([`up_to_date`]), unless `refresh`; an option the command line refuses is a failed
+/// date ([`inbetween_commands::inputs::up_to_date`]), unless `refresh`; an option the command line refuses is a failed
 /// record with clap's message and exit code 2.
 pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Vec<String>) {
     let mut cli = match Cli::try_parse_from(args) {

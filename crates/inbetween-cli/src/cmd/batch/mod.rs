@@ -13,8 +13,9 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-mod inputs;
-pub use inputs::Job;
+use inbetween_commands::inputs;
+pub use inbetween_commands::inputs::Job;
+use inbetween_commands::shown::shown;
 
 /// The extensions of the input formats (a folder's other files are failed inputs).
 pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
@@ -34,7 +35,7 @@ pub fn note(f: impl FnOnce(&mut Figures)) {
 }
 
 /// Runs `one` on `input`, writing `output`, as a batch runs each of its inputs: skipped when
-/// `output` is up to date ([`newer`]) unless `refresh`, else the output's folder made and the
+/// `output` is up to date ([`inputs::up_to_date`]) unless `refresh`, else the output's folder made and the
 /// command run, its figures noted ([`note`]) and its warnings pushed to `warnings`. The record
 /// (its `error` the error's text as the command line shows it), and the error.
 pub fn run_job(
@@ -50,7 +51,7 @@ pub fn run_job(
         Some(output.display().to_string()),
         Status::Ok,
     );
-    if !refresh && newer(output, input) {
+    if !refresh && inputs::up_to_date(output, input) {
         record.status = Status::Skipped;
         record.seconds = Some(0.0);
         record.reason = Some("its output is newer (--refresh redoes it)".into());
@@ -95,12 +96,6 @@ struct Tally {
     refused: usize,
     unwritten: usize,
     internal: usize,
-}
-
-/// `path` as messages show it: its control characters escaped (`\n`, `\u{1b}`), so that a
-/// file's name cannot write to the terminal.
-pub fn shown(path: &Path) -> String {
-    crate::cli::printable(&path.display().to_string())
 }
 
 /// Whether `path` has the extension of an input format.
@@ -238,6 +233,7 @@ pub fn run(
     exclude.extend(batch.manifest.iter().filter(|m| !known(m)).cloned());
     let rules = inputs::Rules {
         follow: batch.follow,
+        follow_named: "--follow",
         exclude,
     };
     let found = inputs::expand(&patterns, &rules)?;
@@ -251,7 +247,7 @@ pub fn run(
             .zip(&outputs)
             .filter_map(|(j, o)| o.as_ref().ok().map(|o| (j.input.as_path(), o.as_path())))
             .collect::<Vec<_>>(),
-        batch.manifest.as_deref(),
+        batch.manifest.as_deref().map(|m| (m, "--manifest ")),
     );
     if !clashes.is_empty() {
         let more = clashes.len().saturating_sub(LISTED);
@@ -433,16 +429,4 @@ pub fn extension(
         }
     };
     Ok(ext.into())
-}
-
-/// The skip rule: whether `output` is a regular file (through links) modified after `input`. A
-/// folder, device or FIFO at the output's path is never up to date: the command then refuses it.
-pub fn newer(output: &Path, input: &Path) -> bool {
-    let time = |p: &Path, file: bool| {
-        std::fs::metadata(p)
-            .ok()
-            .filter(|m| !file || m.is_file())
-            .and_then(|m| m.modified().ok())
-    };
-    matches!((time(output, true), time(input, false)), (Some(o), Some(i)) if o > i)
 }

@@ -14,6 +14,7 @@
 //! Every step is linear in the entries found (hash sets of file identities, no pairwise
 //! comparison).
 
+use crate::shown::shown;
 use inbetween::{Error, InputError};
 use std::collections::{HashMap, HashSet, VecDeque};
 use std::fs::Metadata;
@@ -49,8 +50,11 @@ pub struct Found {
 /// How paths are expanded.
 #[derive(Debug, Default)]
 pub struct Rules {
-    /// Follow symbolic links out of the named folders (`--follow`).
+    /// Follow symbolic links out of the named folders.
     pub follow: bool,
+    /// How the front end names that choice, for the reason a link out is passed over (the
+    /// command line's `--follow`).
+    pub follow_named: &'static str,
     /// Folders and files that are not inputs (the output folder, the manifest), if they exist.
     pub exclude: Vec<PathBuf>,
 }
@@ -149,10 +153,11 @@ impl Expander<'_> {
             };
             if !self.rules.follow && !target.starts_with(&canonical) {
                 if keep(&link.relative) {
-                    self.pass(
-                        &link.path,
-                        "a symbolic link out of the folder, not followed (--follow follows it)",
+                    let reason = format!(
+                        "a symbolic link out of the folder, not followed ({} follows it)",
+                        self.rules.follow_named
                     );
+                    self.pass(&link.path, reason);
                 }
                 continue;
             }
@@ -223,10 +228,7 @@ impl Expander<'_> {
 
 /// The error for a folder that cannot be read.
 fn unreadable(dir: &Path, e: std::io::Error) -> InputError {
-    InputError::new(format!(
-        "{}: cannot read the folder: {e}",
-        super::shown(dir)
-    ))
+    InputError::new(format!("{}: cannot read the folder: {e}", shown(dir)))
 }
 
 /// The entries of `dir` but hidden ones, in name order: (path, path relative to the walk's root).
@@ -273,11 +275,9 @@ pub fn expand(patterns: &[&Path], rules: &Rules) -> Result<Found, Error> {
                 ex.walk(&base, &|rel| path_glob(&rest, &rel.to_string_lossy()))?;
             }
             if (ex.found.jobs.len(), ex.found.passed.len()) == before {
-                return Err(InputError::new(format!(
-                    "{}: no file matches this pattern",
-                    super::shown(p)
-                ))
-                .into());
+                return Err(
+                    InputError::new(format!("{}: no file matches this pattern", shown(p))).into(),
+                );
             }
         } else {
             match std::fs::metadata(p) {
@@ -294,11 +294,9 @@ pub fn expand(patterns: &[&Path], rules: &Rules) -> Result<Found, Error> {
                     ex.pass(p, reason);
                 }
                 Err(_) => {
-                    return Err(InputError::new(format!(
-                        "{}: no such file or folder",
-                        super::shown(p)
-                    ))
-                    .into());
+                    return Err(
+                        InputError::new(format!("{}: no such file or folder", shown(p))).into(),
+                    );
                 }
             }
         }
@@ -351,7 +349,7 @@ pub fn path_glob(pattern: &str, path: &str) -> bool {
             }
         } else {
             for j in 0..parts.len() {
-                next[j + 1] = ok[j] && super::super::settings::glob(p, parts[j]);
+                next[j + 1] = ok[j] && crate::pattern::glob(p, parts[j]);
             }
         }
         ok = next;
@@ -391,13 +389,14 @@ pub fn written_at(path: &Path) -> PathBuf {
     path.to_path_buf()
 }
 
-/// The files that `outputs` (each `(its input, the output)`) and `manifest` would write over,
-/// checked against `inputs` and each other before anything is written: one line for each
-/// collision (an output over an input, two inputs with one output, the manifest over either).
+/// The files that `outputs` (each `(its input, the output)`) and `manifest` (its path and how
+/// messages name it: the command line's `--manifest `) would write over, checked against
+/// `inputs` and each other before anything is written: one line for each collision (an output
+/// over an input, two inputs with one output, the manifest over either).
 pub fn collisions(
     inputs: &[&Path],
     outputs: &[(&Path, &Path)],
-    manifest: Option<&Path>,
+    manifest: Option<(&Path, &str)>,
 ) -> Vec<String> {
     let input_at: HashMap<PathBuf, &Path> = inputs
         .iter()
@@ -415,38 +414,47 @@ pub fn collisions(
         if let Some(other) = input_at.get(&at) {
             lines.push(format!(
                 "{}, the output of {}, would replace the input {}",
-                super::shown(output),
-                super::shown(input),
-                super::shown(other)
+                shown(output),
+                shown(input),
+                shown(other)
             ));
         } else if let Some(first) = output_at.get(&at) {
             lines.push(format!(
                 "{} would be the output of both {} and {}",
-                super::shown(output),
-                super::shown(first),
-                super::shown(input)
+                shown(output),
+                shown(first),
+                shown(input)
             ));
         } else {
             output_at.insert(at, input);
         }
     }
-    if let Some(m) = manifest {
+    if let Some((m, named)) = manifest {
         let at = written_at(m);
         if let Some(input) = input_at.get(&at) {
-            lines.push(format!(
-                "--manifest {} is the input {}",
-                super::shown(m),
-                super::shown(input)
-            ));
+            lines.push(format!("{named}{} is the input {}", shown(m), shown(input)));
         } else if let Some(input) = output_at.get(&at) {
             lines.push(format!(
-                "--manifest {} is the output of {}",
-                super::shown(m),
-                super::shown(input)
+                "{named}{} is the output of {}",
+                shown(m),
+                shown(input)
             ));
         }
     }
     lines
+}
+
+/// The skip rule of a batch and of Python's `process_file`: whether `output` is a regular file
+/// (through links) modified after `input`, so that the input need not be done again. A folder,
+/// device or FIFO at the output's path is never up to date: the command then refuses it.
+pub fn up_to_date(output: &Path, input: &Path) -> bool {
+    let time = |p: &Path, file: bool| {
+        std::fs::metadata(p)
+            .ok()
+            .filter(|m| !file || m.is_file())
+            .and_then(|m| m.modified().ok())
+    };
+    matches!((time(output, true), time(input, false)), (Some(o), Some(i)) if o > i)
 }
 
 #[cfg(test)]
