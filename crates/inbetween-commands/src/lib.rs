@@ -4,6 +4,7 @@
 //! `process_file` result). It names no flag and prints nothing; a front end names its own
 //! options in its messages (the command line's `-o`; Python says which argument it is).
 
+pub mod capability;
 pub mod inputs;
 pub mod output;
 pub mod pattern;

@@ -8,6 +8,7 @@ use crate::{input_error, options};
 use glam::DVec3;
 use inbetween::Fps;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
+use inbetween_commands::capability::{self, Needs};
 use inbetween_commands::output::Output;
 use inbetween_io::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use inbetween_io::num::NumFormat;
@@ -63,8 +64,9 @@ pub fn write<'py>(
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    // USD is not written from Python (yet): `.usda` is refused, never CSV under its name.
     let target = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
-        Some(t) => t,
+        Some(t) if t != OutputFormat::Usda => t,
         _ => {
             return Err(input_error(format!(
                 "path: {source}: write takes .csv, .json, .npy, .npz, .bvh, .glb or .gltf"
@@ -107,9 +109,10 @@ pub fn write<'py>(
         },
     };
     let fps = fps.as_ref().map(|r| options::rate("fps", r)).transpose()?;
-    let skeleton = match (target, skeleton) {
-        (OutputFormat::Bvh, Some(s)) => Some(read_skeleton(&s).map_err(located)?),
-        (OutputFormat::Bvh, None) => {
+    let needs = capability::of(target).needs;
+    let skeleton = match (needs, skeleton) {
+        (Needs::Skeleton, Some(s)) => Some(read_skeleton(&s).map_err(located)?),
+        (Needs::Skeleton, None) => {
             return Err(input_error(
                 "skeleton: BVH output is written on a skeleton: give the BVH file whose \
                  hierarchy and channels the motion is for",
@@ -123,7 +126,7 @@ pub fn write<'py>(
         _ => None,
     };
     let rate = fps.or(skeleton.as_ref().map(|s| s.fps()));
-    if matches!(target, OutputFormat::Npy | OutputFormat::Npz) && rate.is_none() {
+    if needs == Needs::Rate && rate.is_none() {
         return Err(input_error(
             "fps: npy and npz hold frames: give the rate the times are frames of",
         ));

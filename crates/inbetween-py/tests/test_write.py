@@ -127,3 +127,12 @@ def test_write_goes_through_the_command_lines_output(tmp_path):
     with pytest.raises(inbetween.InputError, match="directory .*missing does not exist"):
         inbetween.write(tmp_path / "missing" / "x.csv", clip)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["folder.csv", "link.csv", "target.csv"]
+
+
+def test_write_refuses_what_it_cannot_write_rather_than_writing_csv(tmp_path):
+    """`.usda` (not written from Python) was CSV text under a USD name."""
+    clip = inbetween.Clip.from_arrays([0.0, 1.0], [[1, 0, 0, 0], [0, 1, 0, 0]])
+    for name in ("x.usda", "x.fbx", "x.txt"):
+        with pytest.raises(inbetween.InputError, match="write takes .csv, .json"):
+            inbetween.write(tmp_path / name, clip)
+    assert list(tmp_path.iterdir()) == []

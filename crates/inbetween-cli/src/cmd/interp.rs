@@ -11,6 +11,7 @@ use inbetween::error::num;
 use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
 };
+use inbetween_commands::capability;
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
@@ -202,25 +203,7 @@ pub fn run(
                 ))
                 .into());
             };
-            if args.span == SpanArg::Track {
-                return Err(InputError::new(
-                    "--span track: a BVH file has one frame range for every joint; use --span clip",
-                )
-                .into());
-            }
-            if args.velocity {
-                return Err(InputError::new(
-                    "--velocity: BVH has no place for angular velocities; write csv or json",
-                )
-                .into());
-            }
-            if args.input.tracks.is_some() {
-                return Err(InputError::new(
-                    "--tracks: a BVH file is written with every joint of its skeleton; select \
-                     tracks for csv or json output",
-                )
-                .into());
-            }
+            check_carries(args, format)?;
             Some(skeleton)
         }
         _ => None,
@@ -248,19 +231,7 @@ pub fn run(
                 ))
                 .into());
             };
-            if args.span == SpanArg::Track {
-                return Err(InputError::new(
-                    "--span track: glTF output writes each animation over its own span; use \
-                     --span clip",
-                )
-                .into());
-            }
-            if args.velocity {
-                return Err(InputError::new(
-                    "--velocity: glTF has no place for angular velocities; write csv or json",
-                )
-                .into());
-            }
+            check_carries(args, format)?;
             for w in check_grid(&clip, fps)? {
                 warn(&w);
             }
@@ -602,6 +573,27 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
 enum TrackCurve {
     Curve(Curve),
     Sampled(Sampler, (i64, i64)),
+}
+
+/// `--span track`, `--velocity`, `--tracks` and `--precision` against what `format` carries
+/// ([`capability::of`]), worded with the flags.
+pub(super) fn check_carries(args: &InterpArgs, format: OutputFormat) -> Result<(), Error> {
+    let can = capability::of(format);
+    let refusal = if let Some(why) = can.no_track_spans.filter(|_| args.span == SpanArg::Track) {
+        format!("--span track: {why}; use --span clip")
+    } else if let Some(why) = can.no_velocities.filter(|_| args.velocity) {
+        format!("--velocity: {why}; write csv or json")
+    } else if let Some(why) = can
+        .no_track_selection
+        .filter(|_| args.input.tracks.is_some())
+    {
+        format!("--tracks: {why}; select tracks for csv or json output")
+    } else if let Some(why) = can.no_precision.filter(|_| args.output.precision.is_some()) {
+        format!("--precision: {why}; drop --precision for .usda output")
+    } else {
+        return Ok(());
+    };
+    Err(InputError::new(refusal).into())
 }
 
 /// A frame writer that hands back its output when done.

@@ -83,7 +83,6 @@ pub fn usd_output(
     args: &crate::cli::InterpArgs,
     doc: &inbetween_io::document::Document,
 ) -> Result<std::sync::Arc<inbetween::skeleton::Skeleton>, inbetween::Error> {
-    use crate::cli::SpanArg;
     use inbetween::InputError;
     let Some(h) = doc.hierarchy.clone() else {
         return Err(InputError::new(format!(
@@ -93,31 +92,6 @@ pub fn usd_output(
         ))
         .into());
     };
-    if args.span == SpanArg::Track {
-        return Err(InputError::new(
-            "--span track: USD samples every joint at the same times; use --span clip",
-        )
-        .into());
-    }
-    if args.velocity {
-        return Err(InputError::new(
-            "--velocity: USD has no place for angular velocities; write csv or json",
-        )
-        .into());
-    }
-    if args.input.tracks.is_some() {
-        return Err(InputError::new(
-            "--tracks: a USD skeleton is written with every joint, posed by its track; \
-             select tracks for csv or json output",
-        )
-        .into());
-    }
-    if args.output.precision.is_some() {
-        return Err(InputError::new(
-            "--precision: USD stores its values as float32; drop --precision for .usda \
-             output",
-        )
-        .into());
-    }
+    super::interp::check_carries(args, inbetween_io::OutputFormat::Usda)?;
     Ok(h)
 }
