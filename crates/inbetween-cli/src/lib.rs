@@ -5,6 +5,7 @@
 
 mod chart;
 mod cli;
+pub use inbetween_commands::events::{Collected, Events};
 pub use inbetween_commands::record::{Record, Status};
 mod cmd;
 mod flags;
@@ -53,10 +54,10 @@ pub fn option_names(command: &str) -> Vec<String> {
 /// One input of `interp`, `convert` or `reduce` run as a batch runs each input, for Python's
 /// `process_file`: `args` is the command line (program name, command, input, `-o OUTPUT`,
 /// options). Returns its record (the manifest line), the exit code the command line would give
-/// and its warnings (each escaped as on stderr). The input is skipped when its output is up to
+/// and what it told (warnings and `-v` report lines, each escaped as on stderr). The input is skipped when its output is up to
 /// date ([`inbetween_commands::inputs::up_to_date`]), unless `refresh`; an option the command line refuses is a failed
 /// record with clap's message and exit code 2.
-pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Vec<String>) {
+pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Collected) {
     let mut cli = match Cli::try_parse_from(args) {
         Ok(cli) => cli,
         Err(e) => {
@@ -68,8 +69,11 @@ pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Vec<Strin
             let mut record = Record::new(String::new(), None, Status::Failed);
             record.seconds = Some(0.0);
             record.error = Some(first.strip_prefix("error: ").unwrap_or(first).to_string());
-            let lines = text.lines().map(cli::line).collect();
-            return (record, 2, lines);
+            let told = Collected {
+                warnings: text.lines().map(cli::line).collect(),
+                reports: Vec::new(),
+            };
+            return (record, 2, told);
         }
     };
     cli.command.normalise();
@@ -79,29 +83,29 @@ pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Vec<Strin
         Command::Reduce(a) => (a.input.input.clone(), a.output.output.clone()),
         _ => (None, None),
     };
-    let one =
-        |_: &std::path::Path, _: &std::path::Path, warn: &mut dyn FnMut(&str)| match &cli.command {
-            Command::Convert(a) => cmd::convert::run(a, &mut std::io::empty(), warn),
-            Command::Interp(a) => cmd::interp::run(a, &mut std::io::empty(), warn),
-            Command::Reduce(a) => cmd::reduce::run(a, &mut std::io::empty(), warn),
-            _ => Err(inbetween::InputError::new(
-                "command: expected interp, convert or reduce, which write a file",
-            )
-            .into()),
-        };
+    let one = |_: &std::path::Path, _: &std::path::Path, warn: &mut dyn Events| match &cli.command {
+        Command::Convert(a) => cmd::convert::run(a, &mut std::io::empty(), warn),
+        Command::Interp(a) => cmd::interp::run(a, &mut std::io::empty(), warn),
+        Command::Reduce(a) => cmd::reduce::run(a, &mut std::io::empty(), warn),
+        _ => Err(inbetween::InputError::new(
+            "command: expected interp, convert or reduce, which write a file",
+        )
+        .into()),
+    };
     let (Some(input), Some(output)) = (input, output) else {
         let mut record = Record::new(String::new(), None, Status::Failed);
         record.error = Some("an input and an output are needed".to_string());
-        return (record, 2, Vec::new());
+        return (record, 2, Collected::default());
     };
-    let mut warnings = Vec::new();
-    let (record, error) = cmd::batch::run_job(&input, &output, refresh, &one, &mut warnings);
+    let mut told = Collected::default();
+    let (record, error) = cmd::batch::run_job(&input, &output, refresh, &one, &mut told);
     let code = error.as_ref().map_or(0, exit_status);
-    (
-        record,
-        code,
-        warnings.iter().map(|w| cli::line(w)).collect(),
-    )
+    let escaped = |lines: Vec<String>| lines.iter().map(|l| cli::line(l)).collect();
+    let told = Collected {
+        warnings: escaped(told.warnings),
+        reports: escaped(told.reports),
+    };
+    (record, code, told)
 }
 
 /// Installs the handlers that remove an unfinished output's temporary file on SIGINT, SIGTERM
@@ -125,7 +129,7 @@ macro_rules! batch {
                 args.input.input.as_deref(),
                 &args.batch,
                 &|input: &std::path::Path| cmd::batch::extension(input, &args.output, $keys),
-                &|input: &std::path::Path, output: &std::path::Path, warn: &mut dyn FnMut(&str)| {
+                &|input: &std::path::Path, output: &std::path::Path, warn: &mut dyn Events| {
                     let mut one = args.clone();
                     one.input.input = Some(input.to_path_buf());
                     one.output.output = Some(output.to_path_buf());
@@ -135,6 +139,25 @@ macro_rules! batch {
             )
         }
     }};
+}
+
+/// What a command tells, on the command line's standard error: warnings through the limiter
+/// (at most 10 of a kind, then a count), report lines as they are.
+struct Told<'a> {
+    warnings: warnings::Warnings,
+    err: &'a mut dyn FnMut(&str),
+}
+
+impl Events for Told<'_> {
+    fn warning(&mut self, message: &str) {
+        if let Some(line) = self.warnings.note(message) {
+            (self.err)(&line);
+        }
+    }
+
+    fn report(&mut self, line: &str) {
+        (self.err)(line);
+    }
 }
 
 /// Runs the command line `args` (the program name first, as `std::env::args_os` gives it) with
@@ -153,11 +176,9 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
         Err(e) => return usage_error(&e, err),
     };
     cli.command.normalise();
-    let mut warnings = warnings::Warnings::default();
-    let mut warn = |msg: &str| {
-        if let Some(line) = warnings.note(msg) {
-            err(&line);
-        }
+    let mut warn = Told {
+        warnings: warnings::Warnings::default(),
+        err,
     };
     // `diff --max-angle/--max-position`: the limit a difference exceeds (exit 1, as diff(1)).
     let mut exceeds: Option<String> = None;
@@ -174,7 +195,8 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
             exceeds = exceeded;
         }),
     };
-    for line in warnings.summary() {
+    let err = warn.err;
+    for line in warn.warnings.summary() {
         err(&line);
     }
     match result {

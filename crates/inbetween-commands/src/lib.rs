@@ -5,6 +5,7 @@
 //! options in its messages (the command line's `-o`; Python says which argument it is).
 
 pub mod capability;
+pub mod events;
 pub mod inputs;
 pub mod output;
 pub mod pattern;

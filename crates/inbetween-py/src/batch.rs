@@ -87,7 +87,7 @@ pub fn process_file<'py>(
             }
         }
     }
-    let (line, code, warnings) = py.detach(move || inbetween_cli::process_one(args, refresh));
+    let (line, code, told) = py.detach(move || inbetween_cli::process_one(args, refresh));
     // The manifest's line, with the paths as given (`--help`, not the `./--help` it was run as).
     let record = PyDict::new(py);
     if let serde_json::Value::Object(map) = line.to_json() {
@@ -103,6 +103,7 @@ pub fn process_file<'py>(
     record.set_item("input", path)?;
     record.set_item("output", out)?;
     record.set_item("exit_code", code)?;
-    record.set_item("warnings", warnings)?;
+    record.set_item("warnings", told.warnings)?;
+    record.set_item("reports", told.reports)?;
     Ok(record)
 }

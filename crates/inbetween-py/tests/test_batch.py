@@ -104,9 +104,21 @@ def test_the_record_is_the_manifest_line(tmp_path, cli, command, options):
         record = inbetween.process_file(line["input"], out, command, refresh=True, **options)
         assert record.pop("exit_code") in ((0,) if line["status"] == "ok" else (1, 2))
         assert isinstance(record.pop("warnings"), list)
+        assert record.pop("reports") == []
         record.pop("seconds"), line.pop("seconds")
         if line["output"] is None:  # a planned failure has no output; process_file names its own
             record["output"] = None
         assert record == line
         if line["status"] == "ok":
             assert {"frames", "tracks"} <= set(record), record
+
+
+def test_reports_are_handed_back_not_printed(tmp_path, capfd):
+    """`verbose=True` asks for the -v lines: the record holds them; the process prints nothing."""
+    clip = FIXTURES / "bvh/cmu_01_01.bvh"
+    r = inbetween.process_file(clip, tmp_path / "a.json", "reduce", tolerance=0.5, verbose=True)
+    assert r["status"] == "ok", r
+    assert len(r["reports"]) == r["tracks"], r["reports"][:3]
+    assert all(line.startswith("inbetween: reduce: track ") for line in r["reports"])
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""

@@ -5,15 +5,12 @@ use crate::cli::{AnalyzeArgs, ReportFormat};
 use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
+use inbetween_commands::events::Events;
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::io::{Read, Write};
 
 /// Runs `analyze`: the figures of every track under every chosen scheme.
-pub fn run(
-    args: &AnalyzeArgs,
-    stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
-) -> Result<(), Error> {
+pub fn run(args: &AnalyzeArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
     let input = read_curves(
         &args.input,
         &args.curve,
@@ -44,7 +41,7 @@ pub fn run(
         if let Some(r) = m.solver
             && !r.converged
         {
-            warn(&format!(
+            warn.warning(&format!(
                 "track {}: minaccel did not converge in {} iterations; its figures are of the \
                  best curve found",
                 track.name().unwrap_or("-"),

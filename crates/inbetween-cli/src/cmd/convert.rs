@@ -3,6 +3,7 @@
 use super::settings::{files_read, key_rate_warning, output_format, rates, read_input};
 use crate::cli::ConvertArgs;
 use inbetween::{Error, InputError};
+use inbetween_commands::events::Events;
 use inbetween_io::clip::Clip;
 use inbetween_io::document::Document;
 use inbetween_io::gltf::document::Mode;
@@ -41,11 +42,7 @@ fn write_bvh(
 
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
 /// `interp`, a track of one key is fine.
-pub fn run(
-    args: &ConvertArgs,
-    stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
-) -> Result<(), Error> {
+pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
     let (doc, in_format, gltf) =
         read_input(&args.input, args.fps, (Mode::Keys, true), stdin, warn)?;
     let reads = files_read(&args.input, &[args.skeleton.as_deref()], gltf.as_deref());
@@ -72,7 +69,7 @@ pub fn run(
     if fps.is_none()
         && let Some(w) = key_rate_warning(&doc, frame_fps)
     {
-        warn(&w.replace("at the output rate, ", "at the default rate, "));
+        warn.warning(&w.replace("at the output rate, ", "at the default rate, "));
     }
     let chosen = match (output_format(&args.output, in_format), in_format) {
         // Keys of a BVH input default to JSON (tracks = joints, with translations).
@@ -145,12 +142,12 @@ pub fn run(
             .iter()
             .any(|t| t.start_velocity.is_some() || t.end_velocity.is_some())
     {
-        warn("CSV has no place for start_velocity/end_velocity; they are not written");
+        warn.warning("CSV has no place for start_velocity/end_velocity; they are not written");
     }
     if format == Format::Csv
         && let Some(w) = super::settings::csv_rate_warning(&doc, in_format, doc.skeleton.is_some())
     {
-        warn(&w);
+        warn.warning(&w);
     }
     let style = super::settings::style(&args.input, &args.output);
     let mut out = crate::output::open(args.output.output.as_deref(), &reads)?;

@@ -8,6 +8,7 @@ use inbetween::metrics::{aligned, format_sig};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
 use inbetween::{Curve, CurveOptions, Error, InputError, Scheme, Track};
+use inbetween_commands::events::Events;
 use inbetween_io::gltf::document::{Mode, Sampler};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::collections::HashMap;
@@ -29,7 +30,7 @@ struct Row {
 pub fn run(
     args: &DiffArgs,
     stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<Option<String>, Error> {
     let scheme: Scheme = args.scheme.map_or(Scheme::Bezier, Into::into);
     let a_stdin = args
@@ -206,7 +207,7 @@ fn world(
     compared: &[Vec<usize>],
     b_poses: &[Vec<(glam::DQuat, Option<glam::DVec3>)>],
     args: &DiffArgs,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<Option<WorldDiff>, Error> {
     let Some(skeleton) = a.doc.hierarchy.as_deref() else {
         return Ok(None);
@@ -219,7 +220,7 @@ fn world(
         .all(|(t, k)| t.times() == first.times() && k.as_slice() == compared[0].as_slice());
     if skeleton.track_count() != a.tracks.len() || !same_frames {
         if args.shell.is_some() || args.max_position.is_some() {
-            warn(&format!(
+            warn.warning(&format!(
                 "{}: world positions are not measured: they need every track compared at the \
                  same frames",
                 a.doc.source
@@ -228,7 +229,7 @@ fn world(
         return Ok(None);
     }
     if b_skeleton.is_some_and(|s| s.joints() != skeleton.joints()) {
-        warn("diff: B's skeleton differs from A's; world positions are measured on A's");
+        warn.warning("diff: B's skeleton differs from A's; world positions are measured on A's");
     }
     let frames = &compared[0];
     let pose_a = |f: usize, t: usize| {

@@ -12,6 +12,7 @@ use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
 };
 use inbetween_commands::capability;
+use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
@@ -39,11 +40,7 @@ fn scheme(args: &InterpArgs, input: Format) -> Scheme {
 /// Everything the input can get wrong is found before the first byte is written: the tracks,
 /// the frame count (`--max-frames`), and every curve (minaccel's grid cap), so that only I/O can
 /// fail once output has started.
-pub fn run(
-    args: &InterpArgs,
-    stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
-) -> Result<(), Error> {
+pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
     if let Some(done) = lean_bvh(args, warn) {
         return done;
     }
@@ -233,7 +230,7 @@ pub fn run(
             };
             check_carries(args, format)?;
             for w in check_grid(&clip, fps)? {
-                warn(&w);
+                warn.warning(&w);
             }
             let container = super::settings::gltf_container(&args.output, container, &clip);
             Some((clip, container))
@@ -294,7 +291,7 @@ pub fn run(
         match curve {
             TrackCurve::Curve(curve) => {
                 bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), &mut |m| {
-                    warn(&crate::flags::say(m))
+                    warn.warning(&crate::flags::say(m))
                 })?
             }
             TrackCurve::Sampled(sampler, frames) => {
@@ -310,7 +307,7 @@ pub fn run(
                     span(i),
                     bake_opts,
                     sink.as_mut(),
-                    &mut |m| warn(&crate::flags::say(m)),
+                    &mut |m| warn.warning(&crate::flags::say(m)),
                 )?
             }
         }
@@ -327,7 +324,7 @@ pub fn run(
         });
         for (curve, r) in reports {
             let name = inbetween::error::shorten(curve.name().unwrap_or("-"));
-            eprintln!(
+            warn.report(&format!(
                 "inbetween: minaccel: track {name}: {} points, {} iterations, E {:.6e} -> {:.6e}, \
                  projected gradient {:.3e} -> {:.3e} ({}converged)",
                 r.points,
@@ -337,7 +334,7 @@ pub fn run(
                 r.gradient_start,
                 r.gradient,
                 if r.converged { "" } else { "not " }
-            );
+            ));
         }
     }
     Ok(())
@@ -421,7 +418,7 @@ fn near_misses(
     (t0, t1): (f64, f64),
     (lo, hi): (f64, f64),
     fps: inbetween::Fps,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) {
     let (before, after) = fps.near_misses(t0, t1);
     let label = inbetween_io::document::track_label(source, name);
@@ -430,7 +427,7 @@ fn near_misses(
         (after.filter(|_| t1 == hi), t1, "last", "before"),
     ] {
         if let Some(k) = k {
-            warn(&format!(
+            warn.warning(&format!(
                 "{label}: the {which} key, at {} s, is {:.1e} s {side} frame {k} ({} s), which \
                  is therefore not written; --snap-keys 0.001 moves keys that close onto the grid",
                 num(key),
@@ -448,7 +445,7 @@ fn near_misses(
 /// reads again and reports exactly as always (nothing has been written: BVH output is written
 /// after every joint is done, CSV/JSON only into a temporary `-o` file). Its warnings are held
 /// until it is done, so they are given once, in the general path's order.
-fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), Error>> {
+fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
     let path = args
         .input
         .input
@@ -506,6 +503,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         s.frames = Some(rows);
         s.tracks = Some(joints.len());
     });
+    let mut missed = inbetween_commands::events::Collected::default();
     for &j in &joints {
         near_misses(
             &source,
@@ -513,9 +511,10 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
             span,
             span,
             fps,
-            &mut |w: &str| warnings.push(w.to_string()),
+            &mut missed,
         );
     }
+    warnings.extend(missed.warnings);
     let opts = resample::Options {
         fps,
         curve: curve_options(curve, scheme(args, Format::Bvh), fps, args.input.angles),
@@ -560,7 +559,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         Ok(None) => None,
         Ok(Some(())) => {
             for w in &warnings {
-                warn(w);
+                warn.warning(w);
             }
             Some(Ok(()))
         }

@@ -5,10 +5,11 @@ use crate::chart::{What, svg};
 use crate::cli::{PlotArgs, WhatArg};
 use inbetween::error::shorten;
 use inbetween::{Error, InputError, Scheme};
+use inbetween_commands::events::Events;
 use std::io::{Read, Write};
 
 /// Runs `plot`: one track's chart, schemes side by side.
-pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn FnMut(&str)) -> Result<(), Error> {
+pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
     let input = read_curves(
         &args.input,
         &args.curve,

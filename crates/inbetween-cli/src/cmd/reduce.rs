@@ -5,6 +5,7 @@ use super::settings::{Curves, output_format, rates, read_curves_in, tracks_take_
 use crate::cli::{MethodArg, ReduceArgs};
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{CurveOptions, Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
+use inbetween_commands::events::Events;
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
 use inbetween_io::gltf::document::Mode;
 use inbetween_io::write::write_keys;
@@ -14,11 +15,7 @@ use std::io::Read;
 use std::path::PathBuf;
 
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
-pub fn run(
-    args: &ReduceArgs,
-    stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
-) -> Result<(), Error> {
+pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
     if let Some(done) = super::reduce_bvh::lean(args, warn) {
         return done;
     }
@@ -40,7 +37,7 @@ pub fn run(
     let (doc, tracks) = (&input.doc, &input.tracks);
     let format = match keys_format(args, input.format)? {
         OutputFormat::Gltf(container) => {
-            return super::reduce_gltf::to_gltf(args, &input, container);
+            return super::reduce_gltf::to_gltf(args, &input, container, warn);
         }
         OutputFormat::Doc(f) => f,
         // USD keys are written from the kept keys as JSON's are (`write` sends them to USD).
@@ -99,17 +96,23 @@ pub fn run(
         (0.0, 0.0)
     };
     let reduced = match args.output.precision {
-        None => reduce_tracks(args, &input, margin, true, false)?,
+        None => reduce_tracks(args, &input, margin, (true, false), warn)?,
         Some(_) => {
             let encode = |r: &[Reduced]| -> Result<Vec<u8>, Error> {
                 let mut bytes = Vec::new();
                 write_keys(&mut bytes, &doc_of(r), format, style, frame_fps)?;
                 Ok(bytes)
             };
-            super::reduce_rounded::as_written(args, &input, (format, style, frame_fps), &encode)?
+            super::reduce_rounded::as_written(
+                args,
+                &input,
+                (format, style, frame_fps),
+                &encode,
+                warn,
+            )?
         }
     };
-    report_all(args, &input, &reduced);
+    report_all(args, &input, &reduced, warn);
     let out_doc = doc_of(&reduced);
     let skeleton = doc.skeleton.is_some();
     write(
@@ -210,12 +213,12 @@ pub(super) fn write(
     (format, style, frame_fps): (Format, Style, Fps),
     (input, skeleton): (Format, bool),
     reads: &[PathBuf],
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<(), Error> {
     if format == Format::Csv
         && let Some(w) = super::settings::csv_rate_warning(doc, input, skeleton)
     {
-        warn(&w);
+        warn.warning(&w);
     }
     let mut out = crate::output::open(args.output.output.as_deref(), reads)?;
     if output_format(&args.output, input) == OutputFormat::Usda {
@@ -292,8 +295,8 @@ pub(super) fn reduce_tracks(
     args: &ReduceArgs,
     input: &Curves,
     margin: (f64, f64),
-    translations: bool,
-    float32_times: bool,
+    (translations, float32_times): (bool, bool),
+    told: &mut dyn Events,
 ) -> Result<Vec<Reduced>, Error> {
     let (doc, tracks) = (&input.doc, &input.tracks);
     let opts = reduce_options(args, input.opts, margin, translations)?;
@@ -342,7 +345,14 @@ pub(super) fn reduce_tracks(
                 ..*f
             })
             .collect();
-        return super::reduce_world::reduce(args, input, &posed, &opts, (translations, margin.0));
+        return super::reduce_world::reduce(
+            args,
+            input,
+            &posed,
+            &opts,
+            (translations, margin.0),
+            told,
+        );
     }
     let reduced: Vec<Reduced> = if args.shared_keys {
         reduce_shared(&frames, &opts)
@@ -357,12 +367,17 @@ pub(super) fn reduce_tracks(
 }
 
 /// `-v`'s line for each track of `input` reduced to `reduced`.
-pub(super) fn report_all(args: &ReduceArgs, input: &Curves, reduced: &[Reduced]) {
+pub(super) fn report_all(
+    args: &ReduceArgs,
+    input: &Curves,
+    reduced: &[Reduced],
+    told: &mut dyn Events,
+) {
     note_batch(args, input.tracks.iter().map(|t| t.len()).zip(reduced));
     // A position tolerance reports its own lines, with the world figures.
     if args.verbose && args.position_tolerance.is_none() {
         for (t, r) in input.tracks.iter().zip(reduced) {
-            report(args, t.name(), t.len(), r);
+            report(args, t.name(), t.len(), r, told);
         }
     }
 }
@@ -473,13 +488,19 @@ pub(super) fn note_batch<'a>(
     });
 }
 
-pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Reduced) {
+pub(super) fn report(
+    args: &ReduceArgs,
+    name: Option<&str>,
+    len: usize,
+    r: &Reduced,
+    told: &mut dyn Events,
+) {
     let unit = |x: f64| unit(args, x);
     let unit_name = unit_name(args);
     let position = r
         .max_position_error
         .map_or(String::new(), |p| format!(", max position error {p:.3e}"));
-    eprintln!(
+    told.report(&format!(
         "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max error {:.3e}, mean \
          {:.3e} ({unit_name}){position}",
         inbetween::error::shorten(name.unwrap_or("-")),
@@ -488,7 +509,7 @@ pub(super) fn report(args: &ReduceArgs, name: Option<&str>, len: usize, r: &Redu
         100.0 * r.keys.len() as f64 / len as f64,
         unit(r.max_error),
         unit(r.mean_error)
-    );
+    ));
 }
 
 /// The scheme of the keys: `--scheme`, else slerp for glTF output (its `LINEAR` samplers play

@@ -9,6 +9,7 @@ use super::settings::{curve_options, tcb_flags};
 use crate::cli::{PathArg, ReduceArgs};
 use inbetween::Error;
 use inbetween::reduce::{Reduced, TrackFrames, reduce_frames};
+use inbetween_commands::events::Events;
 use inbetween_io::bvh::{self, document::joint_tracks, resample};
 use inbetween_io::document::{DocTrack, Document};
 use inbetween_io::{Format, OutputFormat};
@@ -23,7 +24,7 @@ type JointDone = Result<(DocTrack, Reduced, Option<String>, usize), Error>;
 /// then reads again and reports exactly as always (nothing has been written: the keys are
 /// written once every joint is done). Its warnings are held until it is done, so they are given
 /// once, in the general path's order.
-pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), Error>> {
+pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
     let path = args
         .input
         .input
@@ -104,12 +105,12 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn FnMut(&str)) -> Option<Result<(), 
         z_up: None,
     };
     for w in &warnings {
-        warn(w);
+        warn.warning(w);
     }
     super::reduce::note_batch(args, reports.iter().map(|(_, len, r)| (*len, r)));
     if args.verbose {
         for (name, len, r) in &reports {
-            report(args, name.as_deref(), *len, r);
+            report(args, name.as_deref(), *len, r, warn);
         }
     }
     let style = super::settings::style(&args.input, &args.output);

@@ -10,6 +10,7 @@ use crate::cli::ReduceArgs;
 use glam::DQuat;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each, rotation_error};
 use inbetween::{Error, InputError, Scheme};
+use inbetween_commands::events::Events;
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween_io::gltf::{Asset, ContainerFormat, Interpolation, TranslationChannel, Values};
@@ -20,6 +21,7 @@ pub(super) fn to_gltf(
     args: &ReduceArgs,
     input: &Curves,
     container: ContainerFormat,
+    told: &mut dyn Events,
 ) -> Result<(), Error> {
     let Some(clip) = &input.gltf else {
         return Err(InputError::new(
@@ -35,8 +37,8 @@ pub(super) fn to_gltf(
         .into());
     }
     let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
-    let reduced = reduce_tracks(args, input, (margin, 0.0), false, true)?;
-    super::reduce::report_all(args, input, &reduced);
+    let reduced = reduce_tracks(args, input, (margin, 0.0), (false, true), told)?;
+    super::reduce::report_all(args, input, &reduced, told);
     let mut keys = Vec::with_capacity(reduced.len());
     for (t, r) in input.tracks.iter().zip(&reduced) {
         let name = t.name().unwrap_or_default();
@@ -44,7 +46,7 @@ pub(super) fn to_gltf(
         let rotations = r.keys.iter().map(|&i| t.rotations()[i]).collect();
         keys.push(ChannelKeys::of_track(clip, name, times, rotations)?);
     }
-    let (vector_keys, originals) = vector_keys(args, input, clip)?;
+    let (vector_keys, originals) = vector_keys(args, input, clip, told)?;
     keys.extend(vector_keys);
     let container = super::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
@@ -74,6 +76,7 @@ fn vector_keys<'c>(
     args: &ReduceArgs,
     input: &Curves,
     clip: &'c GltfClip,
+    told: &mut dyn Events,
 ) -> Result<(Vec<ChannelKeys>, Vec<Original<'c>>), Error> {
     let nodes = args
         .input
@@ -110,7 +113,7 @@ fn vector_keys<'c>(
         })?;
         for (&(a, ch, what), r) in channels.iter().zip(&reduced) {
             if args.verbose {
-                report(clip, a, ch, what, r);
+                told.report(&report(clip, a, ch, what, r));
             }
             if r.keys.len() == ch.times().len() {
                 continue; // every key kept: the channel stays as it was
@@ -165,9 +168,9 @@ fn track_nodes(input: &Curves, clip: &GltfClip) -> HashSet<(usize, usize)> {
 }
 
 /// `-v`'s line for a reduced translation or scale channel.
-fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Reduced) {
+fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Reduced) -> String {
     let len = ch.times().len();
-    eprintln!(
+    format!(
         "inbetween: reduce: {} ({what} of node \"{}\"): {len} keys, {} kept ({:.1} %), max \
          error {:.3e}",
         clip.channel_label(a, ch.index()),
@@ -175,7 +178,7 @@ fn report(clip: &GltfClip, a: usize, ch: &TranslationChannel, what: &str, r: &Re
         r.keys.len(),
         100.0 * r.keys.len() as f64 / len as f64,
         r.max_position_error.unwrap_or(0.0),
-    );
+    )
 }
 
 /// The guarantee checked on the asset as written (float32 times and values, normalised and

@@ -10,6 +10,7 @@ use crate::cli::{InputArgs, ReduceArgs};
 use inbetween::reduce::{Reduced, TrackFrames, curve_errors};
 use inbetween::rotation::QuatOrder;
 use inbetween::{Curve, Error, Fps, InputError};
+use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::write::Style;
 
@@ -28,6 +29,7 @@ pub(super) fn as_written(
     input: &Curves,
     (format, style, frame_fps): (Format, Style, Fps),
     encode: &Encode<'_>,
+    told: &mut dyn Events,
 ) -> Result<Vec<Reduced>, Error> {
     let digits = args.output.precision.unwrap_or_default();
     let exact = reduce_options(args, input.opts, (0.0, 0.0), true)?;
@@ -42,20 +44,20 @@ pub(super) fn as_written(
             break;
         }
         {
-            let reduced = reduce_tracks(args, input, margin, true, false)?;
+            let reduced = reduce_tracks(args, input, margin, (true, false), told)?;
             let bytes = encode(&reduced)?;
             let back = read_back(args, &bytes, format, style, frame_fps, digits)?;
             let errors = written_errors(args, input, &back)?;
             miss = (errors.0 - limits.0, errors.1 - limits.1);
             if miss.0 <= 0.0 && miss.1 <= 0.0 {
                 if args.verbose {
-                    eprintln!(
+                    told.report(&format!(
                         "inbetween: reduce: as written with --precision {digits}: max error \
                          {:.3e} ({}), tolerance tightened by {:.3e}",
                         unit(args, errors.0),
                         unit_name(args),
                         unit(args, margin.0)
-                    );
+                    ));
                 }
                 return Ok(reduced);
             }
@@ -110,7 +112,14 @@ fn read_back(
         tracks: None,
     };
     let scheme = |_| args.scheme.map_or(inbetween::Scheme::Bezier, Into::into);
-    read_curves(&input, &args.curve, &scheme, &mut &bytes[..], &mut |_| {}).map_err(|e| match e {
+    read_curves(
+        &input,
+        &args.curve,
+        &scheme,
+        &mut &bytes[..],
+        &mut inbetween_commands::events::Collected::default(),
+    )
+    .map_err(|e| match e {
         Error::Input(e) => InputError::new(format!(
             "--precision {digits}: the keys rounded to {digits} digits do not read back: {}",
             e.message()

@@ -7,6 +7,7 @@ use crate::cli::ReduceArgs;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, WorldReduced, WorldTolerance};
 use inbetween::skeleton::Skeleton;
 use inbetween::{Error, InputError};
+use inbetween_commands::events::Events;
 
 /// The options `--position-tolerance` cannot be given with, and why; an error naming the first
 /// given.
@@ -104,6 +105,7 @@ pub(super) fn reduce(
     frames: &[TrackFrames<'_>],
     opts: &ReduceOptions,
     (translations, margin): (bool, f64),
+    told: &mut dyn Events,
 ) -> Result<Vec<Reduced>, Error> {
     let source = &input.doc.source;
     let Some(skeleton) = input.doc.hierarchy.as_deref() else {
@@ -126,7 +128,7 @@ pub(super) fn reduce(
             other => other,
         })?;
     if args.verbose {
-        report(args, input, skeleton, &world, &done);
+        report(args, input, skeleton, &world, &done, told);
     }
     Ok(done.tracks)
 }
@@ -140,6 +142,7 @@ fn report(
     skeleton: &Skeleton,
     world: &WorldTolerance,
     done: &WorldReduced,
+    told: &mut dyn Events,
 ) {
     let owner = skeleton.owners();
     let point_joints = skeleton.point_joints(world.shell.is_some());
@@ -157,7 +160,7 @@ fn report(
         let translation = r.max_position_error.map_or(String::new(), |p| {
             format!(", max translation error {p:.3e}")
         });
-        eprintln!(
+        told.report(&format!(
             "inbetween: reduce: track {}: {} frames, {} keys ({:.1} %), max angle {:.3e} \
              (budget {:.3e}) {}{translation}, world displacement {:.3e} at frame {}",
             inbetween::error::shorten(track.name().unwrap_or("-")),
@@ -169,7 +172,7 @@ fn report(
             angles.as_str(),
             worst[t].0,
             worst[t].1
-        );
+        ));
     }
     if let Some((p, &(d, f))) = done
         .points
@@ -177,13 +180,13 @@ fn report(
         .enumerate()
         .max_by(|a, b| a.1.0.total_cmp(&b.1.0))
     {
-        eprintln!(
+        told.report(&format!(
             "inbetween: reduce: world: largest displacement {d:.6e} at joint {} frame {f} \
              (limit {}), {} round{}",
             inbetween::error::shorten(&skeleton.joints()[point_joints[p]].name),
             world.limits[point_joints[p]],
             done.rounds,
             if done.rounds == 1 { "" } else { "s" }
-        );
+        ));
     }
 }

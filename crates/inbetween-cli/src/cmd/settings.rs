@@ -12,6 +12,7 @@ use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
 };
+use inbetween_commands::events::Events;
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::{Asset, ContainerFormat};
@@ -94,7 +95,7 @@ pub fn read_input(
     fps: Option<Fps>,
     (mode, translations): (Mode, bool),
     stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<(Document, Format, Option<Arc<GltfClip>>), inbetween::Error> {
     let opts = ReadOptions {
         from: args.from,
@@ -154,7 +155,7 @@ pub fn read_input(
         .into());
     }
     for w in &doc.warnings {
-        warn(w);
+        warn.warning(w);
     }
     let doc = match &args.tracks {
         Some(patterns) => select_tracks(doc, patterns)?,
@@ -263,7 +264,7 @@ pub fn read_curves(
     curve: &CurveArgs,
     scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<Curves, inbetween::Error> {
     read_curves_in((Mode::Frames, true), input, curve, scheme, stdin, warn)
 }
@@ -276,12 +277,12 @@ pub fn read_curves_in(
     curve: &CurveArgs,
     scheme: &dyn Fn(Format) -> Scheme,
     stdin: &mut dyn Read,
-    warn: &mut dyn FnMut(&str),
+    warn: &mut dyn Events,
 ) -> Result<Curves, inbetween::Error> {
     let (doc, format, gltf) = read_input(input, curve.fps, mode, stdin, warn)?;
     let (frame_fps, fps) = rates(&doc, curve.fps);
     if let Some(w) = key_rate_warning(&doc, frame_fps) {
-        warn(&w);
+        warn.warning(&w);
     }
     let mut tracks = doc.tracks_shaped(frame_fps, tcb_flags(curve))?;
     if let Some(eps) = curve.snap_keys {

@@ -512,10 +512,12 @@ def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], co
     ``_`` for ``-``: ``fps=30``, ``scheme="slerp"``, ``translation_tolerance=0.1``,
     ``shared_keys=True`` (``True`` gives the bare flag; ``False``/``None`` leave it out; a list
     repeats it). An ``out`` newer than ``path`` is skipped unless ``refresh``; its folder is
-    made. The record is the batch manifest's: ``input``, ``output``, ``status`` (``"ok"``,
-    ``"skipped"``, ``"failed"``), ``seconds``, ``error`` (a failed file's message, naming the
-    file), ``exit_code`` (the command line's: 2 refused input, 1 internal error) and
-    ``warnings``. A failed file is a record, not an exception, so that a map over a folder goes
+    made. The record is the batch manifest's line: ``input``, ``output``, ``status``
+    (``"ok"``, ``"skipped"``, ``"failed"``), ``seconds``, ``reason`` (a skipped file's),
+    ``frames``, ``tracks``, ``keys``, ``largest_error``, ``error`` (a failed file's message,
+    naming the file); and beside it ``exit_code`` (the command line's: 2 refused input, 1 I/O or
+    internal error), ``warnings`` and ``reports`` (the lines ``verbose=True`` asks for, which
+    the command line prints). A failed file is a record, not an exception, so that a map over a folder goes
     on; an unknown ``command`` is an ``InputError``, and an option that is not one of the
     command's flags (or is a batch's own: ``out_dir``, ``jobs``, ``manifest``, ``refresh``,
     ``follow``, ``output``) a ``TypeError``. ``path`` and ``out`` are always paths: a name that

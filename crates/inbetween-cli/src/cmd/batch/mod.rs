@@ -13,6 +13,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
+use inbetween_commands::events::{Collected, Events};
 use inbetween_commands::inputs;
 pub use inbetween_commands::inputs::Job;
 use inbetween_commands::shown::shown;
@@ -36,14 +37,14 @@ pub fn note(f: impl FnOnce(&mut Figures)) {
 
 /// Runs `one` on `input`, writing `output`, as a batch runs each of its inputs: skipped when
 /// `output` is up to date ([`inputs::up_to_date`]) unless `refresh`, else the output's folder made and the
-/// command run, its figures noted ([`note`]) and its warnings pushed to `warnings`. The record
+/// command run, its figures noted ([`note`]) and what it tells kept in `told`. The record
 /// (its `error` the error's text as the command line shows it), and the error.
 pub fn run_job(
     input: &Path,
     output: &Path,
     refresh: bool,
     one: &OneInput<'_>,
-    warnings: &mut Vec<String>,
+    told: &mut Collected,
 ) -> (Record, Option<Error>) {
     let t0 = Instant::now();
     let mut record = Record::new(
@@ -67,11 +68,7 @@ pub fn run_job(
             ))
         });
     STATS.with(|s| *s.borrow_mut() = Some(Figures::default()));
-    let result = made.and_then(|()| {
-        inbetween::parallel::serially(|| {
-            one(input, output, &mut |w: &str| warnings.push(w.to_string()))
-        })
-    });
+    let result = made.and_then(|()| inbetween::parallel::serially(|| one(input, output, told)));
     let figures = STATS.with(|s| s.borrow_mut().take());
     record.seconds = Some((t0.elapsed().as_secs_f64() * 1e3).round() / 1e3);
     match result {
@@ -86,7 +83,7 @@ pub fn run_job(
 }
 
 /// The command on one input: `(input, output, warn)`.
-pub type OneInput<'a> = dyn Fn(&Path, &Path, &mut dyn FnMut(&str)) -> Result<(), Error> + Sync + 'a;
+pub type OneInput<'a> = dyn Fn(&Path, &Path, &mut dyn Events) -> Result<(), Error> + Sync + 'a;
 
 /// What finished inputs came to.
 #[derive(Debug, Default)]
@@ -307,7 +304,7 @@ pub fn run(
             let Some((job, planned)) = order.get(i).map(|&(_, k)| (&jobs[k], &outputs[k])) else {
                 break;
             };
-            let mut warnings: Vec<String> = Vec::new();
+            let mut told = Collected::default();
             let (record, failed) = match planned {
                 Err(e) => {
                     let mut record =
@@ -316,12 +313,15 @@ pub fn run(
                     record.error = Some(crate::flags::error_text(e));
                     (record, None)
                 }
-                Ok(output) => run_job(&job.input, output, batch.refresh, one, &mut warnings),
+                Ok(output) => run_job(&job.input, output, batch.refresh, one, &mut told),
             };
             // The error of the run, when it failed; a planned error is the plan's own.
             let error = failed.as_ref().or(planned.as_ref().err());
             bar.suspend(|| {
-                for w in &warnings {
+                for r in &told.reports {
+                    eprintln!("{}", crate::cli::line(r));
+                }
+                for w in &told.warnings {
                     eprintln!("inbetween: warning: {}", crate::cli::line(w));
                 }
                 if let Some(m) = &record.error {
