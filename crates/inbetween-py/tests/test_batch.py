@@ -116,7 +116,8 @@ def test_the_record_is_the_manifest_line(tmp_path, cli, command, options):
 def test_reports_are_handed_back_not_printed(tmp_path, capfd):
     """`verbose=True` asks for the -v lines: the record holds them; the process prints nothing."""
     clip = FIXTURES / "bvh/cmu_01_01.bvh"
-    r = inbetween.process_file(clip, tmp_path / "a.json", "reduce", tolerance=0.5, verbose=True)
+    r = inbetween.process_file(clip, tmp_path / "a.json", "reduce", tolerance=0.5,
+                               translation_tolerance=0.1, verbose=True)
     assert r["status"] == "ok", r
     assert len(r["reports"]) == r["tracks"], r["reports"][:3]
     assert all(line.startswith("inbetween: reduce: track ") for line in r["reports"])
