@@ -4,7 +4,9 @@
 1. no source file holds more than 600 lines of code (blank lines, comments and `#[cfg(test)]`
    modules aside);
 2. no dependency cycle between the top-level modules of a library crate (`crate::a` used in
-   module `b` is the edge b -> a; test code aside);
+   module `b` is the edge b -> a; test code aside), and none between the files of the
+   application crates (`crate::a::b`, `super::x`, a child `x::` named in its parent: a module
+   that calls back into the module that dispatches to it is a cycle);
 3. no flag name (`--word`) in a string literal of a library crate's code (tests aside): flag
    names are the command line's words, added by the binary as context.
 
@@ -19,6 +21,9 @@ from pathlib import Path
 MAX_CODE_LINES = 600
 LIBRARY_CRATES = ["crates/inbetween", "crates/inbetween-io", "crates/inbetween-commands"]
 ALL_CRATES = LIBRARY_CRATES + ["crates/inbetween-cli"]
+# Files checked for cycles one by one (the maths and formats crates still have some between a
+# module's mod.rs and its children: issue 45).
+APPLICATION_CRATES = ["crates/inbetween-commands", "crates/inbetween-cli"]
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]*")
 
 
@@ -202,6 +207,54 @@ def module_graph(crate):
     return edges
 
 
+def file_module(src_dir, path):
+    """A file's module path: `a/b.rs` and `a/b/mod.rs` are ("a", "b"); lib.rs and main.rs ()."""
+    parts = list(path.relative_to(src_dir).parts)
+    parts[-1] = parts[-1].removesuffix(".rs")
+    if parts[-1] == "mod" or parts in (["lib"], ["main"]):
+        parts = parts[:-1]
+    return tuple(parts)
+
+
+def file_edges(modules, me, code):
+    """The modules of `modules` (tuples) that the code of module `me` names."""
+    found = set()
+
+    def longest(path):
+        for k in range(len(path), 0, -1):
+            if tuple(path[:k]) in modules:
+                return tuple(path[:k])
+        return None
+
+    for m in re.finditer(r"\b(crate|super|self)((?:::[A-Za-z_]\w*)+)", code):
+        names = m.group(2).split("::")[1:]
+        base = {"crate": [], "super": list(me[:-1]), "self": list(me)}[m.group(1)]
+        target = longest(base + names) or tuple(base)
+        found.add(target)
+    for m in re.finditer(r"(?<![\w:])([A-Za-z_]\w*)::", code):
+        child = me + (m.group(1),)
+        if child in modules:
+            found.add(child)
+    # The crate root re-exports items (`crate::Fps`): naming one is no edge to lib.rs itself.
+    found.discard(())
+    found.discard(me)
+    return {t for t in found if t in modules}
+
+
+def file_graph(crate):
+    src = Path(crate) / "src"
+    files = source_files(crate)
+    modules = {file_module(src, p) for p in files}
+    edges = {"::".join(m) or "crate": set() for m in modules}
+    for p in files:
+        me = file_module(src, p)
+        toks = strip_tests(tokens(p.read_text()))
+        code = " ".join(t for k, t, _ in toks if k == "code")
+        for t in file_edges(modules, me, code):
+            edges["::".join(me) or "crate"].add("::".join(t) or "crate")
+    return edges
+
+
 def cycles(edges):
     """The strongly connected components with more than one module (Tarjan)."""
     index, low, stack, on, out = {}, {}, [], set(), []
@@ -251,6 +304,9 @@ def check():
             n = code_lines(strip_tests(tokens(p.read_text())))
             if n > MAX_CODE_LINES:
                 problems.append(f"{p}: {n} lines of code (at most {MAX_CODE_LINES})")
+    for crate in APPLICATION_CRATES:
+        for comp in cycles(file_graph(crate)):
+            problems.append(f"{crate}: dependency cycle between files {', '.join(comp)}")
     for crate in LIBRARY_CRATES:
         for comp in cycles(module_graph(crate)):
             problems.append(f"{crate}: dependency cycle between modules {', '.join(comp)}")
@@ -282,6 +338,12 @@ fn b() {}
     assert used_modules("use super::x::Y;", True) == {"x"}
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
     assert cycles({"a": {"b"}, "b": set()}) == []
+    mods = {(), ("cmd",), ("cmd", "reduce"), ("cmd", "reduce", "gltf"), ("cmd", "settings")}
+    me = ("cmd", "reduce", "gltf")
+    assert file_edges(mods, me, "super::report_all(x); crate::cmd::settings::glob(); ") == {
+        ("cmd", "reduce"), ("cmd", "settings")}, file_edges(mods, me, "super::report_all(x)")
+    assert file_edges(mods, ("cmd", "reduce"), "gltf::to_gltf(a); inbetween::x::y();") == {me}
+    assert file_edges(mods, ("cmd", "reduce"), "self::gltf::X") == {me}
     assert [m.group(0) for m in FLAG.finditer('"--fps 30, a-b--c, ---"')] == ["--fps"]
     print("layout.py self-test: ok")
     return 0

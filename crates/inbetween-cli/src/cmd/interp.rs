@@ -11,7 +11,6 @@ use inbetween::error::num;
 use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
 };
-use inbetween_commands::capability;
 use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
@@ -200,7 +199,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
                 ))
                 .into());
             };
-            check_carries(args, format)?;
+            super::settings::check_carries(args, format)?;
             Some(skeleton)
         }
         _ => None,
@@ -228,7 +227,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
                 ))
                 .into());
             };
-            check_carries(args, format)?;
+            super::settings::check_carries(args, format)?;
             for w in check_grid(&clip, fps)? {
                 warn.warning(&w);
             }
@@ -572,27 +571,6 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
 enum TrackCurve {
     Curve(Curve),
     Sampled(Sampler, (i64, i64)),
-}
-
-/// `--span track`, `--velocity`, `--tracks` and `--precision` against what `format` carries
-/// ([`capability::of`]), worded with the flags.
-pub(super) fn check_carries(args: &InterpArgs, format: OutputFormat) -> Result<(), Error> {
-    let can = capability::of(format);
-    let refusal = if let Some(why) = can.no_track_spans.filter(|_| args.span == SpanArg::Track) {
-        format!("--span track: {why}; use --span clip")
-    } else if let Some(why) = can.no_velocities.filter(|_| args.velocity) {
-        format!("--velocity: {why}; write csv or json")
-    } else if let Some(why) = can
-        .no_track_selection
-        .filter(|_| args.input.tracks.is_some())
-    {
-        format!("--tracks: {why}; select tracks for csv or json output")
-    } else if let Some(why) = can.no_precision.filter(|_| args.output.precision.is_some()) {
-        format!("--precision: {why}; drop --precision for .usda output")
-    } else {
-        return Ok(());
-    };
-    Err(InputError::new(refusal).into())
 }
 
 /// A frame writer that hands back its output when done.

@@ -226,6 +226,33 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
 
 pub(super) use inbetween_commands::pattern::glob;
 
+/// `--span track`, `--velocity`, `--tracks` and `--precision` against what `format` carries
+/// ([`capability::of`]), worded with the flags.
+pub(super) fn check_carries(
+    args: &crate::cli::InterpArgs,
+    format: OutputFormat,
+) -> Result<(), inbetween::Error> {
+    let can = inbetween_commands::capability::of(format);
+    let refusal = if let Some(why) = can
+        .no_track_spans
+        .filter(|_| args.span == crate::cli::SpanArg::Track)
+    {
+        format!("--span track: {why}; use --span clip")
+    } else if let Some(why) = can.no_velocities.filter(|_| args.velocity) {
+        format!("--velocity: {why}; write csv or json")
+    } else if let Some(why) = can
+        .no_track_selection
+        .filter(|_| args.input.tracks.is_some())
+    {
+        format!("--tracks: {why}; select tracks for csv or json output")
+    } else if let Some(why) = can.no_precision.filter(|_| args.output.precision.is_some()) {
+        format!("--precision: {why}; drop --precision for .usda output")
+    } else {
+        return Ok(());
+    };
+    Err(inbetween::InputError::new(refusal).into())
+}
+
 /// The input of interp, analyze and plot, read and validated.
 pub struct Curves {
     /// The document as read.

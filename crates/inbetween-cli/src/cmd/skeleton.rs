@@ -92,6 +92,6 @@ pub fn usd_output(
         ))
         .into());
     };
-    super::interp::check_carries(args, inbetween_io::OutputFormat::Usda)?;
+    super::settings::check_carries(args, inbetween_io::OutputFormat::Usda)?;
     Ok(h)
 }

@@ -4,9 +4,11 @@
 //! general path holds the file's text, the clip, a document of every key and the tracks made
 //! from it at once: 6 to 9 times the file.
 
-use super::reduce::{kept, keys_format, reduce_options, report, scheme, write};
-use super::settings::{curve_options, tcb_flags};
+use super::keys::{kept, keys_format, scheme, write};
+use super::report::report;
+use super::tracks::reduce_options;
 use crate::cli::{PathArg, ReduceArgs};
+use crate::cmd::settings::{curve_options, tcb_flags};
 use inbetween::Error;
 use inbetween::reduce::{Reduced, TrackFrames, reduce_frames};
 use inbetween_commands::events::Events;
@@ -107,19 +109,19 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     for w in &warnings {
         warn.warning(w);
     }
-    super::reduce::note_batch(args, reports.iter().map(|(_, len, r)| (*len, r)));
+    super::report::note_batch(args, reports.iter().map(|(_, len, r)| (*len, r)));
     if args.verbose {
         for (name, len, r) in &reports {
             report(args, name.as_deref(), *len, r, warn);
         }
     }
-    let style = super::settings::style(&args.input, &args.output);
+    let style = crate::cmd::settings::style(&args.input, &args.output);
     Some(write(
         args,
         &doc,
         (format, style, frame_fps),
         (Format::Bvh, true),
-        &super::settings::files_read(&args.input, &[], None),
+        &crate::cmd::settings::files_read(&args.input, &[], None),
         warn,
     ))
 }

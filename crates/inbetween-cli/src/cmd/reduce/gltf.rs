@@ -4,9 +4,9 @@
 //! the animations' `LINEAR` translation and scale channels are reduced too, played by lerp as
 //! glTF plays them (docs/spec.md §5a, glTF output).
 
-use super::reduce::{FLOAT32_MARGIN, reduce_options, reduce_tracks};
-use super::settings::Curves;
+use super::tracks::{FLOAT32_MARGIN, reduce_options, reduce_tracks};
 use crate::cli::ReduceArgs;
+use crate::cmd::settings::Curves;
 use glam::DQuat;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each, rotation_error};
 use inbetween::{Error, InputError, Scheme};
@@ -38,7 +38,7 @@ pub(super) fn to_gltf(
     }
     let margin = FLOAT32_MARGIN * args.distance.unwrap_or(1.0);
     let reduced = reduce_tracks(args, input, (margin, 0.0), (false, true), told)?;
-    super::reduce::report_all(args, input, &reduced, told);
+    super::report::report_all(args, input, &reduced, told);
     let mut keys = Vec::with_capacity(reduced.len());
     for (t, r) in input.tracks.iter().zip(&reduced) {
         let name = t.name().unwrap_or_default();
@@ -48,7 +48,7 @@ pub(super) fn to_gltf(
     }
     let (vector_keys, originals) = vector_keys(args, input, clip, told)?;
     keys.extend(vector_keys);
-    let container = super::settings::gltf_container(&args.output, container, clip);
+    let container = crate::cmd::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     check_written(args, input, clip, &keys, &originals, &bytes)?;
     let mut out = crate::output::open(args.output.output.as_deref(), &input.reads)?;

@@ -1,9 +1,9 @@
 //! `reduce --position-tolerance LEN`: keys within a world-space bound of every joint, End Site
 //! and `--shell` point (the library's [`inbetween::reduce::reduce_world`]; docs/spec.md §5a).
 
-use super::reduce::unit;
-use super::settings::{Curves, glob};
+use super::report::unit;
 use crate::cli::ReduceArgs;
+use crate::cmd::settings::{Curves, glob};
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, WorldReduced, WorldTolerance};
 use inbetween::skeleton::Skeleton;
 use inbetween::{Error, InputError};

@@ -4,9 +4,10 @@
 //! tightened by twice the miss and the tracks are reduced again, until the written keys meet it
 //! (docs/spec.md §4.7).
 
-use super::reduce::{reduce_options, reduce_tracks, unit, unit_name};
-use super::settings::{Curves, read_curves};
+use super::report::{unit, unit_name};
+use super::tracks::{reduce_options, reduce_tracks};
 use crate::cli::{InputArgs, ReduceArgs};
+use crate::cmd::settings::{Curves, read_curves};
 use inbetween::reduce::{Reduced, TrackFrames, curve_errors};
 use inbetween::rotation::QuatOrder;
 use inbetween::{Curve, Error, Fps, InputError};

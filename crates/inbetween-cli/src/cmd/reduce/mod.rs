@@ -1,0 +1,129 @@
+//! `inbetween reduce`: dense frames in, the fewest keys out that `interp` turns back into them
+//! (the library's [`inbetween::reduce`]).
+
+mod bvh;
+mod gltf;
+mod keys;
+mod report;
+mod rounded;
+mod tracks;
+mod world;
+
+use crate::cli::ReduceArgs;
+use crate::cmd::settings::{rates, read_curves_in, tracks_take_translations};
+use inbetween::reduce::Reduced;
+use inbetween::{Error, InputError};
+use inbetween_commands::events::Events;
+use inbetween_io::document::Document;
+use inbetween_io::gltf::document::Mode;
+use inbetween_io::write::write_keys;
+use inbetween_io::{Format, OutputFormat};
+use keys::{kept, keys_format, keys_style, scheme, write};
+use report::report_all;
+use std::io::Read;
+use tracks::{FLOAT32_MARGIN, reduce_tracks};
+
+/// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
+pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    if let Some(done) = bvh::lean(args, warn) {
+        return done;
+    }
+    let gltf_output = !tracks_take_translations(&args.output);
+    world::check_options(args, gltf_output)?;
+    // A position tolerance poses the skeleton with the tracks' translations, even where the
+    // output keeps them.
+    let input = read_curves_in(
+        (
+            Mode::Frames,
+            !gltf_output || args.position_tolerance.is_some(),
+        ),
+        &args.input,
+        &args.curve,
+        &|f| scheme(args, f),
+        stdin,
+        warn,
+    )?;
+    let (doc, tracks) = (&input.doc, &input.tracks);
+    let format = match keys_format(args, input.format)? {
+        OutputFormat::Gltf(container) => {
+            return gltf::to_gltf(args, &input, container, warn);
+        }
+        OutputFormat::Doc(f) => f,
+        // USD keys are written from the kept keys as JSON's are (`write` sends them to USD).
+        OutputFormat::Usda => Format::Json,
+        _ => unreachable!("keys_format gives keys documents, glTF and USD"),
+    };
+    if let Some(s) = args.scale_tolerance {
+        return Err(InputError::new(format!(
+            "--scale-tolerance {s}: only glTF output (-o small.glb from a glTF input) has scale \
+             channels to reduce; csv and json keys carry rotations and translations"
+        ))
+        .into());
+    }
+    if tracks.iter().any(|t| t.translations().is_some())
+        && args.translation_tolerance.is_none()
+        && args.position_tolerance.is_none()
+    {
+        return Err(InputError::new(format!(
+            "{}: the tracks have translations: give their tolerance with --translation-tolerance \
+             (length units)",
+            doc.source
+        ))
+        .into());
+    }
+    let (frame_fps, _) = rates(doc, args.curve.fps);
+    let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
+    // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
+    let doc_of = |reduced: &[Reduced]| Document {
+        source: doc.source.clone(),
+        fps: doc.fps,
+        rotation: doc.rotation,
+        tracks: doc
+            .tracks
+            .iter()
+            .zip(reduced)
+            .map(|(d, r)| kept(d, r))
+            .collect(),
+        named_tracks: doc.named_tracks,
+        warnings: Vec::new(),
+        skeleton: None,
+        hierarchy: doc.hierarchy.clone(),
+        unit_meters: doc.unit_meters,
+        z_up: doc.z_up,
+    };
+    // USD stores float32 rotations and translations: the tolerances are tightened by what that
+    // rounding can move a key (as for glTF output).
+    let margin = if keys_format(args, input.format)? == OutputFormat::Usda {
+        let largest = tracks
+            .iter()
+            .filter_map(|t| t.translations())
+            .flatten()
+            .map(|p| p.abs().max_element())
+            .fold(0.0, f64::max);
+        (FLOAT32_MARGIN, largest * f32::EPSILON as f64)
+    } else {
+        (0.0, 0.0)
+    };
+    let reduced = match args.output.precision {
+        None => reduce_tracks(args, &input, margin, (true, false), warn)?,
+        Some(_) => {
+            let encode = |r: &[Reduced]| -> Result<Vec<u8>, Error> {
+                let mut bytes = Vec::new();
+                write_keys(&mut bytes, &doc_of(r), format, style, frame_fps)?;
+                Ok(bytes)
+            };
+            rounded::as_written(args, &input, (format, style, frame_fps), &encode, warn)?
+        }
+    };
+    report_all(args, &input, &reduced, warn);
+    let out_doc = doc_of(&reduced);
+    let skeleton = doc.skeleton.is_some();
+    write(
+        args,
+        &out_doc,
+        (format, style, frame_fps),
+        (input.format, skeleton),
+        &input.reads,
+        warn,
+    )
+}
