@@ -32,6 +32,7 @@ pub mod frames;
 pub mod keyframes;
 pub mod npy;
 pub mod npz;
+mod rows;
 mod worker;
 pub mod zip;
 

@@ -1,7 +1,7 @@
 //! The formatting thread behind [`super::FrameWriter`]: it formats the blocks it is sent, in
 //! order, and hands each back with its bytes so the writer can write them in sequence.
 
-use super::frames::{Fault, Frame, RowFormatter};
+use super::rows::{Fault, Frame, RowFormatter};
 use std::io;
 
 /// A block sent to the worker: frames, CSV track prefix, index of the first frame in its track;

@@ -10,6 +10,7 @@ pub mod magnitude;
 pub mod matrix;
 pub mod quat;
 pub mod spin;
+mod unit;
 pub mod unwrap;
 
 use crate::error::InputResult;
@@ -18,6 +19,7 @@ use crate::error::num;
 pub use euler::EulerSeq;
 use glam::{DMat3, DQuat, DVec3};
 use std::fmt;
+pub use unit::AngleUnit;
 
 /// A rotation representation, as named by `--from`/`--to`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,51 +34,6 @@ pub enum Repr {
     AxisAngle,
     /// A rotation vector, axis × angle (`rotvec`).
     RotVec,
-}
-
-/// Unit of every angle read or written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum AngleUnit {
-    /// Degrees.
-    #[default]
-    Deg,
-    /// Radians.
-    Rad,
-}
-
-impl AngleUnit {
-    /// `deg` or `rad`.
-    pub fn parse(s: &str) -> InputResult<AngleUnit> {
-        match s {
-            "deg" => Ok(AngleUnit::Deg),
-            "rad" => Ok(AngleUnit::Rad),
-            _ => Err(input_err!("expected \"deg\" or \"rad\", found \"{s}\"")),
-        }
-    }
-
-    /// `deg` or `rad`.
-    pub fn as_str(self) -> &'static str {
-        match self {
-            AngleUnit::Deg => "deg",
-            AngleUnit::Rad => "rad",
-        }
-    }
-
-    /// An angle in this unit, in radians.
-    pub fn to_rad(self, a: f64) -> f64 {
-        match self {
-            AngleUnit::Deg => a.to_radians(),
-            AngleUnit::Rad => a,
-        }
-    }
-
-    /// An angle in radians, in this unit.
-    pub fn from_rad(self, a: f64) -> f64 {
-        match self {
-            AngleUnit::Deg => a.to_degrees(),
-            AngleUnit::Rad => a,
-        }
-    }
 }
 
 /// Component order of quaternions written as JSON arrays.
