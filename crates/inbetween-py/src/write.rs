@@ -157,13 +157,20 @@ pub fn write<'py>(
     Ok(())
 }
 
-/// An error writing `source`, naming it once (the output's own errors name it already).
+/// An error writing `source`, naming it once (the output's own errors name it already): a
+/// writer's check of its own output (`internal error: …`) a `RuntimeError`, anything else the
+/// system's error as Python names it (`OSError`, `BrokenPipeError`, …), its kind kept.
 fn cannot_write(source: &str, e: std::io::Error) -> PyErr {
     let m = e.to_string();
-    if m.starts_with(&format!("{source}: ")) {
-        input_error(m)
+    let m = if m.starts_with(&format!("{source}: ")) {
+        m
     } else {
-        input_error(format!("{source}: cannot write: {m}"))
+        format!("{source}: cannot write: {m}")
+    };
+    if m.contains("internal error") {
+        pyo3::exceptions::PyRuntimeError::new_err(m)
+    } else {
+        std::io::Error::new(e.kind(), m).into()
     }
 }
 

@@ -136,3 +136,25 @@ def test_write_refuses_what_it_cannot_write_rather_than_writing_csv(tmp_path):
         with pytest.raises(inbetween.InputError, match="write takes .csv, .json"):
             inbetween.write(tmp_path / name, clip)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_write_the_system_refuses_is_an_os_error(tmp_path):
+    """A FIFO whose reader goes away: the writer's broken pipe is Python's BrokenPipeError (an
+    OSError) naming the path, not an InputError: the input was fine."""
+    import threading
+    fifo = tmp_path / "pipe.csv"
+    os.mkfifo(fifo)
+
+    def read_then_leave():
+        # Opening waits for the writer; one byte read, the reader leaves with megabytes unread.
+        with open(fifo, "rb") as f:
+            f.read(1)
+
+    reader = threading.Thread(target=read_then_leave)
+    reader.start()
+    n = 200_000  # rows enough to fill the pipe before the reader leaves
+    t = np.arange(n) / 30.0
+    q = np.tile([[1.0, 0, 0, 0]], (n, 1))
+    with pytest.raises(BrokenPipeError, match="pipe.csv: cannot write"):
+        inbetween.write(fifo, inbetween.Clip.from_arrays(t, q))
+    reader.join()
