@@ -3,7 +3,7 @@
 use super::settings::{
     curve_options, output_format, read_curves_in, tcb_flags, tracks_take_translations,
 };
-use crate::cli::{CurveArgs, InterpArgs, PathArg, SpanArg};
+use crate::cli::{CurveArgs, InterpArgs, SpanArg};
 use crate::output::{Output, WriteBehind};
 use glam::DQuat;
 use inbetween::bake::{Sampled, bake_sampled};
@@ -15,7 +15,7 @@ use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
-use inbetween_io::bvh::{self, resample};
+use inbetween_io::bvh::resample;
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::usd::frames::UsdFrames;
@@ -445,22 +445,10 @@ fn near_misses(
 /// after every joint is done, CSV/JSON only into a temporary `-o` file). Its warnings are held
 /// until it is done, so they are given once, in the general path's order.
 fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
-    let path = args
-        .input
-        .input
-        .as_deref()
-        .filter(|p| p.as_os_str() != "-")?;
     let curve = &args.curve;
-    if args.input.input_format.or_else(|| Format::from_path(path)) != Some(Format::Bvh)
-        || args.input.animation.is_some()
-        || args.input.tracks.is_some()
-        || args.input.from.is_some()
-        || args.skeleton.is_some()
+    let path = super::settings::lean_bvh_path(&args.input, curve)?;
+    if args.skeleton.is_some()
         || args.output.euler_mode() == EulerMode::Wrapped
-        || curve.snap_keys.is_some()
-        || curve.path == PathArg::Euler
-        || curve.start_velocity.is_some()
-        || curve.end_velocity.is_some()
         || args.velocity
         || args.verbose
         || args.span != SpanArg::Clip
@@ -477,13 +465,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
         OutputFormat::Doc(Format::Csv | Format::Json) if to_file => {}
         _ => return None,
     }
-    let file = std::fs::File::open(path).ok()?;
-    let size = file.metadata().ok().filter(|m| m.is_file())?.len();
-    if size > args.input.max_input_bytes {
-        return None;
-    }
-    let source = path.display().to_string();
-    let (clip, mut warnings) = bvh::parse_reader(file, &source, Some(size)).ok()?;
+    let (source, clip, mut warnings) = super::settings::lean_bvh_clip(path, &args.input)?;
     let joints = resample::track_joints(&clip);
     let names: std::collections::HashSet<&str> =
         joints.iter().map(|&j| clip.joints()[j].name()).collect();

@@ -253,6 +253,40 @@ pub(super) fn check_carries(
     Err(inbetween::InputError::new(refusal).into())
 }
 
+/// The rule both lean BVH paths (`interp`'s and `reduce`'s) start from: the input is a named
+/// BVH file, read with none of the options only the general path applies (`--animation`,
+/// `--tracks`, `--from`, `--snap-keys`, `--path euler`, end velocities). Its path, else `None`
+/// (the general path).
+pub(super) fn lean_bvh_path<'a>(input: &'a InputArgs, curve: &CurveArgs) -> Option<&'a Path> {
+    let path = input.input.as_deref().filter(|p| p.as_os_str() != "-")?;
+    let plain = input.input_format.or_else(|| Format::from_path(path)) == Some(Format::Bvh)
+        && input.animation.is_none()
+        && input.tracks.is_none()
+        && input.from.is_none()
+        && curve.snap_keys.is_none()
+        && curve.path != PathArg::Euler
+        && curve.start_velocity.is_none()
+        && curve.end_velocity.is_none();
+    plain.then_some(path)
+}
+
+/// A lean path's BVH file parsed as it is read, when it is a regular file within
+/// `--max-input-bytes`: its name in messages, the clip and the reader's warnings; else `None`
+/// (the general path reads it, and says what is wrong).
+pub(super) fn lean_bvh_clip(
+    path: &Path,
+    input: &InputArgs,
+) -> Option<(String, inbetween_io::clip::Clip, Vec<String>)> {
+    let file = std::fs::File::open(path).ok()?;
+    let size = file.metadata().ok().filter(|m| m.is_file())?.len();
+    if size > input.max_input_bytes {
+        return None;
+    }
+    let source = path.display().to_string();
+    let (clip, warnings) = inbetween_io::bvh::parse_reader(file, &source, Some(size)).ok()?;
+    Some((source, clip, warnings))
+}
+
 /// The input of interp, analyze and plot, read and validated.
 pub struct Curves {
     /// The document as read.

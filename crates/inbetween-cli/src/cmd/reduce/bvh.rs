@@ -7,12 +7,12 @@
 use super::keys::{kept, keys_format, scheme, write};
 use super::report::report;
 use super::tracks::reduce_options;
-use crate::cli::{PathArg, ReduceArgs};
-use crate::cmd::settings::{curve_options, tcb_flags};
+use crate::cli::ReduceArgs;
+use crate::cmd::settings::{curve_options, lean_bvh_clip, lean_bvh_path, tcb_flags};
 use inbetween::Error;
 use inbetween::reduce::{Reduced, TrackFrames, reduce_frames};
 use inbetween_commands::events::Events;
-use inbetween_io::bvh::{self, document::joint_tracks, resample};
+use inbetween_io::bvh::{document::joint_tracks, resample};
 use inbetween_io::document::{DocTrack, Document};
 use inbetween_io::{Format, OutputFormat};
 
@@ -27,21 +27,9 @@ type JointDone = Result<(DocTrack, Reduced, Option<String>, usize), Error>;
 /// written once every joint is done). Its warnings are held until it is done, so they are given
 /// once, in the general path's order.
 pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
-    let path = args
-        .input
-        .input
-        .as_deref()
-        .filter(|p| p.as_os_str() != "-")?;
     let curve = &args.curve;
-    if args.input.input_format.or_else(|| Format::from_path(path)) != Some(Format::Bvh)
-        || args.input.animation.is_some()
-        || args.input.tracks.is_some()
-        || args.input.from.is_some()
-        || curve.snap_keys.is_some()
-        || curve.path == PathArg::Euler
-        || curve.start_velocity.is_some()
-        || curve.end_velocity.is_some()
-        || args.shared_keys
+    let path = lean_bvh_path(&args.input, curve)?;
+    if args.shared_keys
         || args.scale_tolerance.is_some()
         || args.output.precision.is_some()
         || args.position_tolerance.is_some()
@@ -51,13 +39,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     let OutputFormat::Doc(format) = keys_format(args, Format::Bvh).ok()? else {
         return None;
     };
-    let file = std::fs::File::open(path).ok()?;
-    let size = file.metadata().ok().filter(|m| m.is_file())?.len();
-    if size > args.input.max_input_bytes {
-        return None;
-    }
-    let source = path.display().to_string();
-    let (clip, warnings) = bvh::parse_reader(file, &source, Some(size)).ok()?;
+    let (source, clip, warnings) = lean_bvh_clip(path, &args.input)?;
     let joints = resample::track_joints(&clip);
     let positions = joints
         .iter()
