@@ -7,8 +7,12 @@
    module `b` is the edge b -> a; test code aside), and none between the files of any crate
    (`crate::a::b`, `super::x`, a child `x::` named in its parent, re-exports aside: a module
    that calls back into the module that dispatches to it is a cycle);
-3. no flag name (`--word`) in a string literal of a library crate's code (tests aside): flag
-   names are the command line's words, added by the binary as context.
+3. no flag name (`--word`) in a string literal of the maths or formats crates' code (tests
+   aside): flag names are the command line's words, added as context by the commands crate
+   (`flags.rs`); in the commands crate, whose requests are the command line's options (and
+   Python's `process_file` keywords), every flag named is an option of a request
+   (`src/args.rs`: a field, or a `long = "…"`), so no message names an option that does not
+   exist.
 
 Written apart from the Rust code it checks: a small tokenizer of Rust's comments, strings and
 braces. `--self-test` runs it on small inputs whose answers are known.
@@ -21,6 +25,8 @@ from pathlib import Path
 MAX_CODE_LINES = 600
 REEXPORT = re.compile(r"\bpub(\s*\([^)]*\))?\s+use\s[^;]*;")
 LIBRARY_CRATES = ["crates/inbetween", "crates/inbetween-io", "crates/inbetween-commands"]
+# The crate whose requests are the command line's options: it may name them, and only them.
+REQUESTS = {"crates/inbetween-commands": "src/args.rs"}
 ALL_CRATES = LIBRARY_CRATES + ["crates/inbetween-cli"]
 FLAG = re.compile(r"(?<![\w-])--[a-z][a-z-]*")
 
@@ -297,6 +303,15 @@ def flag_names(path):
     return found
 
 
+def request_options(path):
+    """The long options of the requests in `path`: each `pub field:` of a struct, as kebab-case,
+    and each `long = "name"`."""
+    text = path.read_text()
+    names = {"--" + f.replace("_", "-") for f in re.findall(r"^\s*pub (\w+):", text, re.M)}
+    names |= {"--" + n for n in re.findall(r'long = "([a-z-]+)"', text)}
+    return names
+
+
 def check():
     problems = []
     for crate in ALL_CRATES:
@@ -310,9 +325,12 @@ def check():
     for crate in LIBRARY_CRATES:
         for comp in cycles(module_graph(crate)):
             problems.append(f"{crate}: dependency cycle between modules {', '.join(comp)}")
+        known = request_options(Path(crate) / REQUESTS[crate]) if crate in REQUESTS else set()
         for p in source_files(crate):
             for line, flag in flag_names(p):
-                problems.append(f"{p}:{line}: flag name {flag} in a library message")
+                if flag not in known:
+                    what = "an option no request has" if crate in REQUESTS else "a library message"
+                    problems.append(f"{p}:{line}: flag name {flag} in {what}")
     for p in problems:
         print(p)
     return 1 if problems else 0
@@ -346,6 +364,13 @@ fn b() {}
     assert file_edges(mods, ("cmd", "reduce"), "self::gltf::X") == {me}
     assert REEXPORT.sub(" ", "pub use gltf::X; pub(crate) use a::{b, c}; use d::E;") == "    use d::E;"
     assert [m.group(0) for m in FLAG.finditer('"--fps 30, a-b--c, ---"')] == ["--fps"]
+    import tempfile
+    with tempfile.TemporaryDirectory() as d:
+        args = Path(d) / "args.rs"
+        args.write_text('pub struct A {\n    /// doc\n    pub key_fps: Option<f64>,\n'
+                        '    #[arg(short = \'o\', long = "output")]\n    pub out: Option<P>,\n}\n'
+                        'fn f() { let pubx: u8 = 0; }\n')
+        assert request_options(args) == {"--key-fps", "--out", "--output"}, request_options(args)
     print("layout.py self-test: ok")
     return 0
 

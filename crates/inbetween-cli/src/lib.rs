@@ -5,17 +5,17 @@
 
 mod chart;
 mod cli;
-pub use inbetween_commands::events::{Collected, Events};
-pub use inbetween_commands::record::{Record, Status};
-mod cmd;
-mod flags;
-mod output;
+mod plot;
 mod signals;
 mod warnings;
 
 use clap::Parser;
 use cli::{Cli, Command};
 use inbetween::Error;
+use inbetween_commands::batch::Progress;
+use inbetween_commands::events::{Collected, Events};
+use inbetween_commands::record::Record;
+use inbetween_commands::{analyze, batch, convert, diff, exit_code, flags, interp, reduce};
 use std::ffi::OsString;
 use std::io::Read;
 
@@ -37,84 +37,13 @@ fn usage_error(e: &clap::Error, err: &mut dyn FnMut(&str)) -> u8 {
     2
 }
 
-/// The long options of `command` (`fps`, `translation-tolerance`, …), as the command line
-/// spells them without their `--`: what `inbetween.process_file` accepts.
-pub fn option_names(command: &str) -> Vec<String> {
-    use clap::CommandFactory;
-    Cli::command()
-        .find_subcommand(command)
-        .map(|c| {
-            c.get_arguments()
-                .filter_map(|a| a.get_long().map(str::to_string))
-                .collect()
-        })
-        .unwrap_or_default()
-}
-
-/// One input of `interp`, `convert` or `reduce` run as a batch runs each input, for Python's
-/// `process_file`: `args` is the command line (program name, command, input, `-o OUTPUT`,
-/// options). Returns its record (the manifest line), the exit code the command line would give
-/// and what it told (warnings and `-v` report lines, each escaped as on stderr). The input is skipped when its output is up to
-/// date ([`inbetween_commands::inputs::up_to_date`]), unless `refresh`; an option the command line refuses is a failed
-/// record with clap's message and exit code 2.
-pub fn process_one(args: Vec<OsString>, refresh: bool) -> (Record, u8, Collected) {
-    let mut cli = match Cli::try_parse_from(args) {
-        Ok(cli) => cli,
-        Err(e) => {
-            let text = cli::bounded(&e.render().to_string());
-            let first = text
-                .lines()
-                .find(|l| !l.trim().is_empty())
-                .unwrap_or_default();
-            let mut record = Record::new(String::new(), None, Status::Failed);
-            record.seconds = Some(0.0);
-            record.error = Some(first.strip_prefix("error: ").unwrap_or(first).to_string());
-            let told = Collected {
-                warnings: text.lines().map(cli::line).collect(),
-                reports: Vec::new(),
-            };
-            return (record, 2, told);
-        }
-    };
-    cli.command.normalise();
-    let (input, output) = match &cli.command {
-        Command::Convert(a) => (a.input.input.clone(), a.output.output.clone()),
-        Command::Interp(a) => (a.input.input.clone(), a.output.output.clone()),
-        Command::Reduce(a) => (a.input.input.clone(), a.output.output.clone()),
-        _ => (None, None),
-    };
-    let one = |_: &std::path::Path, _: &std::path::Path, warn: &mut dyn Events| match &cli.command {
-        Command::Convert(a) => cmd::convert::run(a, &mut std::io::empty(), warn),
-        Command::Interp(a) => cmd::interp::run(a, &mut std::io::empty(), warn),
-        Command::Reduce(a) => cmd::reduce::run(a, &mut std::io::empty(), warn),
-        _ => Err(inbetween::InputError::new(
-            "command: expected interp, convert or reduce, which write a file",
-        )
-        .into()),
-    };
-    let (Some(input), Some(output)) = (input, output) else {
-        let mut record = Record::new(String::new(), None, Status::Failed);
-        record.error = Some("an input and an output are needed".to_string());
-        return (record, 2, Collected::default());
-    };
-    let mut told = Collected::default();
-    let (record, error) = cmd::batch::run_job(&input, &output, refresh, &one, &mut told);
-    let code = error.as_ref().map_or(0, exit_status);
-    let escaped = |lines: Vec<String>| lines.iter().map(|l| cli::line(l)).collect();
-    let told = Collected {
-        warnings: escaped(told.warnings),
-        reports: escaped(told.reports),
-    };
-    (record, code, told)
-}
-
 /// Installs the handlers that remove an unfinished output's temporary file on SIGINT, SIGTERM
 /// and SIGHUP (the binary does; a host process such as Python keeps its own).
 pub fn install_signals() {
     signals::install();
 }
 
-/// Runs a command over several inputs ([`cmd::batch::run`]): each input with its own `-o` under
+/// Runs a command over several inputs ([`batch::run`]): each input with its own `-o` under
 /// `--out-dir`, standard input empty, the batch options cleared.
 macro_rules! batch {
     ($args:expr, $run:path, $keys:expr) => {{
@@ -125,10 +54,10 @@ macro_rules! batch {
             )
             .into())
         } else {
-            cmd::batch::run(
+            batch::run(
                 args.input.input.as_deref(),
                 &args.batch,
-                &|input: &std::path::Path| cmd::batch::extension(input, &args.output, $keys),
+                &|input: &std::path::Path| batch::extension(input, &args.output, $keys),
                 &|input: &std::path::Path, output: &std::path::Path, warn: &mut dyn Events| {
                     let mut one = args.clone();
                     one.input.input = Some(input.to_path_buf());
@@ -136,9 +65,61 @@ macro_rules! batch {
                     one.batch = Default::default();
                     $run(&one, &mut std::io::empty(), warn)
                 },
+                &Bar::new(),
             )
         }
     }};
+}
+
+/// A batch's progress on the command line: a bar on a terminal (files done of all, elapsed,
+/// rate; nothing otherwise), and on standard error what each input told and its error, and the
+/// summary.
+struct Bar(indicatif::ProgressBar);
+
+impl Bar {
+    fn new() -> Bar {
+        Bar(indicatif::ProgressBar::hidden())
+    }
+}
+
+impl Progress for Bar {
+    fn start(&self, inputs: usize) {
+        if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
+            let style = indicatif::ProgressStyle::with_template(
+                "{bar:30} {pos}/{len} files, {elapsed_precise}, {per_sec}",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+            self.0.set_style(style);
+            self.0.set_length(inputs as u64);
+            self.0
+                .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        }
+    }
+
+    fn warning(&self, message: &str) {
+        self.0
+            .suspend(|| eprintln!("inbetween: warning: {}", cli::line(message)));
+    }
+
+    fn finished(&self, record: &Record, told: &Collected) {
+        self.0.suspend(|| {
+            for r in &told.reports {
+                eprintln!("{}", cli::line(r));
+            }
+            for w in &told.warnings {
+                eprintln!("inbetween: warning: {}", cli::line(w));
+            }
+            if let Some(m) = &record.error {
+                eprintln!("inbetween: error: {}", cli::line(m));
+            }
+        });
+        self.0.inc(1);
+    }
+
+    fn summary(&self, line: &str) {
+        self.0.finish_and_clear();
+        eprintln!("inbetween: {line}");
+    }
 }
 
 /// What a command tells, on the command line's standard error: warnings through the limiter
@@ -183,15 +164,15 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
     // `diff --max-angle/--max-position`: the limit a difference exceeds (exit 1, as diff(1)).
     let mut exceeds: Option<String> = None;
     let result = match &cli.command {
-        Command::Convert(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::convert::run, true),
-        Command::Interp(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::interp::run, false),
-        Command::Reduce(a) if cmd::batch::wanted(&a.batch) => batch!(a, cmd::reduce::run, true),
-        Command::Convert(args) => cmd::convert::run(args, stdin, &mut warn),
-        Command::Interp(args) => cmd::interp::run(args, stdin, &mut warn),
-        Command::Analyze(args) => cmd::analyze::run(args, stdin, &mut warn),
-        Command::Plot(args) => cmd::plot::run(args, stdin, &mut warn),
-        Command::Reduce(args) => cmd::reduce::run(args, stdin, &mut warn),
-        Command::Diff(args) => cmd::diff::run(args, stdin, &mut warn).map(|exceeded| {
+        Command::Convert(a) if batch::wanted(&a.batch) => batch!(a, convert::run, true),
+        Command::Interp(a) if batch::wanted(&a.batch) => batch!(a, interp::run, false),
+        Command::Reduce(a) if batch::wanted(&a.batch) => batch!(a, reduce::run, true),
+        Command::Convert(args) => convert::run(args, stdin, &mut warn),
+        Command::Interp(args) => interp::run(args, stdin, &mut warn),
+        Command::Analyze(args) => analyze::run(args, stdin, &mut warn),
+        Command::Plot(args) => plot::run(args, stdin, &mut warn),
+        Command::Reduce(args) => reduce::run(args, stdin, &mut warn),
+        Command::Diff(args) => diff::run(args, stdin, &mut warn).map(|exceeded| {
             exceeds = exceeded;
         }),
     };
@@ -216,35 +197,14 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
                 return 0;
             }
             err(&format!("inbetween: error: {}", flags::error_text(&e)));
-            exit_status(&e)
+            exit_code(&e)
         }
-    }
-}
-
-/// The exit status of an error, by its kind: 2 for bad input or options, 1 for an I/O error or an
-/// internal one (a check of the library's own result that failed: a bug).
-fn exit_status(e: &Error) -> u8 {
-    match e {
-        Error::Input(_) => 2,
-        Error::Io(_) | Error::Internal(_) => 1,
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn exit_statuses_follow_the_error_kinds() {
-        let input = Error::Input(inbetween::InputError::new("bad"));
-        let internal = Error::Internal("internal error: reduce's keys miss a frame".into());
-        let io = Error::Io(std::io::Error::other("disk full"));
-        assert_eq!(
-            [&input, &internal, &io].map(exit_status),
-            [2, 1, 1],
-            "input, internal, I/O"
-        );
-    }
 
     /// An internal error provoked through the library: BVH frames told of a track that is not
     /// the skeleton's next joint refuse it as the writer's own bug (not data in the wrong place),
@@ -261,6 +221,6 @@ mod tests {
             inbetween_io::bvh::frames::BvhFrames::new(Vec::new(), clip.clone(), clip.fps());
         let e: Error = sink.begin_track(Some("b")).unwrap_err().into();
         assert!(e.to_string().starts_with("internal error: track 0"), "{e}");
-        assert_eq!(exit_status(&e), 1);
+        assert_eq!(exit_code(&e), 1);
     }
 }

@@ -25,7 +25,7 @@ fn unix() {
     };
     std::thread::spawn(move || {
         if let Some(sig) = signals.forever().next() {
-            crate::output::remove_temp_files();
+            inbetween_commands::output::remove_temp_files();
             // Restores the default action and raises the signal again: the process ends by it.
             let _ = signal_hook::low_level::emulate_default_handler(sig);
             // Not reached for these signals; in case it is, the conventional exit code.

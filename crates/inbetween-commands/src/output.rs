@@ -258,6 +258,12 @@ fn parent_dir(path: &Path) -> &Path {
     }
 }
 
+/// [`Output::open`] for a command's `-o PATH` (`None` or `-`: standard output), refusing the
+/// files the command reads (`reads`); messages say `-o PATH`.
+pub fn open_output(path: Option<&Path>, reads: &[PathBuf]) -> Result<Output, Error> {
+    Output::open(path, reads, "-o ")
+}
+
 impl Output {
     /// Standard output (`None` or `-`), else the destination for `path` (see the [module
     /// documentation](self)). A directory, a socket, a loop of symbolic links, a missing

@@ -99,6 +99,30 @@ impl Record {
     }
 }
 
+std::thread_local! {
+    static STATS: std::cell::RefCell<Option<Figures>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Records figures of the input being processed on this thread, when it runs as one input of a
+/// batch or of `process_file` ([`crate::batch::run_job`]; else nothing).
+pub fn note(f: impl FnOnce(&mut Figures)) {
+    STATS.with(|s| {
+        if let Some(stats) = s.borrow_mut().as_mut() {
+            f(stats)
+        }
+    });
+}
+
+/// Starts collecting this thread's figures ([`note`]).
+pub(crate) fn collect_figures() {
+    STATS.with(|s| *s.borrow_mut() = Some(Figures::default()));
+}
+
+/// The figures collected on this thread since [`collect_figures`], and stops collecting.
+pub(crate) fn collected_figures() -> Option<Figures> {
+    STATS.with(|s| s.borrow_mut().take())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

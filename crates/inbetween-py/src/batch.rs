@@ -1,13 +1,10 @@
-//! `process_file`: one command of the command line on one file, in-process, as a batch of the
-//! command line runs it (docs/python.md, *Many files*): the same code, so the same bytes, with
-//! the GIL released — for Dask, joblib, Ray or a thread pool mapping it over a folder.
+//! `process_file`: one command on one file, in-process, as a batch of the command line runs it
+//! (docs/python.md, *Many files*): the same request and code (`inbetween_commands::batch`), so
+//! the same bytes and the same record, with the GIL released — for Dask, joblib, Ray or a thread pool mapping it over a folder.
 
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use std::ffi::OsString;
-
-/// The commands that write a file.
-const COMMANDS: [&str; 3] = ["interp", "convert", "reduce"];
+use std::path::PathBuf;
 
 /// Options of a batch of the command line, which one file does not take (`process_file`
 /// names its own input and output).
@@ -15,7 +12,8 @@ const PER_BATCH: [&str; 8] = [
     "out-dir", "jobs", "manifest", "refresh", "follow", "output", "more", "input",
 ];
 
-/// Runs `inbetween <command> <path> -o <out> <options>` and returns its record (the batch
+/// Runs `command` on `path`, writing `out`, as `inbetween <command> <path> -o <out> <options>`
+/// would, and returns its record (the batch
 /// manifest's: input, output, status, seconds, error, warnings). `options` maps a flag's name
 /// (`fps`, `scheme`, `translation_tolerance`; `_` for `-`) to its value: `True` gives the bare
 /// flag, `False` or `None` leaves it out, a list repeats it. An output newer than its input is
@@ -30,33 +28,17 @@ pub fn process_file<'py>(
     options: Option<&Bound<'py, PyDict>>,
     refresh: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if !COMMANDS.contains(&command) {
+    let Some(known) = inbetween_commands::batch::option_names(command) else {
         return Err(crate::input_error(format!(
             "command: expected \"interp\", \"convert\" or \"reduce\", found \"{command}\""
         )));
-    }
-    // Every path a path: a relative one that starts with `-` (`--help`, `-`) is written
-    // `./--help`, so that it is never read as a flag or as standard input.
-    let as_path = |p: &str| -> OsString {
-        if p.starts_with('-') {
-            format!("./{p}").into()
-        } else {
-            p.into()
-        }
     };
-    let mut args: Vec<OsString> = vec![
-        "inbetween".into(),
-        command.into(),
-        as_path(path),
-        "-o".into(),
-        as_path(out),
-    ];
+    let mut pairs: Vec<(String, String)> = Vec::new();
     if let Some(options) = options {
-        let known = inbetween_cli::option_names(command);
         for (k, v) in options.iter() {
             let name: String = k.extract()?;
             let long = name.replace('_', "-");
-            if !known.contains(&long) || PER_BATCH.contains(&long.as_str()) {
+            if !known.contains(&long.as_str()) || PER_BATCH.contains(&long.as_str()) {
                 return Err(pyo3::exceptions::PyTypeError::new_err(format!(
                     "process_file: {} is not an option of {command}{}",
                     crate::shown(&name),
@@ -67,13 +49,12 @@ pub fn process_file<'py>(
                     }
                 )));
             }
-            let flag = format!("--{long}");
             if v.is_none() {
                 continue;
             }
             if let Ok(b) = v.extract::<bool>() {
                 if b {
-                    args.push(flag.into());
+                    pairs.push((long, "true".into()));
                 }
                 continue;
             }
@@ -81,14 +62,18 @@ pub fn process_file<'py>(
                 Ok(list) if !v.is_instance_of::<pyo3::types::PyString>() => list,
                 _ => vec![v],
             };
-            // `--fps=-24`: a value is a value, whatever it starts with.
             for value in values {
-                args.push(format!("{flag}={}", value.str()?).into());
+                pairs.push((long.clone(), value.str()?.to_string()));
             }
         }
     }
-    let (line, code, told) = py.detach(move || inbetween_cli::process_one(args, refresh));
-    // The manifest's line, with the paths as given (`--help`, not the `./--help` it was run as).
+    let (input, output) = (PathBuf::from(path), PathBuf::from(out));
+    let command = command.to_string();
+    let (line, error, told) = py.detach(move || {
+        inbetween_commands::batch::process_one(&command, &input, &output, &pairs, refresh)
+    });
+    let code = error.as_ref().map_or(0, inbetween_commands::exit_code);
+    // The manifest's line, with the paths as given.
     let record = PyDict::new(py);
     if let serde_json::Value::Object(map) = line.to_json() {
         for (k, v) in map {
@@ -103,7 +88,13 @@ pub fn process_file<'py>(
     record.set_item("input", path)?;
     record.set_item("output", out)?;
     record.set_item("exit_code", code)?;
-    record.set_item("warnings", told.warnings)?;
-    record.set_item("reports", told.reports)?;
+    let escaped = |lines: Vec<String>| -> Vec<String> {
+        lines
+            .iter()
+            .map(|l| inbetween_commands::shown::line(l))
+            .collect()
+    };
+    record.set_item("warnings", escaped(told.warnings))?;
+    record.set_item("reports", escaped(told.reports))?;
     Ok(record)
 }

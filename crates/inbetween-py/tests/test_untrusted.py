@@ -77,6 +77,23 @@ def test_unknown_and_batch_options_are_type_errors(tmp_path):
     # A value that starts with "-" is a value: refused as a rate, never read as a flag.
     r = inbetween.process_file(clip, tmp_path / "b.bvh", "interp", fps="-24")
     assert r["status"] == "failed" and "--fps" in r["error"], r
+    assert r["error"].startswith("invalid value '-24' for '--fps': "), r
+
+
+def test_options_that_need_others_are_refused_as_the_command_line_refuses_them(tmp_path):
+    """The command line's parser refuses these before running; a request by keyword meets the
+    same rules in the library (exit 2, nothing written)."""
+    clip = FIXTURES / "bvh/mixed_orders.bvh"
+    out = tmp_path / "k.json"
+    for options, message in [
+        ({}, "reduce needs --tolerance or --position-tolerance"),
+        ({"tolerance": 1, "shell": 2}, "--shell needs --position-tolerance"),
+        ({"tolerance": 1, "joint_tolerance": ["Hips=0.1"]},
+         "--joint-tolerance needs --position-tolerance"),
+    ]:
+        r = inbetween.process_file(clip, out, "reduce", **options)
+        assert (r["status"], r["exit_code"], r["error"]) == ("failed", 2, message), r
+        assert not out.exists()
 
 
 def test_deep_usd_is_an_input_error_in_python(tmp_path):

@@ -1,11 +1,11 @@
 //! Every track reduced under the options the command line gives (tolerances tightened by a
 //! margin where the keys are written rounded), per joint or in world space.
 
-use crate::cli::{MethodArg, ReduceArgs};
-use crate::cmd::settings::Curves;
+use crate::args::{MethodArg, ReduceArgs};
+use crate::events::Events;
+use crate::settings::Curves;
 use inbetween::reduce::{Method, ReduceOptions, Reduced, TrackFrames, reduce_each, reduce_shared};
 use inbetween::{CurveOptions, Error, InputError};
-use inbetween_commands::events::Events;
 
 /// The smallest tolerance `reduce` takes (rad, or D times this with `--distance D`): the
 /// curve's evaluation carries round-off of about 1e-15 rad, so a tolerance near it cannot be

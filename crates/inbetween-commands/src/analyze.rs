@@ -1,11 +1,11 @@
 //! `inbetween analyze`: the smoothness figures of every track under the chosen schemes.
 
 use super::settings::read_curves;
-use crate::cli::{AnalyzeArgs, ReportFormat};
+use crate::args::{AnalyzeArgs, ReportFormat};
+use crate::events::Events;
 use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
-use inbetween_commands::events::Events;
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::io::{Read, Write};
 
@@ -56,7 +56,7 @@ pub fn run(args: &AnalyzeArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
         ReportFormat::Csv => csv_report(&rows, unit),
         ReportFormat::Json => json_report(&rows, unit),
     };
-    let mut out = crate::output::open(args.output.as_deref(), &input.reads)?;
+    let mut out = crate::output::open_output(args.output.as_deref(), &input.reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(())

@@ -3,7 +3,8 @@
 use super::settings::{
     curve_options, output_format, read_curves_in, tcb_flags, tracks_take_translations,
 };
-use crate::cli::{CurveArgs, InterpArgs, SpanArg};
+use crate::args::{CurveArgs, InterpArgs, SpanArg};
+use crate::events::Events;
 use crate::output::{Output, WriteBehind};
 use glam::DQuat;
 use inbetween::bake::{Sampled, bake_sampled};
@@ -11,7 +12,6 @@ use inbetween::error::num;
 use inbetween::{
     BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
 };
-use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
@@ -128,7 +128,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     let rows: u64 = (0..tracks.len())
         .map(|i| fps.frame_count(span(i).0, span(i).1))
         .fold(0, u64::saturating_add);
-    super::batch::note(|s| {
+    crate::record::note(|s| {
         s.frames = Some(rows);
         s.tracks = Some(tracks.len());
     });
@@ -238,7 +238,10 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     };
     let mut reads = input.reads.clone();
     reads.extend(crate::output::files_read([args.skeleton.as_deref()], &[]));
-    let out = WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
+    let out = WriteBehind::new(crate::output::open_output(
+        args.output.output.as_deref(),
+        &reads,
+    )?);
     let mut sink: Box<dyn Sink> = match format {
         OutputFormat::Bvh => {
             let frames = BvhFrames::new(out, skeleton.expect("checked above"), fps);
@@ -480,11 +483,11 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     if joints.is_empty() || rows > args.max_frames {
         return None;
     }
-    super::batch::note(|s| {
+    crate::record::note(|s| {
         s.frames = Some(rows);
         s.tracks = Some(joints.len());
     });
-    let mut missed = inbetween_commands::events::Collected::default();
+    let mut missed = crate::events::Collected::default();
     for &j in &joints {
         near_misses(
             &source,
@@ -511,13 +514,17 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
                     r => r?,
                 };
                 warnings.extend(baked.iter().map(crate::flags::say));
-                let out =
-                    WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
+                let out = WriteBehind::new(crate::output::open_output(
+                    args.output.output.as_deref(),
+                    &reads,
+                )?);
                 frames.write(out, &clip)?.finish()?.commit()?;
             }
             OutputFormat::Doc(doc_format) => {
-                let out =
-                    WriteBehind::new(crate::output::open(args.output.output.as_deref(), &reads)?);
+                let out = WriteBehind::new(crate::output::open_output(
+                    args.output.output.as_deref(),
+                    &reads,
+                )?);
                 let style = super::settings::style(&args.input, &args.output);
                 let w = FrameWriter::new(out, doc_format, style, fps, true, false);
                 let positions = joints

@@ -4,7 +4,8 @@
 //! `--key-fps` standing in for it, numbers its `frame` values; `--fps` sets the output rate,
 //! else the document's, else 30), and the curve options from the command line.
 
-use crate::cli::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
+use crate::args::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
+use crate::events::Events;
 use glam::DVec3;
 use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
@@ -12,7 +13,6 @@ use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
     Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
 };
-use inbetween_commands::events::Events;
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::{Asset, ContainerFormat};
@@ -224,18 +224,18 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
     Ok(doc)
 }
 
-pub(super) use inbetween_commands::pattern::glob;
+pub(super) use crate::pattern::glob;
 
 /// `--span track`, `--velocity`, `--tracks` and `--precision` against what `format` carries
 /// ([`capability::of`]), worded with the flags.
 pub(super) fn check_carries(
-    args: &crate::cli::InterpArgs,
+    args: &crate::args::InterpArgs,
     format: OutputFormat,
 ) -> Result<(), inbetween::Error> {
-    let can = inbetween_commands::capability::of(format);
+    let can = crate::capability::of(format);
     let refusal = if let Some(why) = can
         .no_track_spans
-        .filter(|_| args.span == crate::cli::SpanArg::Track)
+        .filter(|_| args.span == crate::args::SpanArg::Track)
     {
         format!("--span track: {why}; use --span clip")
     } else if let Some(why) = can.no_velocities.filter(|_| args.velocity) {

@@ -3,41 +3,26 @@
 //! in parallel, a JSON Lines manifest appended as each finishes, inputs whose output is newer
 //! skipped unless `--refresh`. A failed input never stops the others.
 
-use crate::cli::BatchArgs;
+use crate::args::BatchArgs;
+use crate::record::{Record, Status};
 use inbetween::{Error, InputError};
-pub use inbetween_commands::record::Figures;
-use inbetween_commands::record::{Record, Status};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use inbetween_commands::events::{Collected, Events};
-use inbetween_commands::inputs;
-pub use inbetween_commands::inputs::Job;
-use inbetween_commands::shown::shown;
+use crate::events::{Collected, Events};
+use crate::inputs;
+pub use crate::inputs::Job;
+use crate::shown::shown;
 
 /// The extensions of the input formats (a folder's other files are failed inputs).
 pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
 
-std::thread_local! {
-    static STATS: std::cell::RefCell<Option<Figures>> = const { std::cell::RefCell::new(None) };
-}
-
-/// Records figures of the input being processed on this thread, when it runs as one input of a
-/// batch or of `process_file` ([`run_job`]; else nothing).
-pub fn note(f: impl FnOnce(&mut Figures)) {
-    STATS.with(|s| {
-        if let Some(stats) = s.borrow_mut().as_mut() {
-            f(stats)
-        }
-    });
-}
-
 /// Runs `one` on `input`, writing `output`, as a batch runs each of its inputs: skipped when
 /// `output` is up to date ([`inputs::up_to_date`]) unless `refresh`, else the output's folder made and the
-/// command run, its figures noted ([`note`]) and what it tells kept in `told`. The record
+/// command run, its figures noted ([`note`](crate::record::note)) and what it tells kept in `told`. The record
 /// (its `error` the error's text as the command line shows it), and the error.
 pub fn run_job(
     input: &Path,
@@ -67,9 +52,9 @@ pub fn run_job(
                 format!("{}: cannot make its folder: {e}", shown(output)),
             ))
         });
-    STATS.with(|s| *s.borrow_mut() = Some(Figures::default()));
+    crate::record::collect_figures();
     let result = made.and_then(|()| inbetween::parallel::serially(|| one(input, output, told)));
-    let figures = STATS.with(|s| s.borrow_mut().take());
+    let figures = crate::record::collected_figures();
     record.seconds = Some((t0.elapsed().as_secs_f64() * 1e3).round() / 1e3);
     match result {
         Ok(()) => record.figures = figures,
@@ -80,6 +65,19 @@ pub fn run_job(
         }
     }
     (record, None)
+}
+
+/// What a batch tells as it goes, from its threads: the front end prints it (the command line's
+/// progress bar and standard error); the library prints nothing.
+pub trait Progress: Sync {
+    /// The inputs are found: `inputs` will run.
+    fn start(&self, inputs: usize);
+    /// A warning about the batch itself (a file passed over).
+    fn warning(&self, message: &str);
+    /// An input finished: its record (its `error` when it failed) and what it told.
+    fn finished(&self, record: &Record, told: &Collected);
+    /// After the last input: how many came to what, and how long it took.
+    fn summary(&self, line: &str);
 }
 
 /// The command on one input: `(input, output, warn)`.
@@ -210,6 +208,7 @@ pub fn run(
     batch: &BatchArgs,
     ext: &(dyn Fn(&Path) -> Result<String, Error> + Sync),
     one: &OneInput<'_>,
+    progress: &dyn Progress,
 ) -> Result<(), Error> {
     let Some(out_dir) = batch.out_dir.as_deref() else {
         return Err(InputError::new(
@@ -262,11 +261,7 @@ pub fn run(
     }
     let manifest = Manifest::open(batch.manifest.as_deref())?;
     for p in &found.passed {
-        eprintln!(
-            "inbetween: warning: {}: {}, skipped",
-            shown(&p.path),
-            p.reason
-        );
+        progress.warning(&format!("{}: {}, skipped", shown(&p.path), p.reason));
         let mut record = Record::new(p.path.display().to_string(), None, Status::Skipped);
         record.reason = Some(p.reason.to_string());
         manifest.write(&record.to_json());
@@ -284,16 +279,7 @@ pub fn run(
         .map(|(i, j)| (std::fs::metadata(&j.input).map_or(0, |m| m.len()), i))
         .collect();
     order.sort_by(|a, b| b.0.cmp(&a.0).then(a.1.cmp(&b.1)));
-    // A progress bar on a terminal (files done of all, elapsed, rate); nothing otherwise.
-    let bar = if std::io::IsTerminal::is_terminal(&std::io::stderr()) {
-        let style = indicatif::ProgressStyle::with_template(
-            "{bar:30} {pos}/{len} files, {elapsed_precise}, {per_sec}",
-        )
-        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
-        indicatif::ProgressBar::new(jobs.len() as u64).with_style(style)
-    } else {
-        indicatif::ProgressBar::hidden()
-    };
+    progress.start(jobs.len());
     let tally = Mutex::new(Tally::default());
     let next = AtomicUsize::new(0);
     let started = Instant::now();
@@ -317,17 +303,7 @@ pub fn run(
             };
             // The error of the run, when it failed; a planned error is the plan's own.
             let error = failed.as_ref().or(planned.as_ref().err());
-            bar.suspend(|| {
-                for r in &told.reports {
-                    eprintln!("{}", crate::cli::line(r));
-                }
-                for w in &told.warnings {
-                    eprintln!("inbetween: warning: {}", crate::cli::line(w));
-                }
-                if let Some(m) = &record.error {
-                    eprintln!("inbetween: error: {}", crate::cli::line(m));
-                }
-            });
+            progress.finished(&record, &told);
             // The line whole, in one write, under the lock a signal waits for.
             if manifest.file.is_some() {
                 crate::output::hold_now();
@@ -335,7 +311,6 @@ pub fn run(
             }
             // The output and its line are both written: a signal may end the process now.
             crate::output::release_commit();
-            bar.inc(1);
             let mut t = tally
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -353,19 +328,17 @@ pub fn run(
             s.spawn(work);
         }
     });
-    bar.finish_and_clear();
     let t = tally
         .into_inner()
         .unwrap_or_else(std::sync::PoisonError::into_inner);
     let skipped = t.skipped + found.passed.len();
     let failed = t.refused + t.unwritten + t.internal;
     let all = jobs.len() + found.passed.len();
-    eprintln!(
-        "inbetween: {all} inputs: {} ok, {skipped} skipped, {failed} failed ({:.2} s, {threads} \
-         jobs)",
+    progress.summary(&format!(
+        "{all} inputs: {} ok, {skipped} skipped, {failed} failed ({:.2} s, {threads} jobs)",
         t.ok,
         started.elapsed().as_secs_f64()
-    );
+    ));
     if let Some(e) = manifest.failure() {
         Err(e)
     } else if t.internal > 0 {
@@ -401,7 +374,7 @@ pub fn wanted(batch: &BatchArgs) -> bool {
 /// keys document's own format otherwise.
 pub fn extension(
     input: &Path,
-    output: &crate::cli::OutputArgs,
+    output: &crate::args::OutputArgs,
     keys: bool,
 ) -> Result<String, Error> {
     use inbetween_io::gltf::ContainerFormat;
@@ -429,4 +402,115 @@ pub fn extension(
         }
     };
     Ok(ext.into())
+}
+
+/// The long names of the options `command` (`interp`, `convert` or `reduce`) takes by keyword
+/// ([`process_one`]); `None` for another command.
+pub fn option_names(command: &str) -> Option<Vec<&'static str>> {
+    use crate::keywords::Keywords;
+    match command {
+        "interp" => Some(crate::args::InterpArgs::names()),
+        "convert" => Some(crate::args::ConvertArgs::names()),
+        "reduce" => Some(crate::args::ReduceArgs::names()),
+        _ => None,
+    }
+}
+
+/// One input of `interp`, `convert` or `reduce` (Python's `process_file`), run as a batch runs
+/// each of its inputs ([`run_job`]): `options` are `(long name, value)` pairs, a repeatable
+/// option repeated, names as [`option_names`] lists them (`_` for `-` accepted). A value an
+/// option refuses is a failed record (`invalid value 'x' for '--fps': …`) and an input error.
+/// Standard input is never read: a path `-` is the file `./-`. Another command is a failed
+/// record too.
+pub fn process_one(
+    command: &str,
+    input: &Path,
+    output: &Path,
+    options: &[(String, String)],
+    refresh: bool,
+) -> (Record, Option<Error>, Collected) {
+    use crate::args::{ConvertArgs, InterpArgs, ReduceArgs};
+    use crate::keywords::Keywords;
+    fn build<K: Keywords + Default>(options: &[(String, String)]) -> Result<K, String> {
+        let mut k = K::default();
+        for (name, text) in options {
+            let name = name.replace('_', "-");
+            match k.set(&name, text) {
+                Ok(true) => {}
+                Ok(false) => return Err(format!("--{name} is not an option of this command")),
+                Err(e) => {
+                    return Err(format!(
+                        "invalid value '{}' for '--{name}': {e}",
+                        crate::shown::printable(text)
+                    ));
+                }
+            }
+        }
+        Ok(k)
+    }
+    /// A request of one of the three commands.
+    enum Request {
+        Convert(ConvertArgs),
+        Interp(InterpArgs),
+        Reduce(ReduceArgs),
+    }
+    let request = match command {
+        "convert" => build(options).map(Request::Convert),
+        "interp" => build(options).map(Request::Interp),
+        "reduce" => build(options).map(Request::Reduce),
+        _ => Err(format!(
+            "command: expected interp, convert or reduce, found \"{}\"",
+            crate::shown::printable(command)
+        )),
+    };
+    let failed = |message: String| {
+        let mut record = Record::new(
+            input.display().to_string(),
+            Some(output.display().to_string()),
+            Status::Failed,
+        );
+        record.seconds = Some(0.0);
+        record.error = Some(message.clone());
+        (
+            record,
+            Some(InputError::new(message).into()),
+            Collected::default(),
+        )
+    };
+    let request = match request {
+        Ok(r) => r,
+        Err(message) => return failed(message),
+    };
+    // Every path a path: `-` is the file of that name, not standard input.
+    let as_path = |p: &Path| -> PathBuf {
+        if p.as_os_str().to_string_lossy().starts_with('-') {
+            Path::new(".").join(p)
+        } else {
+            p.to_path_buf()
+        }
+    };
+    let one = |input: &Path, output: &Path, warn: &mut dyn Events| {
+        let (input, output) = (Some(as_path(input)), Some(as_path(output)));
+        let empty = &mut std::io::empty();
+        match &request {
+            Request::Convert(a) => {
+                let mut a = a.clone();
+                (a.input.input, a.output.output) = (input, output);
+                crate::convert::run(&a, empty, warn)
+            }
+            Request::Interp(a) => {
+                let mut a = a.clone();
+                (a.input.input, a.output.output) = (input, output);
+                crate::interp::run(&a, empty, warn)
+            }
+            Request::Reduce(a) => {
+                let mut a = a.clone();
+                (a.input.input, a.output.output) = (input, output);
+                crate::reduce::run(&a, empty, warn)
+            }
+        }
+    };
+    let mut told = Collected::default();
+    let (record, error) = run_job(input, output, refresh, &one, &mut told);
+    (record, error, told)
 }

@@ -6,12 +6,12 @@
 
 use super::report::{unit, unit_name};
 use super::tracks::{reduce_options, reduce_tracks};
-use crate::cli::{InputArgs, ReduceArgs};
-use crate::cmd::settings::{Curves, read_curves};
+use crate::args::{InputArgs, ReduceArgs};
+use crate::events::Events;
+use crate::settings::{Curves, read_curves};
 use inbetween::reduce::{Reduced, TrackFrames, curve_errors};
 use inbetween::rotation::QuatOrder;
 use inbetween::{Curve, Error, Fps, InputError};
-use inbetween_commands::events::Events;
 use inbetween_io::Format;
 use inbetween_io::write::Style;
 
@@ -118,7 +118,7 @@ fn read_back(
         &args.curve,
         &scheme,
         &mut &bytes[..],
-        &mut inbetween_commands::events::Collected::default(),
+        &mut crate::events::Collected::default(),
     )
     .map_err(|e| match e {
         Error::Input(e) => InputError::new(format!(

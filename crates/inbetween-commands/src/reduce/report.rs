@@ -1,9 +1,9 @@
 //! What `reduce` tells: the `-v` lines, in the unit of the command line, and a batch's figures.
 
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::Curves;
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::Curves;
 use inbetween::reduce::Reduced;
-use inbetween_commands::events::Events;
 
 /// `-v`'s line for each track of `input` reduced to `reduced`.
 pub(super) fn report_all(
@@ -44,7 +44,7 @@ pub(super) fn note_batch<'a>(
     args: &ReduceArgs,
     tracks: impl IntoIterator<Item = (usize, &'a Reduced)>,
 ) {
-    crate::cmd::batch::note(|s| {
+    crate::record::note(|s| {
         let (mut frames, mut count, mut keys, mut largest) = (0u64, 0, 0, 0.0f64);
         for (len, r) in tracks {
             frames += len as u64;

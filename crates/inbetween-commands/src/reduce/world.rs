@@ -2,12 +2,12 @@
 //! and `--shell` point (the library's [`inbetween::reduce::reduce_world`]; docs/spec.md §5a).
 
 use super::report::unit;
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::{Curves, glob};
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::{Curves, glob};
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, WorldReduced, WorldTolerance};
 use inbetween::skeleton::Skeleton;
 use inbetween::{Error, InputError};
-use inbetween_commands::events::Events;
 
 /// The options `--position-tolerance` cannot be given with, and why; an error naming the first
 /// given.

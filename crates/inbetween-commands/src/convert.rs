@@ -1,9 +1,9 @@
 //! `inbetween convert`: keys in, the same keys out in another representation and/or format.
 
 use super::settings::{files_read, key_rate_warning, output_format, rates, read_input};
-use crate::cli::ConvertArgs;
+use crate::args::ConvertArgs;
+use crate::events::Events;
 use inbetween::{Error, InputError};
-use inbetween_commands::events::Events;
 use inbetween_io::clip::Clip;
 use inbetween_io::document::Document;
 use inbetween_io::gltf::document::Mode;
@@ -34,7 +34,7 @@ fn write_bvh(
             .into());
         }
     };
-    let mut out = crate::output::open(args.output.output.as_deref(), reads)?;
+    let mut out = crate::output::open_output(args.output.output.as_deref(), reads)?;
     inbetween_io::bvh::keys::write_keys(&mut out, doc, &skeleton, fps, args.output.euler_mode())?;
     out.commit()?;
     Ok(())
@@ -54,7 +54,7 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
     // Frames of keys that declare no rate, with no --fps, are at the skeleton's Frame Time: the
     // rate the clip they came from was captured at.
     let fps = args.fps.or(template.as_ref().map(|t| t.fps()));
-    super::batch::note(|s| {
+    crate::record::note(|s| {
         let keys: usize = doc.tracks.iter().map(|t| t.keys.len()).sum();
         s.tracks = Some(doc.tracks.len());
         s.frames = Some(keys as u64);
@@ -107,7 +107,7 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
         OutputFormat::Doc(f) => f,
         OutputFormat::Bvh => return write_bvh(args, &doc, template, frame_fps, &reads),
         OutputFormat::Usda => {
-            let mut out = crate::output::open(args.output.output.as_deref(), &reads)?;
+            let mut out = crate::output::open_output(args.output.output.as_deref(), &reads)?;
             inbetween_io::usd::keys::write_keys(&mut out, &doc, frame_fps)?;
             out.commit()?;
             return Ok(());
@@ -150,7 +150,7 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
         warn.warning(&w);
     }
     let style = super::settings::style(&args.input, &args.output);
-    let mut out = crate::output::open(args.output.output.as_deref(), &reads)?;
+    let mut out = crate::output::open_output(args.output.output.as_deref(), &reads)?;
     write_keys(&mut out, &doc, format, style, frame_fps)?;
     out.commit()?;
     Ok(())

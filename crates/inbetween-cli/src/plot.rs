@@ -1,11 +1,11 @@
 //! `inbetween plot`: an SVG chart of one track, schemes side by side.
 
-use super::settings::read_curves;
 use crate::chart::{What, svg};
-use crate::cli::{PlotArgs, WhatArg};
 use inbetween::error::shorten;
 use inbetween::{Error, InputError, Scheme};
+use inbetween_commands::args::{PlotArgs, WhatArg};
 use inbetween_commands::events::Events;
+use inbetween_commands::settings::read_curves;
 use std::io::{Read, Write};
 
 /// Runs `plot`: one track's chart, schemes side by side.
@@ -48,7 +48,7 @@ pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Resu
         Error::Input(e) => Error::Input(e.at(&doc.source)),
         e => e,
     })?;
-    let mut out = crate::output::open(Some(&args.output), &input.reads)?;
+    let mut out = inbetween_commands::output::open_output(Some(&args.output), &input.reads)?;
     out.write_all(text.as_bytes())?;
     out.commit()?;
     Ok(())

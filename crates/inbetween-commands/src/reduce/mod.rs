@@ -9,11 +9,11 @@ mod rounded;
 mod tracks;
 mod world;
 
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::{rates, read_curves_in, tracks_take_translations};
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::{rates, read_curves_in, tracks_take_translations};
 use inbetween::reduce::Reduced;
 use inbetween::{Error, InputError};
-use inbetween_commands::events::Events;
 use inbetween_io::document::Document;
 use inbetween_io::gltf::document::Mode;
 use inbetween_io::write::write_keys;
@@ -23,8 +23,26 @@ use report::report_all;
 use std::io::Read;
 use tracks::{FLOAT32_MARGIN, reduce_tracks};
 
+/// The options a request needs with others (the command line's parser refuses these first; a
+/// request built by keyword meets them here).
+fn needs(args: &ReduceArgs) -> Result<(), Error> {
+    if args.tolerance.is_none() && args.position_tolerance.is_none() {
+        return Err(InputError::new("reduce needs --tolerance or --position-tolerance").into());
+    }
+    let without = |set: bool, name: &str| {
+        if set && args.position_tolerance.is_none() {
+            Err(InputError::new(format!("{name} needs --position-tolerance")).into())
+        } else {
+            Ok(())
+        }
+    };
+    without(args.shell.is_some(), "--shell")?;
+    without(!args.joint_tolerance.is_empty(), "--joint-tolerance")
+}
+
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
 pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    needs(args)?;
     if let Some(done) = bvh::lean(args, warn) {
         return done;
     }

@@ -80,7 +80,7 @@ pub fn joint_order(
 /// USD output's checks (§3, *USD output*): the input's skeleton, and no option USD has no place
 /// for (`--span track`, `--velocity`, `--tracks`, `--precision`).
 pub fn usd_output(
-    args: &crate::cli::InterpArgs,
+    args: &crate::args::InterpArgs,
     doc: &inbetween_io::document::Document,
 ) -> Result<std::sync::Arc<inbetween::skeleton::Skeleton>, inbetween::Error> {
     use inbetween::InputError;

@@ -2,13 +2,13 @@
 //! world space (the library's [`inbetween::diff`]; docs/spec.md §5b).
 
 use super::settings::read_curves;
-use crate::cli::{DiffArgs, ReportFormat};
+use crate::args::{DiffArgs, ReportFormat};
+use crate::events::Events;
 use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
 use inbetween::metrics::{aligned, format_sig};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
 use inbetween::{Curve, CurveOptions, Error, InputError, Scheme, Track};
-use inbetween_commands::events::Events;
 use inbetween_io::gltf::document::{Mode, Sampler};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::collections::HashMap;
@@ -160,7 +160,7 @@ pub fn run(
         ReportFormat::Json => json(&rows, unit),
     };
     let reads = [&a.reads[..], &b.reads[..]].concat();
-    let mut out = crate::output::open(args.output.as_deref(), &reads)?;
+    let mut out = crate::output::open_output(args.output.as_deref(), &reads)?;
     out.write_all(&bytes)?;
     out.commit()?;
     Ok(exceeded(&rows, args, unit))

@@ -1,10 +1,10 @@
 //! `reduce`'s kept keys as the output's document: its format, style and scheme, written.
 
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::output_format;
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::output_format;
 use inbetween::reduce::Reduced;
 use inbetween::{Error, EulerSeq, Fps, InputError, PathMode, Repr, Scheme};
-use inbetween_commands::events::Events;
 use inbetween_io::document::{DocTrack, Document, KeyOrigin};
 use inbetween_io::write::write_keys;
 use inbetween_io::write::{EulerMode, Style};
@@ -102,11 +102,11 @@ pub(super) fn write(
     warn: &mut dyn Events,
 ) -> Result<(), Error> {
     if format == Format::Csv
-        && let Some(w) = crate::cmd::settings::csv_rate_warning(doc, input, skeleton)
+        && let Some(w) = crate::settings::csv_rate_warning(doc, input, skeleton)
     {
         warn.warning(&w);
     }
-    let mut out = crate::output::open(args.output.output.as_deref(), reads)?;
+    let mut out = crate::output::open_output(args.output.output.as_deref(), reads)?;
     if output_format(&args.output, input) == OutputFormat::Usda {
         inbetween_io::usd::keys::write_keys(&mut out, doc, frame_fps)?;
     } else {
@@ -125,7 +125,7 @@ pub(super) fn keys_style(
     tracks: &[inbetween::Track],
     source: &str,
 ) -> Result<Style, Error> {
-    let mut style = crate::cmd::settings::style(&args.input, &args.output);
+    let mut style = crate::settings::style(&args.input, &args.output);
     if path != PathMode::Euler {
         return Ok(style);
     }

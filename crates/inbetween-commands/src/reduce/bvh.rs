@@ -7,11 +7,11 @@
 use super::keys::{kept, keys_format, scheme, write};
 use super::report::report;
 use super::tracks::reduce_options;
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::{curve_options, lean_bvh_clip, lean_bvh_path, tcb_flags};
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::{curve_options, lean_bvh_clip, lean_bvh_path, tcb_flags};
 use inbetween::Error;
 use inbetween::reduce::{Reduced, TrackFrames, reduce_frames};
-use inbetween_commands::events::Events;
 use inbetween_io::bvh::{document::joint_tracks, resample};
 use inbetween_io::document::{DocTrack, Document};
 use inbetween_io::{Format, OutputFormat};
@@ -97,13 +97,13 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
             report(args, name.as_deref(), *len, r, warn);
         }
     }
-    let style = crate::cmd::settings::style(&args.input, &args.output);
+    let style = crate::settings::style(&args.input, &args.output);
     Some(write(
         args,
         &doc,
         (format, style, frame_fps),
         (Format::Bvh, true),
-        &crate::cmd::settings::files_read(&args.input, &[], None),
+        &crate::settings::files_read(&args.input, &[], None),
         warn,
     ))
 }

@@ -5,12 +5,12 @@
 //! glTF plays them (docs/spec.md §5a, glTF output).
 
 use super::tracks::{FLOAT32_MARGIN, reduce_options, reduce_tracks};
-use crate::cli::ReduceArgs;
-use crate::cmd::settings::Curves;
+use crate::args::ReduceArgs;
+use crate::events::Events;
+use crate::settings::Curves;
 use glam::DQuat;
 use inbetween::reduce::{ReduceOptions, Reduced, TrackFrames, reduce_each, rotation_error};
 use inbetween::{Error, InputError, Scheme};
-use inbetween_commands::events::Events;
 use inbetween_io::gltf::document::{GltfClip, Mode};
 use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
 use inbetween_io::gltf::{Asset, ContainerFormat, Interpolation, TranslationChannel, Values};
@@ -48,10 +48,10 @@ pub(super) fn to_gltf(
     }
     let (vector_keys, originals) = vector_keys(args, input, clip, told)?;
     keys.extend(vector_keys);
-    let container = crate::cmd::settings::gltf_container(&args.output, container, clip);
+    let container = crate::settings::gltf_container(&args.output, container, clip);
     let bytes = keys_asset(clip, &keys, container, args.output.folder())?;
     check_written(args, input, clip, &keys, &originals, &bytes)?;
-    let mut out = crate::output::open(args.output.output.as_deref(), &input.reads)?;
+    let mut out = crate::output::open_output(args.output.output.as_deref(), &input.reads)?;
     std::io::Write::write_all(&mut out, &bytes)?;
     out.commit()?;
     Ok(())
