@@ -8,10 +8,9 @@
 
 use crate::input_error;
 use glam::{DQuat, DVec3};
-use inbetween::rotation::quat::rotation_angle_between;
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::{GltfClip, Mode};
-use inbetween_io::gltf::keys::{ChannelKeys, keys_asset};
+use inbetween_io::gltf::keys::{ChannelKeys, keys_asset, read_back};
 use inbetween_io::gltf::{Asset, ContainerFormat, Values};
 use pyo3::prelude::*;
 use std::collections::HashMap;
@@ -20,10 +19,6 @@ use std::path::{Path, PathBuf};
 /// The source asset handed over by the Python layer: its name in messages (the clip's
 /// `source`), the file it was read from (external buffers are beside it) and its bytes.
 pub type SourceAsset = (String, PathBuf, pyo3::pybacked::PyBackedBytes);
-
-/// How far a rotation read back may be from its key: float32 components (about 2.4e-7 rad
-/// at most, reduce's glTF margin is 1e-6 rad).
-const ROTATION_TOL: f64 = 1e-6;
 
 /// The glTF bytes of `doc`'s tracks written into `asset` as `container`, for a file in
 /// `out_dir`: one new `LINEAR` sampler per track (its rotation channel, found by the track's
@@ -85,7 +80,8 @@ pub fn bytes(
     }
     keys.extend(vector_keys);
     let bytes = keys_asset(&read, &keys, container, Some(out_dir)).map_err(located)?;
-    check_written(&read, &keys, &bytes, out_dir)?;
+    // Read back and each channel compared with its keys, as reduce does before writing.
+    read_back(&read, &keys, &bytes, Some(out_dir)).map_err(crate::error)?;
     Ok(bytes)
 }
 
@@ -167,62 +163,4 @@ fn names(clip: &GltfClip) -> String {
         list.push(format!("… ({} in all)", all.len()));
     }
     list.join(", ")
-}
-
-/// The asset as written, read back as any input is (external files from `out_dir`, where it
-/// is written): each channel of `keys` must hold its keys — the times as float32, the values
-/// within float32 precision. A miss is an internal error (a writer bug), nothing is written.
-fn check_written(
-    clip: &GltfClip,
-    keys: &[ChannelKeys],
-    bytes: &[u8],
-    out_dir: &Path,
-) -> PyResult<()> {
-    let internal = |m: String| {
-        pyo3::exceptions::PyRuntimeError::new_err(format!(
-            "internal error: glTF output: {m} (nothing was written)"
-        ))
-    };
-    let back = Asset::from_slice(bytes, clip.asset().source(), Some(out_dir))
-        .and_then(|a| a.animations())
-        .map_err(|e| {
-            internal(format!(
-                "the asset written does not read back: {}",
-                e.message()
-            ))
-        })?;
-    for k in keys {
-        let anim = &back[clip.animations()[k.animation].index()];
-        let label = clip.channel_label(k.animation, k.channel);
-        let f32_times: Vec<f32> = k.times.iter().map(|&t| t as f32).collect();
-        let ok = match &k.values {
-            Values::Rotations(want) => anim
-                .rotations()
-                .iter()
-                .find(|c| c.index() == k.channel)
-                .is_some_and(|c| {
-                    c.times_f32() == f32_times.as_slice()
-                        && c.values().len() == want.len()
-                        && c.values().iter().zip(want).all(|(got, w)| {
-                            rotation_angle_between(got.normalize(), w.normalize()) <= ROTATION_TOL
-                        })
-                }),
-            Values::Vectors(want) => anim
-                .translations()
-                .iter()
-                .find(|c| c.index() == k.channel)
-                .is_some_and(|c| {
-                    c.times_f32() == f32_times.as_slice()
-                        && c.values().len() == want.len()
-                        && c.values().iter().zip(want).all(|(got, w)| {
-                            let w32 = w.as_vec3().as_dvec3();
-                            *got == w32
-                        })
-                }),
-        };
-        if !ok {
-            return Err(internal(format!("{label} does not read back as its keys")));
-        }
-    }
-    Ok(())
 }
