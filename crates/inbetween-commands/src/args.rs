@@ -69,8 +69,10 @@ pub struct ReduceArgs {
     pub position_tolerance: Option<f64>,
 
     /// With --position-tolerance, also keep the three points this far from each joint along its
-    /// own axes within it (so that a twist about a bone counts; ACL's virtual vertices).
-    #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_positive, requires = "position_tolerance"))]
+    /// own axes within it (so that a twist about a bone counts; ACL's virtual vertices). Without
+    /// it, a joint whose rotation moves no point (a leaf bone without an end) gets such points at
+    /// its bone length; 0: no shell and none added.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_non_negative, requires = "position_tolerance"))]
     pub shell: Option<f64>,
 
     /// With --position-tolerance, another limit for the points of the joints the globs name:
@@ -124,6 +126,13 @@ pub struct ReduceArgs {
 }
 
 named! { MethodArg { Greedy = "greedy", Optimal = "optimal" } }
+
+pub(crate) fn parse_non_negative(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("expected a number of at least 0, found \"{s}\"")),
+    }
+}
 
 pub(crate) fn parse_positive(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {

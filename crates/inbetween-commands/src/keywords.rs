@@ -6,8 +6,8 @@
 use crate::args::{
     BlendArg, ConvertArgs, CurveArgs, EndsArg, EulerArg, InputArgs, InterpArgs, MethodArg,
     OutputArgs, PathArg, ReduceArgs, SchemeArg, SpanArg, parse_angles, parse_delimiter,
-    parse_format, parse_fps, parse_output_format, parse_positive, parse_precision,
-    parse_quat_order, parse_repr, parse_snap, parse_unit_interval, parse_vec3,
+    parse_format, parse_fps, parse_non_negative, parse_output_format, parse_positive,
+    parse_precision, parse_quat_order, parse_repr, parse_snap, parse_unit_interval, parse_vec3,
 };
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 
@@ -295,7 +295,7 @@ impl Keywords for ReduceArgs {
         match name {
             "tolerance" => self.tolerance = Some(parse_positive(text)?),
             "position-tolerance" => self.position_tolerance = Some(parse_positive(text)?),
-            "shell" => self.shell = Some(parse_positive(text)?),
+            "shell" => self.shell = Some(parse_non_negative(text)?),
             // Repeatable: each value another rule.
             "joint-tolerance" => self.joint_tolerance.push(text.to_string()),
             "scheme" => self.scheme = Some(SchemeArg::parse(text)?),

@@ -325,6 +325,7 @@ fn sample(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<Sa
     let text = bvh_text(
         &order,
         nodes,
+        (&wanted, &scales),
         &parents,
         &factor,
         &rotations,
@@ -419,6 +420,7 @@ fn bvh_order(order: ufbx::RotationOrder) -> &'static str {
 fn bvh_text(
     order: &[usize],
     nodes: &ufbx::RefList<ufbx::Node>,
+    (wanted, scales): (&[bool], &[f64]),
     parents: &[Option<usize>],
     factor: &[f64],
     rotations: &[Vec<DQuat>],
@@ -484,6 +486,21 @@ fn bvh_text(
             offset,
             spec.trim_end(),
         );
+        // The node's first child that nothing animates and that has no children of its own
+        // (an exporter's `Head_end`): the bone's end, as a BVH End Site, so that the joint's
+        // rotation moves a point.
+        let node = &nodes[order[j]];
+        if let Some(end) = node
+            .children
+            .iter()
+            .find(|c| !wanted[node_index(c)] && c.children.is_empty())
+        {
+            let t = end.local_transform.translation;
+            let e = DVec3::new(t.x, t.y, t.z) * factor[j] * scales[j];
+            if e.is_finite() {
+                let _ = writeln!(text, "End Site\n{{\nOFFSET {} {} {}\n}}", e.x, e.y, e.z);
+            }
+        }
         listed.push(j);
         stack.push((j, depth, true));
         stack.extend(kids[j].iter().rev().map(|&c| (c, depth + 1, false)));

@@ -120,6 +120,55 @@ impl Skeleton {
         Ok(Skeleton { joints, tracks })
     }
 
+    /// The skeleton with end points added where an animated joint's rotation would move no
+    /// point: a joint with no end point of its own and no descendant away from its origin (a
+    /// leaf bone exported without its end, a glTF joint without children). Such a joint gets
+    /// the three points at a bone length `d` along its own x, y and z axes — `d` its own rest
+    /// offset from its parent (its bone's length), else the median length of the skeleton's
+    /// non-zero offsets — so that any rotation of it moves one of them by at least
+    /// `2·d·√⅔·sin(θ/2)`. Returns the skeleton, each joint given points with its `d` (in the
+    /// length units of its parent's frame), and the joints that could not be given any (a
+    /// skeleton whose offsets are all zero).
+    pub fn with_default_ends(&self) -> (Skeleton, Vec<(usize, f64)>, Vec<usize>) {
+        // Whether a point of the joint's subtree lies away from its origin, children first.
+        let mut moves: Vec<bool> = self
+            .joints
+            .iter()
+            .map(|j| j.ends.iter().any(|&e| e != DVec3::ZERO))
+            .collect();
+        for (i, j) in self.joints.iter().enumerate().rev() {
+            if let Some(p) = j.parent {
+                moves[p] |= moves[i] || j.translation != DVec3::ZERO;
+            }
+        }
+        let mut offsets: Vec<f64> = self
+            .joints
+            .iter()
+            .map(|j| j.translation.length())
+            .filter(|&l| l > 0.0)
+            .collect();
+        offsets.sort_by(f64::total_cmp);
+        let median = offsets.get(offsets.len() / 2).copied();
+        let mut out = self.clone();
+        let (mut given, mut unbounded) = (Vec::new(), Vec::new());
+        for (i, j) in out.joints.iter_mut().enumerate() {
+            if j.track.is_none() || moves[i] {
+                continue;
+            }
+            let own = j.translation.length();
+            let Some(d) = Some(own).filter(|&l| l > 0.0).or(median) else {
+                unbounded.push(i);
+                continue;
+            };
+            // In the joint's own frame, whose rest scale stretches it.
+            let local = d / j.scale.abs().max_element().max(f64::MIN_POSITIVE);
+            j.ends
+                .extend([DVec3::X, DVec3::Y, DVec3::Z].map(|axis| axis * local));
+            given.push((i, d));
+        }
+        (out, given, unbounded)
+    }
+
     /// The joints, parents first.
     pub fn joints(&self) -> &[Joint] {
         &self.joints
@@ -327,5 +376,60 @@ mod tests {
         assert!(twice.unwrap_err().to_string().contains("already animates"));
         let nan = Skeleton::new(vec![Joint::new("a", None, DVec3::NAN)]);
         assert!(nan.unwrap_err().to_string().contains("not finite"));
+    }
+
+    #[test]
+    fn joints_that_move_no_point_get_default_ends_at_a_bone_length() {
+        // root -> arm (offset 2 along x) -> hand (offset 1, a leaf without an end);
+        // a second leaf "tip" with its own end site is left alone.
+        let skeleton = Skeleton::new(vec![
+            Joint::new("root", None, DVec3::ZERO).with_track(0),
+            Joint::new("arm", Some(0), DVec3::new(2.0, 0.0, 0.0)).with_track(1),
+            Joint::new("hand", Some(1), DVec3::new(1.0, 0.0, 0.0)).with_track(2),
+            Joint::new("tip", Some(1), DVec3::new(0.0, 3.0, 0.0))
+                .with_track(3)
+                .with_ends(vec![DVec3::Y]),
+            Joint::new("still", Some(0), DVec3::ZERO),
+        ])
+        .unwrap();
+        let (bounded, given, unbounded) = skeleton.with_default_ends();
+        assert_eq!(given, [(2, 1.0)]);
+        assert!(unbounded.is_empty());
+        assert_eq!(
+            bounded.joints()[2].ends,
+            [DVec3::X, DVec3::Y, DVec3::Z],
+            "the hand's bone length along each axis"
+        );
+        assert_eq!(bounded.joints()[3].ends, [DVec3::Y]);
+        // Any rotation of the hand now moves a point: a quarter turn about x moves the y and z
+        // points by √2.
+        let quarter = DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2);
+        let (mut rest, mut turned) = (Vec::new(), Vec::new());
+        bounded.points(|_| (DQuat::IDENTITY, None), None, &mut rest);
+        bounded.points(
+            |t| (if t == 2 { quarter } else { DQuat::IDENTITY }, None),
+            None,
+            &mut turned,
+        );
+        let moved = rest
+            .iter()
+            .zip(&turned)
+            .map(|(a, b)| (*a - *b).length())
+            .fold(0.0, f64::max);
+        assert!((moved - 2f64.sqrt()).abs() < 1e-12, "{moved}");
+        // A root alone at the origin with no offsets anywhere: nothing to derive a length from.
+        let lone =
+            Skeleton::new(vec![Joint::new("only", None, DVec3::ZERO).with_track(0)]).unwrap();
+        let (_, given, unbounded) = lone.with_default_ends();
+        assert!(given.is_empty());
+        assert_eq!(unbounded, [0]);
+        // A leaf at zero offset takes the median offset.
+        let zero = Skeleton::new(vec![
+            Joint::new("root", None, DVec3::ZERO).with_track(0),
+            Joint::new("a", Some(0), DVec3::new(0.0, 4.0, 0.0)),
+            Joint::new("b", Some(1), DVec3::ZERO).with_track(1),
+        ])
+        .unwrap();
+        assert_eq!(zero.with_default_ends().1, [(2, 4.0)]);
     }
 }

@@ -273,3 +273,119 @@ fn what_a_position_tolerance_cannot_be_given_with_is_refused() {
     );
     refused(&["reduce", CMU], "--tolerance");
 }
+
+/// Every bone bounded without `--shell`: CesiumMan's five leaf joints (no children, no end)
+/// get end points at their bone length, which the checker derives on its own
+/// (`--default-ends`, written from the contract) and replays within LEN; with `--shell 0` (no
+/// points added, as before) the same points are 4–18 times LEN off — the leaves were unbounded.
+#[test]
+fn leaf_bones_are_bounded_by_default() {
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let (bounded, opted_out) = (dir.path().join("b.glb"), dir.path().join("o.glb"));
+    let out = bin()
+        .args([
+            "reduce",
+            CESIUM,
+            "--position-tolerance",
+            "0.005",
+            "-v",
+            "-o",
+        ])
+        .arg(&bounded)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let told = String::from_utf8(out.stderr).unwrap();
+    let line = told
+        .lines()
+        .find(|l| l.contains("world: skeleton of 21 joints"))
+        .unwrap_or_else(|| panic!("{told}"));
+    let r = replay(
+        &python,
+        CESIUM,
+        &bounded,
+        &["--limit", "0.005", "--default-ends"],
+    );
+    let given = r["default_ends"].as_object().unwrap();
+    assert_eq!(given.len(), 5, "{r}");
+    for name in given.keys() {
+        assert!(
+            line.contains(&format!("\"{name}\"")),
+            "{name} not in {line}"
+        );
+    }
+    stdout_of(
+        bin()
+            .args([
+                "reduce",
+                CESIUM,
+                "--position-tolerance",
+                "0.005",
+                "--shell",
+                "0",
+                "-o",
+            ])
+            .arg(&opted_out),
+    );
+    let mut args: Vec<&OsStr> = vec![OsStr::new(CESIUM), opted_out.as_os_str()];
+    args.extend(["--limit", "0.005", "--default-ends", "--json"].map(OsStr::new));
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let out = std::process::Command::new(&python)
+        .arg(root.join("fixtures/world/replay_ref.py"))
+        .args(&args)
+        .current_dir(root)
+        .output()
+        .unwrap();
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["within"], false, "{r}");
+    assert!(max_displacement(&r) > 4.0 * 0.005, "{r}");
+}
+
+/// FBX leaf nodes (an exporter's `Bone.006_end`) are kept as End Sites, so the bones above
+/// them are bounded in world space (their budgets were 180°), and BVH written from FBX has
+/// them; the reduced keys replayed by the checker on that BVH stay within LEN.
+#[test]
+fn fbx_end_nodes_are_end_sites_that_bound_their_bones() {
+    let fbx = "fixtures/fbx/real/huesitos.fbx";
+    let bvh = stdout_of(bin().args(["convert", fbx, "--output-format", "bvh"]));
+    assert_eq!(bvh.matches("End Site").count(), 2, "{bvh}");
+    let out = bin()
+        .args([
+            "reduce",
+            fbx,
+            "--position-tolerance",
+            "0.02",
+            "-v",
+            "-o",
+            "-",
+        ])
+        .output()
+        .unwrap();
+    let told = String::from_utf8(out.stderr).unwrap();
+    assert!(out.status.success(), "{told}");
+    assert!(!told.contains("budget 1.800e2"), "{told}");
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let original = dir.path().join("huesitos.bvh");
+    std::fs::write(&original, &bvh).unwrap();
+    let keys = dir.path().join("keys.json");
+    stdout_of(
+        bin()
+            .arg("reduce")
+            .arg(&original)
+            .args(["--position-tolerance", "0.02", "--scheme", "slerp", "-o"])
+            .arg(&keys),
+    );
+    let r = replay(
+        &python,
+        original.to_str().unwrap(),
+        &keys,
+        &["--limit", "0.02"],
+    );
+    assert!(max_displacement(&r) <= 0.02, "{r}");
+}

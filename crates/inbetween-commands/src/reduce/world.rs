@@ -115,9 +115,24 @@ pub(super) fn reduce(
         ))
         .into());
     };
+    // Every bone bounded: without --shell, a joint whose rotation moves no point gets end
+    // points at a bone length (`--shell 0`: none, and nothing added).
+    let shell = args.shell.filter(|&d| d > 0.0);
+    let (bounded, given, unbounded) = if args.shell.is_none() {
+        skeleton.with_default_ends()
+    } else {
+        (skeleton.clone(), Vec::new(), Vec::new())
+    };
+    let skeleton = &bounded;
+    if !unbounded.is_empty() {
+        told.warning(&format!(
+            "{source}: --position-tolerance does not bound the rotation of {}: it moves no              point and the skeleton has no bone length to give it end points (--shell D does)",
+            joint_list(skeleton, &unbounded)
+        ));
+    }
     let world = WorldTolerance {
         limits: limits(args, skeleton)?,
-        shell: args.shell,
+        shell,
         translations,
         shared_keys: args.shared_keys,
         margin,
@@ -128,6 +143,23 @@ pub(super) fn reduce(
             other => other,
         })?;
     if args.verbose {
+        told.report(&format!(
+            "inbetween: reduce: world: skeleton of {} joints, extent {} at the first frame \
+             (length units){}",
+            skeleton.joints().len(),
+            extent(skeleton, frames),
+            if given.is_empty() {
+                String::new()
+            } else {
+                let joints: Vec<usize> = given.iter().map(|g| g.0).collect();
+                format!(
+                    "; end points at a bone length on {} joint{} that moved no point: {}",
+                    given.len(),
+                    if given.len() == 1 { "" } else { "s" },
+                    joint_list(skeleton, &joints)
+                )
+            }
+        ));
         report(args, input, skeleton, &world, &done, told);
     }
     Ok(done.tracks)
@@ -189,4 +221,42 @@ fn report(
             if done.rounds == 1 { "" } else { "s" }
         ));
     }
+}
+
+/// At most 20 joints' names, quoted, and how many more.
+fn joint_list(skeleton: &Skeleton, joints: &[usize]) -> String {
+    let mut names: Vec<String> = joints
+        .iter()
+        .take(20)
+        .map(|&j| {
+            format!(
+                "\"{}\"",
+                inbetween::error::shorten(&skeleton.joints()[j].name)
+            )
+        })
+        .collect();
+    if joints.len() > 20 {
+        names.push(format!("and {} more", joints.len() - 20));
+    }
+    names.join(", ")
+}
+
+/// The size of the first frame's points: `X × Y × Z` of their bounding box.
+fn extent(skeleton: &Skeleton, frames: &[TrackFrames<'_>]) -> String {
+    let first = |t: usize| {
+        let f = &frames[t];
+        (f.rotations[0], f.positions.map(|p| p[0]))
+    };
+    let (mut world, mut points) = (Vec::new(), Vec::new());
+    skeleton.world(first, &mut world);
+    skeleton.points_of(&world, None, &mut points);
+    let (lo, hi) = points.iter().fold(
+        (
+            glam::DVec3::splat(f64::INFINITY),
+            glam::DVec3::splat(f64::NEG_INFINITY),
+        ),
+        |(lo, hi), p| (lo.min(*p), hi.max(*p)),
+    );
+    let size = (hi - lo).max(glam::DVec3::ZERO);
+    format!("{:.4} × {:.4} × {:.4}", size.x, size.y, size.z)
 }
