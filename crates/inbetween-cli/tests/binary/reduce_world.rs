@@ -211,6 +211,17 @@ fn refused(args: &[&str], needle: &str) {
 
 #[test]
 fn what_a_position_tolerance_cannot_be_given_with_is_refused() {
+    // Two animations pose the nodes apart: the message asks for one and lists them.
+    refused(
+        &[
+            "reduce",
+            "fixtures/gltf/real/RiggedSimple.gltf",
+            "--position-tolerance",
+            "0.01",
+        ],
+        "poses one animation at a time, and this asset has 2: choose one with --animation \
+         NAME|INDEX (0, 1)",
+    );
     // A keys document has no skeleton to pose.
     refused(
         &[
@@ -388,4 +399,70 @@ fn fbx_end_nodes_are_end_sites_that_bound_their_bones() {
         &["--limit", "0.02"],
     );
     assert!(max_displacement(&r) <= 0.02, "{r}");
+}
+
+/// The sampler input counts of a GLB's animation 0 (its JSON chunk, read here).
+fn input_counts(glb: &Path) -> Vec<u64> {
+    let bytes = std::fs::read(glb).unwrap();
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let json: Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let anim = &json["animations"][0];
+    anim["samplers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| {
+            json["accessors"][s["input"].as_u64().unwrap() as usize]["count"]
+                .as_u64()
+                .unwrap()
+        })
+        .collect()
+}
+
+/// Channels keyed at their own times (as Blender and three.js export them, and as reduce
+/// writes them): every channel is played as glTF plays it at the union of all channels' times,
+/// where the skeleton is posed; the checker replays both assets at that union (its own rule
+/// for a glTF's frames) and finds every point within LEN.
+#[test]
+fn gltf_channels_with_their_own_key_times_are_reduced_in_world_space() {
+    let dir = tempfile::tempdir().unwrap();
+    let uneven = dir.path().join("uneven.glb");
+    stdout_of(
+        bin()
+            .args([
+                "reduce",
+                CESIUM,
+                "--tolerance",
+                "1",
+                "--scheme",
+                "slerp",
+                "-o",
+            ])
+            .arg(&uneven),
+    );
+    let mut counts = input_counts(&uneven);
+    counts.sort_unstable();
+    counts.dedup();
+    assert!(
+        counts.len() > 3,
+        "the channels' key counts differ: {counts:?}"
+    );
+    let small = dir.path().join("small.glb");
+    stdout_of(
+        bin()
+            .arg("reduce")
+            .arg(&uneven)
+            .args(["--position-tolerance", "0.01", "-o"])
+            .arg(&small),
+    );
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let r = replay(
+        &python,
+        uneven.to_str().unwrap(),
+        &small,
+        &["--limit", "0.01", "--default-ends"],
+    );
+    assert!(max_displacement(&r) > 0.3 * 0.01, "{r}");
 }

@@ -52,7 +52,12 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     // output keeps them.
     let input = read_curves_in(
         (
-            Mode::Frames,
+            // World space poses the skeleton at each time: glTF channels on one set of times.
+            if args.position_tolerance.is_some() {
+                Mode::Posed
+            } else {
+                Mode::Frames
+            },
             !gltf_output || args.position_tolerance.is_some(),
         ),
         &args.input,

@@ -109,6 +109,29 @@ pub(super) fn reduce(
 ) -> Result<Vec<Reduced>, Error> {
     let source = &input.doc.source;
     let Some(skeleton) = input.doc.hierarchy.as_deref() else {
+        if let Some(clip) = input.gltf.as_deref()
+            && clip.animations().len() > 1
+        {
+            let all = clip.animations();
+            let mut labels: Vec<String> = all
+                .iter()
+                .take(20)
+                .map(|a| match a.name() {
+                    Some(name) => format!("{} \"{}\"", a.index(), inbetween::error::shorten(name)),
+                    None => a.index().to_string(),
+                })
+                .collect();
+            if all.len() > 20 {
+                labels.push(format!("and {} more", all.len() - 20));
+            }
+            return Err(InputError::new(format!(
+                "{source}: --position-tolerance poses one animation at a time, and this asset \
+                 has {}: choose one with --animation NAME|INDEX ({})",
+                all.len(),
+                labels.join(", ")
+            ))
+            .into());
+        }
         return Err(InputError::new(format!(
             "{source}: --position-tolerance needs a skeleton to pose (a BVH clip, or a glTF \
              animation of one node tree); this input has none"

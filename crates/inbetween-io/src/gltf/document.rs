@@ -45,6 +45,7 @@ use inbetween::message;
 use inbetween::rotation::Repr;
 use std::collections::HashMap;
 
+mod shared_times;
 mod skeleton;
 
 /// What the tracks are for.
@@ -60,6 +61,10 @@ pub enum Mode {
     Sampled,
     /// The keys as stored (`convert`): `CUBICSPLINE` tangents as per-key angular velocities.
     Keys,
+    /// World-space `reduce`: as [`Mode::Frames`], and where `LINEAR` tracks have different key
+    /// times, every track at the union of them ([`GltfClip::on_shared_times`]), so that the
+    /// skeleton is posed at each.
+    Posed,
 }
 
 /// Where a track of the document comes from.
@@ -392,7 +397,7 @@ impl GltfClip {
             track.name = Some(s.name);
             tracks.push(track);
         }
-        Ok(Document {
+        let doc = Document {
             source: src.to_string(),
             fps: None,
             rotation: Some(Repr::Quat),
@@ -403,7 +408,11 @@ impl GltfClip {
             hierarchy: self.skeleton().map(std::sync::Arc::new),
             unit_meters: Some(1.0),
             z_up: None,
-        })
+        };
+        if mode == Mode::Posed {
+            return self.on_shared_times(doc, fps);
+        }
+        Ok(doc)
     }
 }
 
@@ -415,7 +424,7 @@ fn anim_label(a: &Animation) -> String {
     }
 }
 
-fn new_track(keys: Vec<Key>, origin: KeyOrigin) -> DocTrack {
+pub(super) fn new_track(keys: Vec<Key>, origin: KeyOrigin) -> DocTrack {
     DocTrack {
         name: None,
         keys,
@@ -673,11 +682,14 @@ fn keyed(
         if tr.times_f32() == ch.times_f32() {
             track.translations = tr.values().iter().map(|&p| Some(p)).collect();
         } else {
-            warnings.push(format!(
-                "{label}: translation channel {} has other key times than the rotation; its \
+            // Posed: the track is played again at every channel's times (on_shared_times).
+            if mode != Mode::Posed {
+                warnings.push(format!(
+                    "{label}: translation channel {} has other key times than the rotation; its \
                  curve is sampled at the rotation's keys",
-                tr.index()
-            ));
+                    tr.index()
+                ));
+            }
             let mut snapped_tr = tr.clone();
             snapped_tr.times = snapped_times(tr.times_f32(), fps);
             track.translations = times.iter().map(|&t| Some(snapped_tr.sample(t))).collect();

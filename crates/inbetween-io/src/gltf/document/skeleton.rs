@@ -20,9 +20,11 @@ impl GltfClip {
             return None;
         }
         let doc = self.asset.document();
-        let n = doc.nodes().len();
+        // The nodes by index, once (`nth` walks the iterator: quadratic in nodes).
+        let nodes: Vec<gltf::Node<'_>> = doc.nodes().collect();
+        let n = nodes.len();
         let mut parent: Vec<Option<usize>> = vec![None; n];
-        for node in doc.nodes() {
+        for node in &nodes {
             for child in node.children() {
                 if parent[child.index()].replace(node.index()).is_some() {
                     return None;
@@ -57,7 +59,7 @@ impl GltfClip {
             .collect();
         while let Some(j) = stack.pop() {
             order.push(j);
-            let node = doc.nodes().nth(j)?;
+            let node = &nodes[j];
             let kids: Vec<usize> = node
                 .children()
                 .map(|c| c.index())
@@ -70,7 +72,7 @@ impl GltfClip {
         let joints = order
             .iter()
             .map(|&j| {
-                let node = doc.nodes().nth(j).expect("a node index of the document");
+                let node = &nodes[j];
                 let (t, r, s) = node.transform().decomposed();
                 let name = node
                     .name()
