@@ -169,6 +169,25 @@ impl Skeleton {
         (out, given, unbounded)
     }
 
+    /// The skeleton with a shell of radius `d` in world units: every joint gets the three end
+    /// points `d/σ` along its own x, y and z axes, `σ` the product of the largest rest scale
+    /// factors of the joint and its ancestors — `d` from the joint in world space where those
+    /// scales are uniform (an armature scaled to 0.0254 has its shell in the scene's units, not
+    /// in its bones'), at most `d` otherwise.
+    pub fn with_shell(&self, d: f64) -> Skeleton {
+        let mut out = self.clone();
+        let mut sigma: Vec<f64> = Vec::with_capacity(self.joints.len());
+        for j in &mut out.joints {
+            let own = j.scale.abs().max_element();
+            let s = j.parent.map_or(own, |p| sigma[p] * own);
+            sigma.push(s);
+            let local = d / s.max(f64::MIN_POSITIVE);
+            j.ends
+                .extend([DVec3::X, DVec3::Y, DVec3::Z].map(|axis| axis * local));
+        }
+        out
+    }
+
     /// The joints, parents first.
     pub fn joints(&self) -> &[Joint] {
         &self.joints
@@ -431,5 +450,29 @@ mod tests {
         ])
         .unwrap();
         assert_eq!(zero.with_default_ends().1, [(2, 4.0)]);
+    }
+
+    #[test]
+    fn a_shell_is_in_world_units_under_a_scaled_armature() {
+        // An armature scaled by 0.5 (a unit conversion), a bone below it at local offset 4.
+        let mut armature = Joint::new("armature", None, DVec3::ZERO).with_track(0);
+        armature.scale = DVec3::splat(0.5);
+        let skeleton = Skeleton::new(vec![
+            armature,
+            Joint::new("bone", Some(0), DVec3::new(4.0, 0.0, 0.0)).with_track(1),
+        ])
+        .unwrap();
+        let shelled = skeleton.with_shell(0.1);
+        let mut points = Vec::new();
+        shelled.points(|_| (DQuat::IDENTITY, None), None, &mut points);
+        // bone: origin at 2 (world), its shell points 0.1 from it in world space.
+        let origin = points[4];
+        assert!((origin - DVec3::new(2.0, 0.0, 0.0)).length() < 1e-15);
+        for p in &points[5..8] {
+            assert!(((*p - origin).length() - 0.1).abs() < 1e-15, "{p}");
+        }
+        // The armature's own shell too: 0.1 in world space, 0.2 in its frame.
+        assert!(((points[1] - points[0]).length() - 0.1).abs() < 1e-15);
+        assert_eq!(shelled.joints()[0].ends[0], DVec3::new(0.2, 0.0, 0.0));
     }
 }

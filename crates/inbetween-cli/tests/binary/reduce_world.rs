@@ -466,3 +466,66 @@ fn gltf_channels_with_their_own_key_times_are_reduced_in_world_space() {
     );
     assert!(max_displacement(&r) > 0.3 * 0.01, "{r}");
 }
+
+/// CesiumMan with its armature scaled by `k` (a unit conversion, as an exporter writes one):
+/// the GLB's JSON chunk edited, the binary chunk kept.
+fn scaled_cesium(k: f64, out: &Path) {
+    let bytes =
+        std::fs::read(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join(CESIUM))
+            .unwrap();
+    let len = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+    let mut json: Value = serde_json::from_slice(&bytes[20..20 + len]).unwrap();
+    let armature = json["nodes"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|n| n["name"] == "Armature")
+        .unwrap();
+    let m = armature["matrix"].as_array_mut().unwrap();
+    for (i, v) in m.iter_mut().enumerate().take(12) {
+        if i % 4 != 3 {
+            *v = Value::from(v.as_f64().unwrap() * k);
+        }
+    }
+    let mut text = serde_json::to_vec(&json).unwrap();
+    while text.len() % 4 != 0 {
+        text.push(b' ');
+    }
+    let rest = &bytes[20 + len..];
+    let mut glb = Vec::new();
+    glb.extend_from_slice(&bytes[..8]);
+    glb.extend_from_slice(&((12 + 8 + text.len() + rest.len()) as u32).to_le_bytes());
+    glb.extend_from_slice(&(text.len() as u32).to_le_bytes());
+    glb.extend_from_slice(b"JSON");
+    glb.extend_from_slice(&text);
+    glb.extend_from_slice(rest);
+    std::fs::write(out, glb).unwrap();
+}
+
+/// `--shell D` is in world units, as the tolerance is: under an armature scaled by 0.5 the
+/// shell's points are D from their joints in the scene (the checker's `--world-shell`, its own
+/// σ from the rest scales), and every point stays within LEN.
+#[test]
+fn the_shell_is_in_world_units_under_a_scaled_armature() {
+    let Some(python) = checker_python("world-space replay of reduce") else {
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let scaled = dir.path().join("scaled.glb");
+    scaled_cesium(0.5, &scaled);
+    let small = dir.path().join("small.glb");
+    stdout_of(
+        bin()
+            .arg("reduce")
+            .arg(&scaled)
+            .args(["--position-tolerance", "0.005", "--shell", "0.05", "-o"])
+            .arg(&small),
+    );
+    let r = replay(
+        &python,
+        scaled.to_str().unwrap(),
+        &small,
+        &["--limit", "0.005", "--world-shell", "0.05"],
+    );
+    assert!(max_displacement(&r) > 0.3 * 0.005, "{r}");
+}

@@ -140,11 +140,11 @@ pub(super) fn reduce(
     };
     // Every bone bounded: without --shell, a joint whose rotation moves no point gets end
     // points at a bone length (`--shell 0`: none, and nothing added).
-    let shell = args.shell.filter(|&d| d > 0.0);
-    let (bounded, given, unbounded) = if args.shell.is_none() {
-        skeleton.with_default_ends()
-    } else {
-        (skeleton.clone(), Vec::new(), Vec::new())
+    // --shell D: three points D from every joint in world units, as end points.
+    let (bounded, given, unbounded) = match args.shell {
+        None => skeleton.with_default_ends(),
+        Some(d) if d > 0.0 => (skeleton.with_shell(d), Vec::new(), Vec::new()),
+        Some(_) => (skeleton.clone(), Vec::new(), Vec::new()),
     };
     let skeleton = &bounded;
     if !unbounded.is_empty() {
@@ -155,7 +155,7 @@ pub(super) fn reduce(
     }
     let world = WorldTolerance {
         limits: limits(args, skeleton)?,
-        shell,
+        shell: None,
         translations,
         shared_keys: args.shared_keys,
         margin,
