@@ -156,7 +156,8 @@ pub struct DiffArgs {
     #[cfg_attr(feature = "clap", arg(value_name = "B", index = 2))]
     pub other: PathBuf,
 
-    /// The scheme B is interpolated with at A's frame times (default bezier).
+    /// The scheme B is interpolated with at A's frame times. Default: as B's format plays it
+    /// (glTF samplers as authored, LINEAR by slerp; USD by slerp; others bezier).
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub scheme: Option<SchemeArg>,
 

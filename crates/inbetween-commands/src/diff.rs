@@ -4,11 +4,12 @@
 use super::settings::read_curves;
 use crate::args::{DiffArgs, ReportFormat};
 use crate::events::Events;
+use crate::played::{self, TrackCurve};
 use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
 use inbetween::metrics::{aligned, format_sig};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
-use inbetween::{Curve, CurveOptions, Error, InputError, Scheme, Track};
+use inbetween::{Error, InputError, Track};
 use inbetween_io::gltf::document::{Mode, Sampler};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::collections::HashMap;
@@ -32,7 +33,8 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn Events,
 ) -> Result<Option<String>, Error> {
-    let scheme: Scheme = args.scheme.map_or(Scheme::Bezier, Into::into);
+    // Each side's keys as its format plays them, unless --scheme says how (played::scheme).
+    let scheme = |f| played::scheme(args.scheme, f);
     let a_stdin = args
         .input
         .input
@@ -41,10 +43,10 @@ pub fn run(
     if a_stdin && args.other.as_os_str() == "-" {
         return Err(InputError::new("diff: A and B cannot both be standard input").into());
     }
-    let a = read_curves(&args.input, &args.curve, &|_| scheme, stdin, warn)?;
+    let a = read_curves(&args.input, &args.curve, &scheme, stdin, warn)?;
     let mut b_input = args.input.clone();
     b_input.input = Some(args.other.clone());
-    let b = read_curves(&b_input, &args.curve, &|_| scheme, stdin, warn)?;
+    let b = read_curves(&b_input, &args.curve, &scheme, stdin, warn)?;
     let names = |tracks: &[Track]| -> Vec<String> {
         tracks
             .iter()
@@ -72,11 +74,19 @@ pub fn run(
     if let Some(e) = missing(&a_names, &b_names, sa, sb).or(missing(&b_names, &a_names, sb, sa)) {
         return Err(e.into());
     }
-    let opts = CurveOptions { scheme, ..b.opts };
-    let curves: Vec<Result<Curve, Error>> = inbetween::parallel::map(&b.tracks, |t| {
-        Curve::new(t, &opts).map_err(|e| e.at(&b.doc.source).into())
-    });
-    let curves = curves.into_iter().collect::<Result<Vec<Curve>, Error>>()?;
+    // B as interp plays it: without --scheme, a glTF B's STEP and CUBICSPLINE channels are
+    // their samplers; with --scheme, every track is the curve of its keys under that scheme.
+    let b_sources = match args.scheme {
+        None => played::sources(&b, Mode::Frames),
+        Some(_) => vec![None; b.tracks.len()],
+    };
+    let b_sampled = played::sampled_frames(&b, &b_sources);
+    let indices: Vec<usize> = (0..b.tracks.len()).collect();
+    let curves: Vec<Result<TrackCurve, Error>> =
+        inbetween::parallel::map(&indices, |&i| played::curve(&b, i, &b_sources, &b_sampled));
+    let curves = curves
+        .into_iter()
+        .collect::<Result<Vec<TrackCurve>, Error>>()?;
     // A glTF B's translation channels are played as a player plays them, at A's times: its
     // tracks hold them only sampled at its rotation keys.
     let b_samplers: Vec<Option<Sampler>> = b
@@ -173,7 +183,7 @@ pub fn run(
 fn at_a_times(
     a: &Track,
     b: &Track,
-    curve: &Curve,
+    curve: &TrackCurve,
     sampler: Option<&Sampler>,
     common: bool,
 ) -> (Vec<usize>, Vec<(glam::DQuat, Option<glam::DVec3>)>) {

@@ -6,33 +6,21 @@ use super::settings::{
 use crate::args::{CurveArgs, InterpArgs, SpanArg};
 use crate::events::Events;
 use crate::output::{Output, WriteBehind};
+use crate::played::{self, TrackCurve};
 use glam::DQuat;
 use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
-use inbetween::{
-    BakeOptions, Curve, CurveOptions, Error, FrameSink, InputError, Scheme, bake_over,
-};
+use inbetween::{BakeOptions, Error, FrameSink, InputError, bake_over};
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
 use inbetween_io::bvh::resample;
-use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
+use inbetween_io::gltf::document::Mode;
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::usd::frames::UsdFrames;
 use inbetween_io::usd::write::Stage;
 use inbetween_io::write::{EulerMode, FrameWriter, NpyWriter, NpzShape, NpzWriter};
 use std::io::Read;
-
-/// The curves' scheme: `--scheme`, else each glTF sampler as glTF plays it (`LINEAR` keys by
-/// slerp; `STEP` and `CUBICSPLINE` channels are their samplers whatever the scheme), else bezier.
-fn scheme(args: &InterpArgs, input: Format) -> Scheme {
-    match (args.scheme, input) {
-        (Some(s), _) => s.into(),
-        // glTF's LINEAR and USD's samples play by slerp.
-        (None, Format::Gltf | Format::Usd) => Scheme::Slerp,
-        (None, _) => Scheme::Bezier,
-    }
-}
 
 /// Runs `interp`: every track's curve baked at the output rate into the chosen writer.
 ///
@@ -64,7 +52,10 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         (Mode::Sampled, tracks_take_translations(&args.output)),
         &args.input,
         curve_args,
-        &|f| scheme(args, f),
+        // The curves' scheme: `--scheme`, else the input format's own (each glTF sampler as glTF
+        // plays it, LINEAR keys by slerp; STEP and CUBICSPLINE channels are their samplers
+        // whatever the scheme), else bezier.
+        &|f| played::scheme(args.scheme, f),
         stdin,
         warn,
     )?;
@@ -73,20 +64,8 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     // CUBICSPLINE channel is its sampler's curve, sampled at every frame of its animation's
     // span while it is written (never baked into memory): its span is those frames.
     let gltf = input.gltf.as_deref();
-    let sources: Vec<Option<TrackSource>> = tracks
-        .iter()
-        .map(|t| {
-            gltf.zip(t.name())
-                .and_then(|(g, n)| g.source_of(n, Mode::Sampled))
-        })
-        .collect();
-    let sampled: Vec<Option<(i64, i64)>> = sources
-        .iter()
-        .map(|s| {
-            let s = s.as_ref().filter(|s| s.baked)?;
-            gltf.map(|g| g.sampled_frames(s.index, fps))
-        })
-        .collect();
+    let sources = played::sources(&input, Mode::Sampled);
+    let sampled = played::sampled_frames(&input, &sources);
     let own_span = |i: usize| match sampled[i] {
         Some((a, b)) => (fps.time_of(a), fps.time_of(b)),
         None => tracks[i].span(),
@@ -142,30 +121,9 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     // Input errors found while building a curve (minaccel's grid cap) name the file too.
     // A glTF STEP or CUBICSPLINE channel is its sampler, written as the slerp curve through its
     // samples at the frames, which reproduces them.
-    let baked = CurveOptions {
-        scheme: Scheme::Slerp,
-        ..input.opts
-    };
-    let curves = tracks
-        .iter()
-        .enumerate()
-        .map(|(i, t)| match (gltf, &sources[i], sampled[i]) {
-            (Some(g), Some(s), Some(frames)) => {
-                let sampler = g.sampler(s.index, fps);
-                let check = Sampled {
-                    name: t.name(),
-                    frames,
-                    sample: &|time| sampler.at(time),
-                };
-                check
-                    .check(fps, &baked)
-                    .map_err(|e| Error::Input(e.at(&doc.source)))?;
-                Ok(TrackCurve::Sampled(sampler, frames))
-            }
-            _ => Curve::new(t, &input.opts)
-                .map(TrackCurve::Curve)
-                .map_err(|e| Error::Input(e.at(&doc.source))),
-        })
+    let baked = played::sampled_options(&input.opts);
+    let curves = (0..tracks.len())
+        .map(|i| played::curve(&input, i, &sources, &sampled))
         .collect::<Result<Vec<_>, Error>>()?;
     let bake_opts = BakeOptions {
         velocity: args.velocity,
@@ -286,10 +244,6 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             (Some(g), Some(s)) => gltf_edges(g, s.animation, fps),
             _ => [None, None],
         };
-        let at = |t: f64| match curve {
-            TrackCurve::Curve(c) => c.rotation(t),
-            TrackCurve::Sampled(sampler, _) => sampler.at(t).0,
-        };
         match curve {
             TrackCurve::Curve(curve) => {
                 bake_over(curve, fps, span(i), bake_opts, sink.as_mut(), &mut |m| {
@@ -314,7 +268,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             }
         }
         for t in edges.into_iter().flatten() {
-            sink.edge(t, at(t))?;
+            sink.edge(t, curve.rotation(t))?;
         }
     }
     sink.finish()?;
@@ -501,7 +455,12 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     warnings.extend(missed.warnings);
     let opts = resample::Options {
         fps,
-        curve: curve_options(curve, scheme(args, Format::Bvh), fps, args.input.angles),
+        curve: curve_options(
+            curve,
+            played::scheme(args.scheme, Format::Bvh),
+            fps,
+            args.input.angles,
+        ),
         tcb: tcb_flags(curve),
         threads: 0,
     };
@@ -553,13 +512,6 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
         }
         Err(e) => Some(Err(e)),
     }
-}
-
-/// A track's curve as interp writes it: built from its keys, or a glTF sampler's curve sampled
-/// at its frames (`STEP`, `CUBICSPLINE`).
-enum TrackCurve {
-    Curve(Curve),
-    Sampled(Sampler, (i64, i64)),
 }
 
 /// A frame writer that hands back its output when done.

@@ -21,6 +21,7 @@ pub mod interp;
 pub mod keywords;
 pub mod output;
 pub mod pattern;
+pub mod played;
 pub mod record;
 pub mod reduce;
 pub mod settings;

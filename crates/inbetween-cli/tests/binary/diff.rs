@@ -2,7 +2,7 @@
 //! independent reference (`fixtures/world/world_ref.py`: its own BVH reader and forward
 //! kinematics), the exit status of `--max-angle`/`--max-position`, and refusals.
 
-use crate::support::{bin, checker_python, python_json};
+use crate::support::{bin, checker_python, fixtures, python_json};
 use serde_json::Value;
 use std::path::Path;
 
@@ -344,4 +344,273 @@ fn a_reduced_gltf_asset_is_measured_as_a_player_plays_it() {
         compared += 1;
     }
     assert!(compared > 10 && num(&total["max_world"]) > 1e-3, "{total}");
+}
+
+/// The largest world displacement (`total.max_world`) and the exit status of `diff A B
+/// --max-position LEN --output-format json`, with `more` options.
+fn max_world(a: &str, b: &Path, len: &str, more: &[&str]) -> (f64, Option<i32>) {
+    let out = bin()
+        .arg("diff")
+        .arg(a)
+        .arg(b)
+        .args(["--max-position", len, "--output-format", "json"])
+        .args(more)
+        .output()
+        .unwrap();
+    let report: Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|_| panic!("{}", String::from_utf8_lossy(&out.stderr)));
+    (num(&report["total"]["max_world"]), out.status.code())
+}
+
+/// A glTF asset reduced for slerp (the glTF player's LINEAR) within a world tolerance is
+/// within it as `diff` plays it without `--scheme`: each sampler as glTF plays it, as `interp`
+/// does; replayed by bezier (`--scheme bezier`, diff's default before) it looks further off
+/// than it plays and fails the same `--max-position`.
+#[test]
+fn a_reduced_gltf_asset_is_within_its_tolerance_as_played() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = "fixtures/gltf/real/CesiumMan.glb";
+    let small = dir.path().join("small.glb");
+    bin()
+        .args(["reduce", original, "--scheme", "slerp"])
+        .args(["--position-tolerance", "0.05", "-o"])
+        .arg(&small)
+        .assert()
+        .success();
+    let (played, status) = max_world(original, &small, "0.05", &[]);
+    let (bezier, bezier_status) = max_world(original, &small, "0.05", &["--scheme", "bezier"]);
+    let (slerp, _) = max_world(original, &small, "0.05", &["--scheme", "slerp"]);
+    let figures = format!("as played {played}, by bezier {bezier}");
+    assert_eq!(status, Some(0), "{figures}");
+    assert!(played <= 0.05 && played > 0.04, "{figures}");
+    assert_eq!(played, slerp, "LINEAR samplers play by slerp: {figures}");
+    assert_eq!(bezier_status, Some(1), "{figures}");
+    assert!(bezier > 0.05 && bezier > played, "{figures}");
+}
+
+/// The rotation channels of a `.glb` asset's first animation as stored, read by the test's own
+/// small reader (the JSON chunk, the BIN chunk, float accessors): per channel, its node's name,
+/// its `LINEAR` key times (float32 widened) and its rotations (x, y, z, w), normalised.
+fn glb_rotations(path: &Path) -> Vec<(String, Vec<f64>, Vec<[f64; 4]>)> {
+    let b = std::fs::read(path).unwrap();
+    let word = |i: usize| u32::from_le_bytes(b[i..i + 4].try_into().unwrap()) as usize;
+    assert_eq!(
+        (&b[..4], word(16)),
+        (&b"glTF"[..], 0x4E4F_534A),
+        "GLB, JSON first"
+    );
+    let doc: Value = serde_json::from_slice(&b[20..20 + word(12)]).unwrap();
+    let bin_at = 20 + word(12);
+    assert_eq!(word(bin_at + 4), 0x004E_4942, "the BIN chunk");
+    let bin = &b[bin_at + 8..bin_at + 8 + word(bin_at)];
+    let index = |v: &Value| v.as_u64().unwrap() as usize;
+    let accessor = |i: &Value| -> Vec<Vec<f64>> {
+        let a = &doc["accessors"][index(i)];
+        assert!(
+            a["componentType"] == 5126 && a.get("sparse").is_none(),
+            "{a}"
+        );
+        let width = match a["type"].as_str().unwrap() {
+            "SCALAR" => 1,
+            "VEC4" => 4,
+            t => panic!("{t}"),
+        };
+        let view = &doc["bufferViews"][index(&a["bufferView"])];
+        assert_eq!(view["buffer"], 0);
+        let at = |v: &Value| v.as_u64().unwrap_or(0) as usize;
+        let start = at(&view["byteOffset"]) + at(&a["byteOffset"]);
+        let stride = view["byteStride"]
+            .as_u64()
+            .map_or(4 * width, |s| s as usize);
+        let float = |o: usize| f64::from(f32::from_le_bytes(bin[o..o + 4].try_into().unwrap()));
+        (0..index(&a["count"]))
+            .map(|k| {
+                (0..width)
+                    .map(|c| float(start + k * stride + 4 * c))
+                    .collect()
+            })
+            .collect()
+    };
+    let anim = &doc["animations"][0];
+    let channels = anim["channels"].as_array().unwrap();
+    channels
+        .iter()
+        .filter(|c| c["target"]["path"] == "rotation")
+        .map(|c| {
+            let s = &anim["samplers"][index(&c["sampler"])];
+            assert_eq!(s["interpolation"].as_str().unwrap_or("LINEAR"), "LINEAR");
+            let node = &doc["nodes"][index(&c["target"]["node"])];
+            let times = accessor(&s["input"]).iter().map(|v| v[0]).collect();
+            let values = accessor(&s["output"])
+                .iter()
+                .map(|v| {
+                    let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    [v[0] / n, v[1] / n, v[2] / n, v[3] / n]
+                })
+                .collect();
+            (node["name"].as_str().unwrap().to_string(), times, values)
+        })
+        .collect()
+}
+
+/// glTF 2.0 Appendix C's LINEAR rotation at `t`: slerp between the keys around it, the shorter
+/// way; the end keys hold outside.
+fn play_linear(times: &[f64], values: &[[f64; 4]], t: f64) -> [f64; 4] {
+    let last = times.len() - 1;
+    if t <= times[0] {
+        return values[0];
+    }
+    if t >= times[last] {
+        return values[last];
+    }
+    let k = times.partition_point(|&x| x <= t) - 1;
+    let s = (t - times[k]) / (times[k + 1] - times[k]);
+    let (a, mut b) = (values[k], values[k + 1]);
+    let mut d: f64 = (0..4).map(|i| a[i] * b[i]).sum();
+    if d < 0.0 {
+        b = b.map(|x| -x);
+        d = -d;
+    }
+    let theta = d.min(1.0).acos();
+    let (wa, wb) = if theta < 1e-12 {
+        (1.0 - s, s)
+    } else {
+        (
+            ((1.0 - s) * theta).sin() / theta.sin(),
+            (s * theta).sin() / theta.sin(),
+        )
+    };
+    let q: Vec<f64> = (0..4).map(|i| wa * a[i] + wb * b[i]).collect();
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    [q[0] / n, q[1] / n, q[2] / n, q[3] / n]
+}
+
+/// The angle in degrees of the rotation from `a` to `b` (x, y, z, w): 2·atan2(|v|, |w|) of
+/// a⁻¹·b.
+fn angle_deg(a: [f64; 4], b: [f64; 4]) -> f64 {
+    let [ax, ay, az, aw] = a;
+    let [bx, by, bz, bw] = b;
+    // conj(a) · b
+    let w = aw * bw + ax * bx + ay * by + az * bz;
+    let x = aw * bx - ax * bw - (ay * bz - az * by);
+    let y = aw * by - ay * bw - (az * bx - ax * bz);
+    let z = aw * bz - az * bw - (ax * by - ay * bx);
+    (2.0 * (x * x + y * y + z * z).sqrt().atan2(w.abs())).to_degrees()
+}
+
+/// A float32 key time on its frame of 30 fps when within two float32 ulps of it (docs/spec.md
+/// §3 glTF, *Rate and times*), else as stored.
+fn snapped(t: f64) -> f64 {
+    let frame = (t * 30.0).round() / 30.0;
+    let stored = t as f32;
+    let ulp = f64::from(f32::from_bits(stored.to_bits() + 1) - stored);
+    if (t - frame).abs() <= 2.0 * ulp {
+        frame
+    } else {
+        t
+    }
+}
+
+/// `diff`'s largest angle per track for a glTF B without `--scheme` is the angle to B as the
+/// glTF player plays it, replayed here independently (the test's own GLB reader, Appendix C's
+/// slerp on B's stored times, at A's key times as inbetween reads them), within 1e-6°.
+#[test]
+fn gltf_angles_are_those_of_an_independent_replay() {
+    let dir = tempfile::tempdir().unwrap();
+    let original = "fixtures/gltf/real/CesiumMan.glb";
+    let small = dir.path().join("small.glb");
+    bin()
+        .args(["reduce", original, "--scheme", "slerp"])
+        .args(["--position-tolerance", "0.05", "-o"])
+        .arg(&small)
+        .assert()
+        .success();
+    let ours = json_of(
+        bin()
+            .args(["diff", original])
+            .arg(&small)
+            .args(["--output-format", "json"]),
+    );
+    let a = glb_rotations(&fixtures().join("gltf/real/CesiumMan.glb"));
+    let b = glb_rotations(&small);
+    let tracks = ours["tracks"].as_array().unwrap();
+    assert_eq!(tracks.len(), a.len());
+    let mut largest: f64 = 0.0;
+    for (name, times, keys) in &a {
+        let (_, b_times, b_keys) = b.iter().find(|(n, _, _)| n == name).unwrap();
+        let replayed = times
+            .iter()
+            .zip(keys)
+            .map(|(&t, &q)| angle_deg(q, play_linear(b_times, b_keys, snapped(t))))
+            .fold(0.0, f64::max);
+        let row = tracks.iter().find(|t| t["track"] == name.as_str()).unwrap();
+        let reported = num(&row["max_angle"]);
+        assert!(
+            (reported - replayed).abs() <= 1e-6,
+            "{name}: diff {reported}°, replayed {replayed}°"
+        );
+        largest = largest.max(replayed);
+    }
+    assert!(
+        largest > 1.0,
+        "a reduction that moves something: {largest}°"
+    );
+}
+
+/// glTF `STEP` and `CUBICSPLINE` samplers are played as authored: the asset against itself is
+/// zero (to rounding), and against its own `interp` bake at 240 fps, either way round, within
+/// float32 storage; replayed by bezier through its frames (`--scheme bezier`) the held steps
+/// and the cubic's shape are not what the asset plays.
+#[test]
+fn step_and_cubicspline_samplers_are_played_as_authored() {
+    let dir = tempfile::tempdir().unwrap();
+    let asset = "fixtures/gltf/samplers.gltf";
+    let fine = dir.path().join("fine.glb");
+    bin()
+        .args(["interp", asset, "--fps", "240", "-o"])
+        .arg(&fine)
+        .assert()
+        .success();
+    let diff = |a: &Path, b: &Path, more: &[&str]| {
+        json_of(
+            bin()
+                .arg("diff")
+                .arg(a)
+                .arg(b)
+                .args(["--output-format", "json"])
+                .args(more),
+        )
+    };
+    let asset = Path::new(asset);
+    let itself = diff(asset, asset, &[]);
+    let names: Vec<&str> = itself["tracks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t["track"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"Mixed/step") && names.contains(&"Mixed/cubic"));
+    assert!(num(&itself["total"]["max_angle"]) < 1e-12, "{itself}");
+    assert_eq!(num(&itself["total"]["max_translation"]), 0.0, "{itself}");
+    for (a, b) in [(asset, fine.as_path()), (fine.as_path(), asset)] {
+        let played = diff(a, b, &[]);
+        for t in played["tracks"].as_array().unwrap() {
+            assert!(
+                num(&t["max_angle"]) < 1e-4,
+                "{} {}: {t}",
+                a.display(),
+                b.display()
+            );
+        }
+        assert!(num(&played["total"]["max_translation"]) < 1e-5, "{played}");
+    }
+    // The bake's frames against the asset replayed by bezier through its 30 fps frames.
+    let bezier = diff(&fine, asset, &["--scheme", "bezier"]);
+    let step = bezier["tracks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["track"] == "Mixed/step")
+        .unwrap();
+    assert!(num(&step["max_angle"]) > 1.0, "{step}");
 }
