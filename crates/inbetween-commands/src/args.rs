@@ -169,9 +169,11 @@ pub struct DiffArgs {
     #[cfg_attr(feature = "clap", arg(long))]
     pub common_frames: bool,
 
-    /// With a skeleton, also measure three points this far from each joint along its own axes
-    /// (so that a twist about a bone counts).
-    #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_positive))]
+    /// With a skeleton, also measure three points this far (length units, world space) from
+    /// each joint along its own axes (so that a twist about a bone counts). Without it, a joint
+    /// whose rotation moves no point gets such points at its bone length, as reduce
+    /// --position-tolerance bounds them; 0: neither.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_non_negative))]
     pub shell: Option<f64>,
 
     /// Exit 1 when any angle exceeds this (--angles units).

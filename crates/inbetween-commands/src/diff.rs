@@ -248,12 +248,14 @@ fn world(
         (tr.rotations()[k], tr.translations().map(|p| p[k]))
     };
     let pose_b = |f: usize, t: usize| b_poses[t][f];
+    // The points reduce bounds: default ends, or the shell in world units (crate::points).
+    let (measured, _, _) = crate::points::measured(skeleton, args.shell);
     Ok(Some(world_diff(
-        skeleton,
+        &measured,
         frames.len(),
         &pose_a,
         &pose_b,
-        args.shell,
+        None,
     )))
 }
 

@@ -7,10 +7,10 @@ use crate::args::{CurveArgs, InterpArgs, SpanArg};
 use crate::events::Events;
 use crate::output::{Output, WriteBehind};
 use crate::played::{self, TrackCurve};
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
-use inbetween::{BakeOptions, Error, FrameSink, InputError, bake_over};
+use inbetween::{BakeOptions, Error, Fps, FrameSink, InputError, bake_over};
 use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
@@ -240,8 +240,10 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         let (curve, track) = (&curves[i], &tracks[i]);
         // glTF output: the animation's first and last times, where they are not frames, are
         // sampled too (after the frames), so its first and last poses are kept.
+        // USD output likewise: the clip's first and last times, where they are not frames.
         let edges = match (gltf.filter(|_| to_gltf), &sources[i]) {
             (Some(g), Some(s)) => gltf_edges(g, s.animation, fps),
+            _ if format == OutputFormat::Usda => span_edges(span(i), fps),
             _ => [None, None],
         };
         match curve {
@@ -268,7 +270,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             }
         }
         for t in edges.into_iter().flatten() {
-            sink.edge(t, curve.rotation(t))?;
+            sink.edge(t, curve.rotation(t), curve.position(t))?;
         }
     }
     sink.finish()?;
@@ -514,12 +516,30 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     }
 }
 
+/// An end of the span this close to a frame (s) is not sampled apart from it: a float32 key
+/// time 13 units from 1/24 s (CesiumMan's) is that frame, not a pose of its own.
+const EDGE_GAP: f64 = 1e-6;
+
+/// The ends of `(lo, hi)` that are not frames at `fps` (an end within [`EDGE_GAP`] of a frame is
+/// that frame): the first and last poses, which USD output samples at their fractional time
+/// codes.
+fn span_edges((lo, hi): (f64, f64), fps: Fps) -> [Option<f64>; 2] {
+    let (first, last) = fps.frames_between(lo, hi);
+    if first > last {
+        return [Some(lo), (hi > lo).then_some(hi)];
+    }
+    [
+        (fps.time_of(first) - lo > EDGE_GAP).then_some(lo),
+        (hi - fps.time_of(last) > EDGE_GAP).then_some(hi),
+    ]
+}
+
 /// A frame writer that hands back its output when done.
 trait Sink: FrameSink {
     fn into_output(self: Box<Self>) -> std::io::Result<Output>;
-    /// The current track's rotation at an edge of its glTF animation's span that is not a
-    /// frame ([`gltf_edges`]); only glTF output has such samples.
-    fn edge(&mut self, _time: f64, _q: DQuat) -> std::io::Result<()> {
+    /// The current track's pose at an edge of its span that is not a frame ([`gltf_edges`],
+    /// [`span_edges`]); only glTF and USD output have such samples.
+    fn edge(&mut self, _time: f64, _q: DQuat, _p: Option<DVec3>) -> std::io::Result<()> {
         Err(std::io::Error::other(
             "internal error: an edge sample for output other than glTF",
         ))
@@ -542,7 +562,8 @@ impl Sink for GltfFrames<WriteBehind> {
     fn into_output(self: Box<Self>) -> std::io::Result<Output> {
         self.into_inner()?.finish()
     }
-    fn edge(&mut self, time: f64, q: DQuat) -> std::io::Result<()> {
+    fn edge(&mut self, time: f64, q: DQuat, _p: Option<DVec3>) -> std::io::Result<()> {
+        // Its translations are its translation channels' own samplers.
         GltfFrames::edge(self, time, q)
     }
 }
@@ -550,6 +571,9 @@ impl Sink for GltfFrames<WriteBehind> {
 impl Sink for UsdFrames<WriteBehind> {
     fn into_output(self: Box<Self>) -> std::io::Result<Output> {
         self.into_inner()?.finish()
+    }
+    fn edge(&mut self, time: f64, q: DQuat, p: Option<DVec3>) -> std::io::Result<()> {
+        UsdFrames::edge(self, time, q, p)
     }
 }
 

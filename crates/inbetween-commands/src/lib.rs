@@ -22,6 +22,7 @@ pub mod keywords;
 pub mod output;
 pub mod pattern;
 pub mod played;
+pub mod points;
 pub mod record;
 pub mod reduce;
 pub mod settings;

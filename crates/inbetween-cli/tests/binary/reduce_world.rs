@@ -488,7 +488,7 @@ fn scaled_cesium(k: f64, out: &Path) {
         }
     }
     let mut text = serde_json::to_vec(&json).unwrap();
-    while text.len() % 4 != 0 {
+    while !text.len().is_multiple_of(4) {
         text.push(b' ');
     }
     let rest = &bytes[20 + len..];

@@ -73,8 +73,46 @@ fn usd_core_plays_every_frame_interp_writes() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let (usda, npz) = frames_and_usda(&input, &args, dir.path());
-        usd_core_accepts(&python, &usda, &npz, &[]);
+        // The clip's first and last poses at its own rate: where they are not frames (a 120 fps
+        // clip's last at 29.97), USD samples them too, at their fractional time codes.
+        let own = dir.path().join("own.npz");
+        bin()
+            .arg("interp")
+            .arg(&input)
+            .args(["--to", "quat", "-o"])
+            .arg(&own)
+            .assert()
+            .success();
+        usd_core_accepts(&python, &usda, &npz, &["--ends", own.to_str().unwrap()]);
     }
+}
+
+/// The last pose of a 120 fps clip baked at 29.97 lies between frames: USD keeps it as a
+/// sample at its fractional time code (the clip's end times the rate), as glTF output keeps
+/// it; without it the clip would end a frame early.
+#[test]
+fn usd_output_keeps_the_first_and_last_poses_off_the_frame_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let usda = dir.path().join("clip.usda");
+    bin()
+        .args([
+            "interp",
+            "fixtures/bvh/cmu_01_01.bvh",
+            "--fps",
+            "30000/1001",
+            "-o",
+        ])
+        .arg(&usda)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&usda).unwrap();
+    let end = text
+        .lines()
+        .find_map(|l| l.trim().strip_prefix("endTimeCode = "))
+        .unwrap();
+    // 61 frames at 120 fps end at 0.5 s: time code 0.5 × 30000/1001, not a whole frame.
+    let code: f64 = end.parse().unwrap();
+    assert!((code - 0.5 * 30000.0 / 1001.0).abs() < 1e-9, "{end}");
 }
 
 #[test]

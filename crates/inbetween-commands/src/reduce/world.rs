@@ -141,11 +141,7 @@ pub(super) fn reduce(
     // Every bone bounded: without --shell, a joint whose rotation moves no point gets end
     // points at a bone length (`--shell 0`: none, and nothing added).
     // --shell D: three points D from every joint in world units, as end points.
-    let (bounded, given, unbounded) = match args.shell {
-        None => skeleton.with_default_ends(),
-        Some(d) if d > 0.0 => (skeleton.with_shell(d), Vec::new(), Vec::new()),
-        Some(_) => (skeleton.clone(), Vec::new(), Vec::new()),
-    };
+    let (bounded, given, unbounded) = crate::points::measured(skeleton, args.shell);
     let skeleton = &bounded;
     if !unbounded.is_empty() {
         told.warning(&format!(

@@ -3,7 +3,10 @@
 //! Track `k` animates the joint of the skeleton whose track is `k` (BVH joints with channels,
 //! glTF nodes with channels, FBX nodes). Every track is written over the same frames (the clip's
 //! span: USD samples every joint at every time code); the samples are held in memory and
-//! written at [`FrameSink::finish`].
+//! written at [`FrameSink::finish`]. The span's first and last times, where they are not frames
+//! (a 25 fps clip starting at 0.04 s baked at 30), are sampled too ([`UsdFrames::edge`]) at
+//! their fractional time codes (1.2), so the first and last poses are kept, as glTF output
+//! keeps them.
 
 use super::write::{Stage, TrackSamples, write_usda};
 use glam::{DQuat, DVec3};
@@ -23,6 +26,9 @@ pub struct UsdFrames<W: Write> {
     frames: Vec<i64>,
     tracks: Vec<TrackSamples>,
     current: Option<(TrackSamples, Vec<i64>)>,
+    /// Per track, the times of its samples at the span's edges that are not frames: first,
+    /// last (every track must have the same).
+    edge_times: Vec<[Option<f64>; 2]>,
 }
 
 fn internal(msg: String) -> io::Error {
@@ -43,7 +49,33 @@ impl<W: Write> UsdFrames<W> {
             frames: Vec::new(),
             tracks: Vec::new(),
             current: None,
+            edge_times: Vec::new(),
         }
+    }
+
+    /// The last track's pose at `time` (s), an edge of the clip's span that is not a frame:
+    /// before its frames (the first edge) or after them (the last), given after the track has
+    /// ended. Errors (internal): an edge before any track, or given twice.
+    pub fn edge(&mut self, time: f64, q: DQuat, p: Option<DVec3>) -> io::Result<()> {
+        let (Some(samples), Some(times)) = (self.tracks.last_mut(), self.edge_times.last_mut())
+        else {
+            return Err(internal("an edge before any track".into()));
+        };
+        let first = match self.frames.first() {
+            Some(&k) => time < self.fps.time_of(k),
+            None => times[0].is_none(),
+        };
+        let slot = &mut times[usize::from(!first)];
+        if slot.is_some() || !time.is_finite() {
+            return Err(internal(format!("a second edge at {time} s")));
+        }
+        *slot = Some(time);
+        let at = if first { 0 } else { samples.rotations.len() };
+        samples.rotations.insert(at, q);
+        if let (Some(ps), Some(p)) = (samples.positions.as_mut(), p) {
+            ps.insert(at, p);
+        }
+        Ok(())
     }
 
     /// The output, once finished.
@@ -111,11 +143,23 @@ impl<W: Write> FrameSink for UsdFrames<W> {
             ));
         }
         self.tracks.push(samples);
+        self.edge_times.push([None, None]);
         Ok(())
     }
 
     fn finish(&mut self) -> io::Result<()> {
-        let codes: Vec<f64> = self.frames.iter().map(|&k| k as f64).collect();
+        // Time codes are frame numbers: an edge's is its time times the rate (fractional).
+        let [first, last] = self.edge_times.first().copied().unwrap_or([None, None]);
+        if self.edge_times.iter().any(|t| *t != [first, last]) {
+            return Err(internal("tracks with other edges than track 0".into()));
+        }
+        let code = |t: f64| t * self.fps.as_f64();
+        let codes: Vec<f64> = first
+            .map(code)
+            .into_iter()
+            .chain(self.frames.iter().map(|&k| k as f64))
+            .chain(last.map(code))
+            .collect();
         let out = self
             .out
             .as_mut()
