@@ -49,7 +49,7 @@ pub mod diff;
 pub mod error;
 pub mod metrics;
 pub mod parallel;
-pub mod position;
+mod position;
 pub mod reduce;
 pub mod rotation;
 pub mod skeleton;

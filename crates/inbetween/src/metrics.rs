@@ -108,7 +108,7 @@ pub fn energy_rate(key_times: &[f64], fps: Fps) -> Fps {
 /// Computes the figures of `curve`, sampled at least 8 times per frame interval of `fps`; the
 /// energy is that of its points on the grid of [`energy_rate`] (build a minaccel curve with
 /// that grid rate, as [`measure_each`] does, for its energy to be that of its grid).
-pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
+pub(crate) fn measure(curve: &Curve, fps: Fps) -> Metrics {
     let rate = fps;
     let b = curve.breaks().to_vec();
     let fps = rate.as_f64();
@@ -179,7 +179,7 @@ pub fn measure(curve: &Curve, fps: Fps) -> Metrics {
 }
 
 /// The figures of every track's curve under each of `schemes` (track by track, each track's
-/// schemes in order), measured as [`measure`] measures them (minaccel solved on the grid of
+/// schemes in order), measured as `measure` measures them (minaccel solved on the grid of
 /// [`energy_rate`], whatever the options' grid rate), the tracks shared out among the
 /// machine's cores (at most `MAX_THREADS` (8) threads); a curve that cannot be built is its error in that
 /// place. The same whatever the number of threads.

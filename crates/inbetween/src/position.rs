@@ -19,7 +19,7 @@ use glam::DVec3;
 
 /// A track's position curve (see the module documentation).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Positions {
+pub(crate) struct Positions {
     times: Vec<f64>,
     points: Vec<DVec3>,
     /// Per-second tangents at the keys (`None`: linear).
@@ -31,7 +31,7 @@ pub struct Positions {
 impl Positions {
     /// The curve through `points` at `times` (validated key times, one point per key):
     /// linear, or cubic Hermite with the end rule `ends`.
-    pub fn new(times: &[f64], points: &[DVec3], linear: bool, ends: Ends) -> Positions {
+    pub(crate) fn new(times: &[f64], points: &[DVec3], linear: bool, ends: Ends) -> Positions {
         let n = points.len();
         let tangents = (!linear && n > 1).then(|| {
             let mut m = vec![DVec3::ZERO; n];
@@ -102,7 +102,7 @@ impl Positions {
 
     /// The position at `t` (clamped to the keys' span): finite for finite keys (see the module
     /// documentation).
-    pub fn at(&self, t: f64) -> DVec3 {
+    pub(crate) fn at(&self, t: f64) -> DVec3 {
         let n = self.times.len();
         if n == 1 || t <= self.times[0] {
             return self.points[0];

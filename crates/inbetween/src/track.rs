@@ -312,7 +312,7 @@ impl Track {
     }
 
     /// Gives every key a position (a BVH or glTF translation, in the file's length unit), one per
-    /// key, finite. A curve interpolates them beside the rotations ([`crate::position`]).
+    /// key, finite. A curve interpolates them beside the rotations ([`Curve::position`](crate::Curve::position)).
     pub fn with_translations(mut self, p: Vec<DVec3>) -> Result<Track, TrackError> {
         if p.len() != self.len() {
             return Err(TrackError::KeyCount {

@@ -5,6 +5,7 @@ mod support;
 
 mod analyze;
 mod animator;
+mod api;
 mod app_conventions;
 mod arrays;
 mod batch;

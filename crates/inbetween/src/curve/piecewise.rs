@@ -433,7 +433,9 @@ impl Curve {
     }
 
     /// The position at `t` (clamped to the span) when the track has translations: the
-    /// Euclidean counterpart of the scheme ([`crate::position`]).
+    /// Euclidean counterpart of the scheme (docs/spec.md §4.6) — linear between keys under
+    /// slerp, else the cubic Hermite curve with the scheme's tangent rule and end conditions;
+    /// finite for any finite keys.
     pub fn position(&self, t: f64) -> Option<glam::DVec3> {
         self.positions.as_ref().map(|p| p.at(t))
     }

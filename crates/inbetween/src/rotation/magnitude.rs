@@ -59,7 +59,7 @@ pub fn length<const N: usize>(v: [f64; N]) -> f64 {
 
 /// An angle in `deg` reduced exactly to `(−360, 360)` and converted to radians; an angle in
 /// `rad` returned as it is when its magnitude is at most [`MAX_ANGLE`], else `None`.
-pub fn angle_to_rad(a: f64, unit: super::unit::AngleUnit) -> Option<f64> {
+pub(crate) fn angle_to_rad(a: f64, unit: super::unit::AngleUnit) -> Option<f64> {
     match unit {
         // `%` of finite f64 values is exact (the remainder is representable).
         super::unit::AngleUnit::Deg => Some((a % 360.0).to_radians()),

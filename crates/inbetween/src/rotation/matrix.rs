@@ -42,7 +42,7 @@ pub(crate) fn to_rows(m: &DMat3) -> [[f64; 3]; 3] {
 /// A matrix with entries beyond 1e100 or all below 1e-100 is checked as `s·N` (`s` its largest
 /// entry), so its determinant and `‖RᵀR − I‖` are computed without overflow and reported with
 /// their digits even beyond f64's range (`1e200·I` has `‖RᵀR − I‖ = 1.732e400`).
-pub fn to_quat(rows: [[f64; 3]; 3]) -> InputResult<DQuat> {
+pub(crate) fn to_quat(rows: [[f64; 3]; 3]) -> InputResult<DQuat> {
     let flat = [
         rows[0][0], rows[0][1], rows[0][2], rows[1][0], rows[1][1], rows[1][2], rows[2][0],
         rows[2][1], rows[2][2],

@@ -5,9 +5,9 @@
 //! as they are; every other representation describes the rotation, so the sign does not matter.
 
 pub mod arc;
-pub mod euler;
+mod euler;
 pub mod magnitude;
-pub mod matrix;
+mod matrix;
 pub mod quat;
 pub mod spin;
 mod unit;
