@@ -96,48 +96,13 @@ pub fn stderr_of(cmd: &mut assert_cmd::Command, code: i32) -> String {
     err
 }
 
-/// Angle between two rotations in radians (q and −q are the same rotation).
-pub fn rot_angle(a: DQuat, b: DQuat) -> f64 {
-    inbetween::rotation::quat::rotation_angle_between(a, b)
-}
-
-/// Asserts that two rotations are within `tol` radians, printing both and the angle.
-#[track_caller]
-pub fn assert_rot_close(a: DQuat, b: DQuat, tol: f64, what: &str) {
-    let d = rot_angle(a, b);
-    assert!(
-        d <= tol,
-        "{what}: {a} vs {b}: {d:e} rad apart (tolerance {tol:e})"
-    );
-}
-
-/// Asserts `|a − b| ≤ rel·max(|a|, |b|, 1)`, printing both and the difference.
-#[track_caller]
-pub fn assert_vec_close(a: DVec3, b: DVec3, rel: f64, what: &str) {
-    let d = (a - b).length();
-    let scale = a.length().max(b.length()).max(1.0);
-    assert!(
-        d <= rel * scale,
-        "{what}: {a} vs {b}: |difference| {d:e} (tolerance {:e})",
-        rel * scale
-    );
-}
-
-/// Reads a CSV file with a header into rows of strings keyed by column name.
-pub fn read_table(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
-    let mut rdr = csv::Reader::from_path(path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
-    let headers = rdr.headers().unwrap().clone();
-    rdr.records()
-        .map(|r| {
-            let r = r.unwrap();
-            headers
-                .iter()
-                .zip(r.iter())
-                .map(|(h, v)| (h.to_string(), v.to_string()))
-                .collect()
-        })
-        .collect()
-}
+/// The maths crate's test helpers (angles between rotations, closeness, CSV tables), shared
+/// with its library tests rather than copied.
+#[allow(dead_code, unreachable_pub)]
+#[path = "../../../inbetween/tests/library/support.rs"]
+mod library;
+#[allow(unused_imports)]
+pub use library::{assert_rot_close, assert_vec_close, read_table, rot_angle};
 
 /// One baked frame: number, time, rotation, angular velocity (when asked for).
 pub type Frame = (i64, f64, DQuat, Option<DVec3>);
