@@ -447,6 +447,22 @@ fn gltf_channels_with_their_own_key_times_are_reduced_in_world_space() {
         counts.len() > 3,
         "the channels' key counts differ: {counts:?}"
     );
+    // Read as keys, every translation channel keyed apart from its rotation is one finding:
+    // one warning naming the first channel and counting the others, not one per channel.
+    let out = bin()
+        .arg("reduce")
+        .arg(&uneven)
+        .args(["--tolerance", "1", "--translation-tolerance", "0.01", "-o"])
+        .arg(dir.path().join("keys.json"))
+        .output()
+        .unwrap();
+    let told = String::from_utf8(out.stderr).unwrap();
+    let lines: Vec<&str> = told
+        .lines()
+        .filter(|l| l.contains("has other key times than the rotation"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{told}");
+    assert!(lines[0].contains("(and 18 other channels: "), "{told}");
     let small = dir.path().join("small.glb");
     stdout_of(
         bin()

@@ -34,6 +34,7 @@
 //! - Keys are located in messages by what the file has: `animations[0].channels[2] key 3
 //!   (0.5 s)` ([`KeyOrigin::Gltf`]).
 
+use super::warnings::ChannelWarnings;
 use super::{
     Animation, Asset, Channel, Interpolation, RotationChannel, TranslationChannel, snap_key_time,
 };
@@ -338,8 +339,12 @@ impl GltfClip {
         let mut baked_frames = 0u64;
         // The reader's findings (channels ignored, rotations normalised) come first.
         let mut warnings = self.asset.warnings().to_vec();
+        // The channels' findings, one line per kind (super::warnings).
+        let mut found = ChannelWarnings::default();
         for anim in &self.animations {
-            warnings.extend(anim.warnings().iter().cloned());
+            for (at, w) in anim.warnings() {
+                found.add(at.clone(), w.clone());
+            }
         }
         for i in 0..self.tracks.len() {
             let s = self.source(i, mode);
@@ -370,8 +375,15 @@ impl GltfClip {
                         )
                     })?;
                     if mode == Mode::Sampled {
-                        let mut t =
-                            keyed(ch, translation, fps, mode, &label, &mut Vec::new(), origin);
+                        let mut t = keyed(
+                            ch,
+                            translation,
+                            fps,
+                            mode,
+                            &label,
+                            &mut ChannelWarnings::default(),
+                            origin,
+                        );
                         t.velocities = cubic_velocities(ch, None);
                         t
                     } else {
@@ -392,11 +404,12 @@ impl GltfClip {
                         baked(ch, translation, (first, last), fps, origin)
                     }
                 }
-                _ => keyed(ch, translation, fps, mode, &label, &mut warnings, origin),
+                _ => keyed(ch, translation, fps, mode, &label, &mut found, origin),
             };
             track.name = Some(s.name);
             tracks.push(track);
         }
+        warnings.extend(found.into_lines());
         let doc = Document {
             source: src.to_string(),
             fps: None,
@@ -648,7 +661,7 @@ fn keyed(
     fps: Fps,
     mode: Mode,
     label: &str,
-    warnings: &mut Vec<String>,
+    warnings: &mut ChannelWarnings,
     origin: impl FnOnce(Vec<(usize, f32)>) -> KeyOrigin,
 ) -> DocTrack {
     let times = snapped_times(ch.times_f32(), fps);
@@ -663,19 +676,24 @@ fn keyed(
     let stored = ch.times_f32().iter().copied().enumerate().collect();
     let mut track = new_track(keys, origin(stored));
     if mode == Mode::Keys && ch.interpolation() == Interpolation::Step {
-        warnings.push(format!(
-            "{label}: a STEP sampler's keys are written as keys; interpolating them does not \
-             hold each key as the sampler does (interp bakes the step)"
-        ));
+        warnings.add(
+            label.to_string(),
+            "a STEP sampler's keys are written as keys; interpolating them does not hold each \
+             key as the sampler does (interp bakes the step)"
+                .into(),
+        );
     }
     if mode == Mode::Keys && ch.tangents().is_some() {
         let mut corner = None;
         track.velocities = cubic_velocities(ch, Some(&mut corner));
         if let Some(k) = corner {
-            warnings.push(format!(
-                "{label}: CUBICSPLINE key {k}: the in- and out-tangents give different angular \
-                 velocities (a corner); the key carries the out-tangent's"
-            ));
+            warnings.add(
+                label.to_string(),
+                format!(
+                    "CUBICSPLINE key {k}: the in- and out-tangents give different angular \
+                     velocities (a corner); the key carries the out-tangent's"
+                ),
+            );
         }
     }
     if let Some(tr) = translation {
@@ -684,11 +702,14 @@ fn keyed(
         } else {
             // Posed: the track is played again at every channel's times (on_shared_times).
             if mode != Mode::Posed {
-                warnings.push(format!(
-                    "{label}: translation channel {} has other key times than the rotation; its \
-                 curve is sampled at the rotation's keys",
-                    tr.index()
-                ));
+                warnings.add(
+                    label.to_string(),
+                    format!(
+                        "translation channel {} has other key times than the rotation; its \
+                         curve is sampled at the rotation's keys",
+                        tr.index()
+                    ),
+                );
             }
             let mut snapped_tr = tr.clone();
             snapped_tr.times = snapped_times(tr.times_f32(), fps);

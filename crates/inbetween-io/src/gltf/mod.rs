@@ -44,6 +44,7 @@ pub mod frames;
 mod json;
 pub mod keys;
 mod prune;
+mod warnings;
 mod write;
 
 pub(crate) use channel::snap_key_time;
@@ -92,7 +93,7 @@ pub struct Animation {
     translations: Vec<TranslationChannel>,
     scales: Vec<TranslationChannel>,
     span: Option<(f64, f64)>,
-    warnings: Vec<String>,
+    warnings: Vec<(String, String)>,
 }
 
 impl Animation {
@@ -133,9 +134,10 @@ impl Animation {
         self.span
     }
 
-    /// Findings of reading its channels (rotations whose norm is off 1 and were normalised),
-    /// one message per channel, naming the file, animation, channel, accessor and key.
-    pub fn warnings(&self) -> &[String] {
+    /// Findings of reading its channels (rotations whose norm is off 1 and were normalised,
+    /// keys whose signs flip), one per channel: where (the file, animation and channel) and
+    /// what (the accessor and key).
+    pub fn warnings(&self) -> &[(String, String)] {
         &self.warnings
     }
 }
@@ -342,10 +344,10 @@ impl Asset {
                     let (channel, warning) =
                         self.read_channel(&ch, c, ROTATION_KIND).map_err(at)?;
                     if let Some(w) = warning {
-                        warnings.push(format!("{}: {label}: {w}", self.source));
+                        warnings.push((format!("{}: {label}", self.source), w));
                     }
                     if let Some(w) = channel::sign_flip_warning(&channel) {
-                        warnings.push(format!("{}: {label}: {w}", self.source));
+                        warnings.push((format!("{}: {label}", self.source), w));
                     }
                     rotations.push(channel);
                 }
