@@ -3,7 +3,8 @@
 use super::settings::read_curves;
 use crate::args::{AnalyzeArgs, ReportFormat};
 use crate::events::Events;
-use inbetween::metrics::{FIELDS, Metrics, measure_each, text_table};
+use crate::table::text_table;
+use inbetween::metrics::{FIELDS, Metrics, measure_each};
 use inbetween::rotation::AngleUnit;
 use inbetween::{CurveOptions, Error, Scheme};
 use inbetween_io::num::{NumFormat, NumWriter};

@@ -28,6 +28,7 @@ pub mod reduce;
 pub mod settings;
 pub mod shown;
 pub mod skeleton;
+pub mod table;
 
 use inbetween::Error;
 
