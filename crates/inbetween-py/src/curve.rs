@@ -80,14 +80,18 @@ impl Curve {
 
     /// The rotations at times `t` (N,) with `order=0`, (N, 4) or (N, J, 4) unit quaternions;
     /// `order=1` angular velocity and `order=2` angular acceleration, (N, 3) or (N, J, 3),
-    /// rad/s and rad/s², world frame.
-    #[pyo3(signature = (t, order = None))]
+    /// rad/s and rad/s², in the world frame, or with `frame="body"` in the body's own axes:
+    /// R(q)ᵀ ω and R(q)ᵀ α, where R(q)ᵀ α is also the time derivative of R(q)ᵀ ω (the term
+    /// −R(q)ᵀ (ω × ω) of that derivative is zero).
+    #[pyo3(signature = (t, order = None, frame = None))]
     fn __call__<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArrayDyn<'py, f64>,
         order: Option<Bound<'py, PyAny>>,
+        frame: Option<&str>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let body = options::body_frame(frame)?;
         let order = match order {
             None => 0,
             Some(o) => crate::options::integer("order", &o, (0, 2))?.ok_or_else(|| {
@@ -125,7 +129,7 @@ impl Curve {
                 let data = py.detach(|| {
                     evaluate::<3>(curves, &t, |c, t, out| {
                         for (row, &x) in out.iter_mut().zip(t) {
-                            *row = c.angular_velocity(x).to_array();
+                            *row = in_frame(c, x, c.angular_velocity(x), body);
                         }
                     })
                 });
@@ -136,7 +140,7 @@ impl Curve {
                 let data = py.detach(|| {
                     evaluate::<3>(curves, &t, |c, t, out| {
                         for (row, &x) in out.iter_mut().zip(t) {
-                            *row = c.angular_acceleration(x).to_array();
+                            *row = in_frame(c, x, c.angular_acceleration(x), body);
                         }
                     })
                 });
@@ -175,6 +179,24 @@ impl Curve {
             self.layout.rows
         )
     }
+}
+
+/// A world-frame rate `v` of curve `c` at time `t` as a row: as it is, or with `body` in the
+/// axes of the rotated body, R(q(t))ᵀ v (the inverse rotation of `v`).
+#[inline]
+fn in_frame(c: &inbetween::Curve, t: f64, v: DVec3, body: bool) -> [f64; 3] {
+    if body {
+        body_rate(c.rotation(t), v).to_array()
+    } else {
+        v.to_array()
+    }
+}
+
+/// A world-frame rate `v` in the axes of a body turned by the unit quaternion `q`: R(q)ᵀ v,
+/// that is q⁻¹ v q.
+#[inline]
+pub(crate) fn body_rate(q: glam::DQuat, v: DVec3) -> DVec3 {
+    q.conjugate() * v
 }
 
 /// One track per joint: the keys, with the per-key velocities and TCB where given (a row of NaN

@@ -75,6 +75,8 @@ pub(crate) fn error(e: inbetween::Error) -> PyErr {
 #[pymodule]
 fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", m.py().get_type::<InputError>())?;
+    // The package's version: the crate's, which pyproject.toml repeats.
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;

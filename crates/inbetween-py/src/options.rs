@@ -47,6 +47,19 @@ pub fn path(name: &str) -> PyResult<PathMode> {
     }
 }
 
+/// The frame rates are expressed in: `"world"` (the default, as the library gives them) or
+/// `"body"` (each rate turned into the rotated body's own axes, R(q)ᵀ ω); `true` for body.
+pub fn body_frame(name: Option<&str>) -> PyResult<bool> {
+    match name {
+        None | Some("world") => Ok(false),
+        Some("body") => Ok(true),
+        Some(other) => Err(input_error(format!(
+            "frame: expected \"world\" or \"body\", found {}",
+            crate::shown(other)
+        ))),
+    }
+}
+
 /// An integer argument (a Python or numpy integer, not a bool or a float): `Some` within `lo..=hi`,
 /// `None` for any other integer, however large (the caller names its range); a `TypeError` for
 /// anything else.

@@ -82,6 +82,8 @@ struct Frames {
     rotations: Vec<[f64; 4]>,
     velocities: Vec<[f64; 3]>,
     scalar_first: bool,
+    /// Angular velocities in the body's axes (`frame="body"`), else the world's.
+    body: bool,
 }
 
 impl FrameSink for Frames {
@@ -89,6 +91,11 @@ impl FrameSink for Frames {
     fn frame(&mut self, _k: i64, _t: f64, q: DQuat, omega: Option<DVec3>) -> std::io::Result<()> {
         self.rotations.push(quat_row(q, self.scalar_first));
         if let Some(w) = omega {
+            let w = if self.body {
+                crate::curve::body_rate(q, w)
+            } else {
+                w
+            };
             self.velocities.push(w.to_array());
         }
         Ok(())
@@ -97,11 +104,11 @@ impl FrameSink for Frames {
 
 /// Frames `rotations` (T, 4) or (T, J, 4) at `fps_in` resampled onto `fps_out`: (M, 4) or
 /// (M, J, 4), M = ⌊(T − 1)/fps_in · fps_out⌋ + 1 frames; with `velocity`, also the angular
-/// velocities (M, 3) or (M, J, 3), rad/s, world frame.
+/// velocities (M, 3) or (M, J, 3), rad/s, world frame (`frame="body"`: the body's axes).
 #[pyfunction]
 #[pyo3(signature = (
     rotations, fps_in, fps_out, *, scheme = "bezier", ends = "chord", path = "shortest",
-    scalar_first = true, velocity = false
+    scalar_first = true, velocity = false, frame = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn resample<'py>(
@@ -114,7 +121,9 @@ pub fn resample<'py>(
     path: &str,
     scalar_first: bool,
     velocity: bool,
+    frame: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let body = options::body_frame(frame)?;
     let (fps_in, fps_out) = (
         options::rate("fps_in", &fps_in)?,
         options::rate("fps_out", &fps_out)?,
@@ -161,6 +170,7 @@ pub fn resample<'py>(
                 rotations: Vec::with_capacity(frames),
                 velocities: Vec::with_capacity(if velocity { frames } else { 0 }),
                 scalar_first,
+                body,
             };
             inbetween::bake(c, fps_out, bake, &mut sink, &mut |_| {}).map(|()| sink)
         })

@@ -67,9 +67,9 @@ def test_shapes_orders_and_conventions():
     last = inbetween.Curve(times, q[:, [1, 2, 3, 0]], scalar_first=False)
     t = np.linspace(0, times[-1], 50)
     assert np.array_equal(last(t), c(t)[:, [1, 2, 3, 0]])
-    # A scipy Rotation is its quaternions.
+    # A scipy Rotation is its quaternions, and gives a Rotation back (tests/test_frames.py).
     rot = inbetween.Curve(times, Rotation.from_quat(q, scalar_first=True))
-    assert np.max(angle(rot(t), c(t))) < 1e-15
+    assert np.max(angle(rot(t).as_quat(scalar_first=True), c(t))) < 1e-15
 
 
 def test_angular_velocity_of_a_constant_spin():

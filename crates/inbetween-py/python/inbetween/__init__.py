@@ -21,8 +21,11 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Clip", "Curve", "InputError", "Reduction", "frame_times", "process_file", "read",
-           "reduce", "resample", "write"]
+__all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times",
+           "process_file", "read", "reduce", "resample", "write"]
+
+#: The package's version (the Rust crate's, which pyproject.toml repeats).
+__version__: str = _inbetween.__version__
 
 Rate = Union[int, float, str, Any]
 
@@ -43,9 +46,14 @@ def _optional(x: Any, name: str) -> Optional[np.ndarray]:
     return None if x is None else _array(x, name)
 
 
+def _is_rotation(x: Any) -> bool:
+    """Whether ``x`` is a scipy ``Rotation`` (or anything with its ``as_quat`` and ``apply``)."""
+    return hasattr(x, "as_quat") and hasattr(x, "apply")
+
+
 def _rotations(x: Any, scalar_first: bool) -> np.ndarray:
     """Quaternion rows in the caller's order; a scipy ``Rotation`` is turned into them."""
-    if hasattr(x, "as_quat") and hasattr(x, "apply"):  # scipy.spatial.transform.Rotation
+    if _is_rotation(x):  # scipy.spatial.transform.Rotation
         q = np.asarray(x.as_quat(), dtype=np.float64)  # scalar last
         if q.ndim == 1:
             q = q[np.newaxis]
@@ -53,6 +61,27 @@ def _rotations(x: Any, scalar_first: bool) -> np.ndarray:
             q = q[..., [3, 0, 1, 2]]
         return np.ascontiguousarray(q)
     return _array(x, "rotations")
+
+
+def _check_frame(frame: Any) -> str:
+    """``frame`` as given, once it is ``"world"`` or ``"body"`` (else an ``InputError``)."""
+    if not isinstance(frame, str):
+        raise TypeError(f"frame: expected \"world\" or \"body\", found {type(frame).__name__}")
+    if frame not in ("world", "body"):
+        raise InputError(f"frame: expected \"world\" or \"body\", found {frame!r}")
+    return frame
+
+
+def _as_order(q: np.ndarray, have: bool, want: bool) -> np.ndarray:
+    """Quaternion rows ``q`` (scalar first when ``have``) with the scalar first when ``want``."""
+    if have == want:
+        return q
+    return np.ascontiguousarray(q[..., [1, 2, 3, 0]] if have else q[..., [3, 0, 1, 2]])
+
+
+def _to_rotation(cls: Any, q: np.ndarray, have: bool) -> Any:
+    """Quaternion rows ``q`` (scalar first when ``have``) as a ``cls`` (scipy ``Rotation``)."""
+    return cls.from_quat(_as_order(q, have, False))
 
 
 class Curve:
@@ -64,10 +93,11 @@ class Curve:
     of NaN: none at that key); ``tcb`` the same shape, each key's tension, continuity, bias;
     ``start_velocity`` / ``end_velocity`` (3,) or (J, 3); ``ends`` ``"chord"``, ``"rest"`` or
     ``"cyclic"``; ``path`` ``"shortest"`` or ``"as-given"``; ``grid_rate`` minaccel's grid
-    (points per second, default 30).
+    (points per second, default 30). Keys given as a scipy ``Rotation`` give ``Rotation``
+    objects back (``order=0``); arrays give arrays in their own quaternion order.
     """
 
-    __slots__ = ("_curve",)
+    __slots__ = ("_curve", "_scalar_first", "_rotation_type")
 
     def __init__(
         self,
@@ -84,6 +114,8 @@ class Curve:
         scalar_first: bool = True,
         grid_rate: Optional[Rate] = None,
     ) -> None:
+        self._scalar_first = bool(scalar_first)
+        self._rotation_type = type(rotations) if _is_rotation(rotations) else None
         self._curve = _inbetween.Curve(
             _array(times, "times"),
             _rotations(rotations, scalar_first),
@@ -98,14 +130,29 @@ class Curve:
             grid_rate=grid_rate,
         )
 
-    def __call__(self, t: Any, order: int = 0) -> np.ndarray:
+    def __call__(self, t: Any, order: int = 0, *, frame: str = "world",
+                 scalar_first: Optional[bool] = None) -> Any:
         """Rotations at ``t`` (a number or (N,) seconds): (N, 4) or (N, J, 4) unit
         quaternions for ``order=0``; angular velocity (``order=1``, rad/s) or acceleration
-        (``order=2``, rad/s²), (N, 3) or (N, J, 3), world frame. A number gives one row."""
+        (``order=2``, rad/s²), (N, 3) or (N, J, 3). A number gives one row.
+
+        ``frame="world"`` (the default): rates in the fixed axes the rotations are expressed
+        in; ``frame="body"``: in the rotated body's own axes, R(q)ᵀ ω and R(q)ᵀ α (scipy's
+        ``RotationSpline(t, 1)`` and ``(t, 2)`` convention; R(q)ᵀ α is the time derivative of
+        R(q)ᵀ ω). Rotations come back as the keys came in: a scipy ``Rotation`` for keys given
+        as one, else arrays in the keys' order (``scalar_first`` of the constructor);
+        ``scalar_first=True`` or ``False`` here asks for arrays in that order instead."""
+        frame = _check_frame(frame)
         a = _array(t, "t")
-        if a.ndim == 0:
-            return self._curve(a.reshape(1), order)[0]
-        return self._curve(a, order)
+        one = a.ndim == 0
+        out = self._curve(a.reshape(1) if one else a, order, frame)
+        if out.shape[-1] == 4:
+            if scalar_first is None and self._rotation_type is not None:
+                r = _to_rotation(self._rotation_type, out, self._scalar_first)
+                return r[0] if one else r
+            if scalar_first is not None:
+                out = _as_order(out, self._scalar_first, bool(scalar_first))
+        return out[0] if one else out
 
     @property
     def span(self) -> Tuple[float, float]:
@@ -136,13 +183,16 @@ def resample(
     path: str = "shortest",
     scalar_first: bool = True,
     velocity: bool = False,
-) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]:
+    frame: str = "world",
+) -> Any:
     """Frames ``rotations`` (T, 4) or (T, J, 4) at ``fps_in`` onto the exact grid of
     ``fps_out``: (M, 4) or (M, J, 4) with M = ⌊(T − 1)/fps_in · fps_out⌋ + 1, at the times
     ``frame_times(T, fps_in, fps_out)``, as ``inbetween interp --fps`` writes them (every input
-    frame a key). With ``velocity``, a pair: the rotations and the angular velocities (M, 3)
-    or (M, J, 3), rad/s, world frame."""
-    return _inbetween.resample(
+    frame a key); a scipy ``Rotation`` of T frames gives a ``Rotation`` of M. With
+    ``velocity``, a pair: the rotations and the angular velocities (M, 3) or (M, J, 3), rad/s,
+    in the world frame, or with ``frame="body"`` in the body's own axes (R(q)ᵀ ω)."""
+    frame = _check_frame(frame)
+    out = _inbetween.resample(
         _rotations(rotations, scalar_first),
         fps_in,
         fps_out,
@@ -151,7 +201,13 @@ def resample(
         path=path,
         scalar_first=scalar_first,
         velocity=velocity,
+        frame=frame,
     )
+    if not _is_rotation(rotations):
+        return out
+    if velocity:
+        return _to_rotation(type(rotations), out[0], scalar_first), out[1]
+    return _to_rotation(type(rotations), out, scalar_first)
 
 
 def frame_times(n: int, fps_in: Rate, fps_out: Rate) -> np.ndarray:

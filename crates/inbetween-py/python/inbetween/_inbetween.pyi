@@ -4,6 +4,8 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
+__version__: str
+
 class InputError(ValueError): ...
 
 class Curve:
@@ -22,7 +24,7 @@ class Curve:
         scalar_first: bool = ...,
         grid_rate: Any = ...,
     ) -> None: ...
-    def __call__(self, t: np.ndarray, order: int = ...) -> np.ndarray: ...
+    def __call__(self, t: np.ndarray, order: int = ..., frame: Optional[str] = ...) -> np.ndarray: ...
     @property
     def span(self) -> Tuple[float, float]: ...
     @property
@@ -40,6 +42,7 @@ def resample(
     path: str = ...,
     scalar_first: bool = ...,
     velocity: bool = ...,
+    frame: Optional[str] = ...,
 ) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]: ...
 def frame_times(n: int, fps_in: Any, fps_out: Any) -> np.ndarray: ...
 def reduce(
