@@ -47,6 +47,7 @@ pub fn colour(s: Scheme) -> RGBColor {
         Scheme::Squad => RGBColor(0xE6, 0x9F, 0x00),
         Scheme::Bezier => RGBColor(0x00, 0x9E, 0x73),
         Scheme::Slerp => RGBColor(0x99, 0x99, 0x99),
+        Scheme::Nlerp => RGBColor(0xCC, 0x79, 0xA7),
         Scheme::MinAccel => RGBColor(0xD5, 0x5E, 0x00),
     }
 }
@@ -61,7 +62,7 @@ fn velocity_samples(curve: &Curve) -> Vec<(f64, DVec3)> {
         return vec![(t - 0.5, DVec3::ZERO), (t + 0.5, DVec3::ZERO)];
     }
     match curve.scheme() {
-        Scheme::Hermite | Scheme::Squad | Scheme::Bezier | Scheme::Slerp => {
+        Scheme::Hermite | Scheme::Squad | Scheme::Bezier | Scheme::Slerp | Scheme::Nlerp => {
             for i in 0..key_times.len() - 1 {
                 let (t0, t1) = (key_times[i], key_times[i + 1]);
                 for j in 0..=SAMPLES {

@@ -84,7 +84,9 @@ pub struct ReduceArgs {
     pub joint_tolerance: Vec<String>,
 
     /// The scheme the keys are for (interp's --scheme; use the same with interp). Default
-    /// bezier; slerp for glTF output, whose LINEAR samplers play by slerp.
+    /// bezier; slerp for glTF output, whose LINEAR samplers play by slerp. nlerp (normalised
+    /// lerp of the keys' components) is how Blender plays LINEAR quaternion keys, and how
+    /// ozz-animation and many engines play theirs: reduce for the player that plays the keys.
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub scheme: Option<SchemeArg>,
 
@@ -396,9 +398,10 @@ pub struct InterpArgs {
     #[cfg_attr(feature = "clap", command(flatten))]
     pub batch: BatchArgs,
 
-    /// Interpolation scheme (bezier: third order, C¹, local; see docs/schemes.md). Default
-    /// bezier; for glTF input, each sampler as glTF plays it (LINEAR by slerp), and a scheme
-    /// given re-interpolates the LINEAR keys.
+    /// Interpolation scheme (bezier: third order, C¹, local; nlerp: how Blender plays LINEAR
+    /// quaternion keys, and ozz-animation and many engines theirs; see docs/schemes.md).
+    /// Default bezier; for glTF input, each sampler as glTF plays it (LINEAR by slerp), and a
+    /// scheme given re-interpolates the LINEAR keys.
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
     pub scheme: Option<SchemeArg>,
 
@@ -574,11 +577,11 @@ impl SchemeList {
         let mut out = Vec::new();
         for name in s.split(',').map(str::trim) {
             let v = SchemeArg::parse(name).map_err(|_| {
-            format!(
-                "expected schemes from hermite, squad, bezier, slerp, minaccel (comma-separated) \
-                 or all, found \"{name}\""
-            )
-        })?;
+                format!(
+                    "expected schemes from hermite, squad, bezier, slerp, nlerp, minaccel \
+                 (comma-separated) or all, found \"{name}\""
+                )
+            })?;
             if !out.contains(&v) {
                 out.push(v);
             }
@@ -587,7 +590,7 @@ impl SchemeList {
     }
 }
 
-named! { SchemeArg { Hermite = "hermite", Squad = "squad", Bezier = "bezier", Slerp = "slerp", Minaccel = "minaccel" } }
+named! { SchemeArg { Hermite = "hermite", Squad = "squad", Bezier = "bezier", Slerp = "slerp", Nlerp = "nlerp", Minaccel = "minaccel" } }
 
 named! { BlendArg { Cubic = "cubic", Quadratic = "quadratic" } }
 

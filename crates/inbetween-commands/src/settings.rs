@@ -29,6 +29,7 @@ impl From<SchemeArg> for Scheme {
             SchemeArg::Squad => Scheme::Squad,
             SchemeArg::Bezier => Scheme::Bezier,
             SchemeArg::Slerp => Scheme::Slerp,
+            SchemeArg::Nlerp => Scheme::Nlerp,
             SchemeArg::Minaccel => Scheme::MinAccel,
         }
     }

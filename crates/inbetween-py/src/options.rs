@@ -17,7 +17,7 @@ pub fn curve(scheme: &str, ends: &str, path: &str, grid_rate: Fps) -> PyResult<C
     })
 }
 
-/// A scheme by name: hermite, squad, bezier, slerp, minaccel.
+/// A scheme by name: hermite, squad, bezier, slerp, nlerp, minaccel.
 pub fn scheme(name: &str) -> PyResult<Scheme> {
     name.parse()
         .map_err(|e: inbetween::InputError| input_error(format!("scheme: {}", crate::message(&e))))

@@ -12,7 +12,7 @@ from scipy.spatial.transform import Rotation, Slerp
 import inbetween
 from conftest import FIXTURES, angle
 
-SCHEMES = ["hermite", "squad", "bezier", "slerp", "minaccel"]
+SCHEMES = ["hermite", "squad", "bezier", "slerp", "nlerp", "minaccel"]
 
 
 def keys(k=12, joints=None, seed=7):
@@ -31,6 +31,49 @@ def test_slerp_is_scipy_slerp():
     want = Slerp(times, Rotation.from_quat(q, scalar_first=True))(t).as_quat(scalar_first=True)
     assert got.shape == (2001, 4)
     assert np.max(angle(got, want)) < 1e-12
+
+
+def numpy_nlerp(times, q, t):
+    """nlerp from its definition: each key in the hemisphere of the one before, the four
+    components lerped between the keys around each time, normalised."""
+    q = q.copy()
+    for i in range(1, len(q)):
+        if np.dot(q[i], q[i - 1]) < 0:
+            q[i] = -q[i]
+    i = np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(times) - 2)
+    u = np.clip((t - times[i]) / (times[i + 1] - times[i]), 0.0, 1.0)[:, None]
+    p = (1 - u) * q[i] + u * q[i + 1]
+    return p / np.linalg.norm(p, axis=-1, keepdims=True)
+
+
+def test_nlerp_is_numpy_nlerp():
+    times, q = keys(30)
+    t = np.linspace(times[0], times[-1], 2001)
+    c = inbetween.Curve(times, q, scheme="nlerp")
+    assert c.scheme == "nlerp"
+    got = c(t)
+    assert np.max(angle(got, numpy_nlerp(times, q, t))) < 1e-12
+    # Its velocity (world frame, ω = 2·q'·q⁻¹) against differences of numpy's nlerp inside
+    # the segments.
+    mid = 0.5 * (times[:-1] + times[1:])
+    h = 1e-6
+    dq = (numpy_nlerp(times, q, mid + h) - numpy_nlerp(times, q, mid - h)) / (2 * h)
+    r = numpy_nlerp(times, q, mid)
+    w = 2 * (r[:, :1] * dq[:, 1:] - dq[:, :1] * r[:, 1:] + np.cross(r[:, 1:], dq[:, 1:]))
+    got = c(mid, 1)
+    assert np.max(np.linalg.norm(got - w, axis=-1) / np.linalg.norm(w, axis=-1)) < 1e-6
+
+
+def test_nlerp_reduce_plays_back_under_numpy_nlerp():
+    from test_resample import motion
+
+    q = motion(241, 2, 60)
+    r = inbetween.reduce(q, 60, 0.5, scheme="nlerp")
+    t = inbetween.frame_times(241, 60, 60)
+    for j in range(2):
+        k = r.keys[j]
+        err = np.degrees(angle(numpy_nlerp(t[k], q[k, j], t), q[:, j]))
+        assert err.max() <= 0.5 + 1e-9, (j, err.max())
 
 
 @pytest.mark.parametrize("scheme", SCHEMES)
@@ -178,3 +221,14 @@ def test_evaluation_releases_the_gil():
     ticks = [start] + [s for s in stamps if start < s < end] + [end]
     gap = max(b - a for a, b in zip(ticks, ticks[1:]))
     assert gap < 0.5 * (end - start), (gap, end - start)
+
+
+def test_nlerp_resample_is_numpy_nlerp():
+    from test_resample import motion
+
+    q = motion(61, 1, 30)[:, 0]
+    got = inbetween.resample(q, 30, 48, scheme="nlerp")
+    t_in = inbetween.frame_times(61, 30, 30)
+    t_out = inbetween.frame_times(61, 30, 48)
+    assert got.shape == (len(t_out), 4)
+    assert np.max(angle(got, numpy_nlerp(t_in, q, t_out))) < 1e-12

@@ -11,7 +11,7 @@ from conftest import angle, frames_csv
 from test_resample import motion
 
 
-@pytest.mark.parametrize("scheme", ["hermite", "squad", "bezier", "slerp", "minaccel"])
+@pytest.mark.parametrize("scheme", ["hermite", "squad", "bezier", "slerp", "nlerp", "minaccel"])
 def test_the_keys_curve_gives_every_frame_back(scheme):
     q = motion(361, 3, 120)
     r = inbetween.reduce(q, 120, 0.5, scheme=scheme)

@@ -36,6 +36,7 @@
 use crate::clock::{Fps, PieceFrames};
 use crate::curve::bezier::Bezier;
 use crate::curve::hermite::Hermite;
+use crate::curve::nlerp::Nlerp;
 use crate::curve::piecewise::{Side, segment_omega, step_in};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
@@ -183,6 +184,7 @@ fn frames_over(
             }
         }
         Scheme::Slerp => track_frames::<Slerp>(curve, fps, opts, sink, warn)?,
+        Scheme::Nlerp => track_frames::<Nlerp>(curve, fps, opts, sink, warn)?,
         Scheme::Hermite => track_frames::<Hermite>(curve, fps, opts, sink, warn)?,
         Scheme::Squad => track_frames::<Squad>(curve, fps, opts, sink, warn)?,
         Scheme::Bezier => track_frames::<Bezier>(curve, fps, opts, sink, warn)?,

@@ -140,7 +140,7 @@ fn velocity_matches_finite_differences() {
     let text = std::fs::read_to_string(&path).unwrap();
     let doc = read_document(&text, "k", Format::Csv, &ReadOptions::default()).unwrap();
     let track = &doc.tracks(Fps::DEFAULT).unwrap()[0];
-    for scheme in ["hermite", "squad", "bezier", "slerp"] {
+    for scheme in ["hermite", "squad", "bezier", "slerp", "nlerp"] {
         let out = Command::cargo_bin("inbetween")
             .unwrap()
             .args([
@@ -159,6 +159,7 @@ fn velocity_matches_finite_differences() {
             "hermite" => Scheme::Hermite,
             "squad" => Scheme::Squad,
             "bezier" => Scheme::Bezier,
+            "nlerp" => Scheme::Nlerp,
             _ => Scheme::Slerp,
         };
         let c = curve(track, s, PathMode::Shortest, EndConditions::default());
@@ -201,7 +202,7 @@ fn text_and_csv_reports() {
         .unwrap();
     let text = String::from_utf8(out.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), 1 + 2 * 5);
+    assert_eq!(lines.len(), 1 + 2 * Scheme::ALL.len());
     assert!(lines[0].starts_with("track  scheme"));
     assert!(lines[0].contains("max speed deg/s"));
     let out = Command::cargo_bin("inbetween")

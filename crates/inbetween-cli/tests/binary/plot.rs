@@ -30,6 +30,7 @@ fn hex(s: Scheme) -> String {
         Scheme::Squad => "#E69F00",
         Scheme::Bezier => "#009E73",
         Scheme::Slerp => "#999999",
+        Scheme::Nlerp => "#CC79A7",
         Scheme::MinAccel => "#D55E00",
     }
     .to_string()
@@ -54,13 +55,7 @@ fn speed_chart_has_a_series_per_scheme_and_key_markers() {
     let text = plot(&["fixtures/interp/uniform.json"]);
     let doc = roxmltree::Document::parse(&text).expect("valid XML");
     assert_eq!(doc.root_element().tag_name().name(), "svg");
-    for s in [
-        Scheme::Hermite,
-        Scheme::Squad,
-        Scheme::Bezier,
-        Scheme::Slerp,
-        Scheme::MinAccel,
-    ] {
+    for s in Scheme::ALL {
         assert_eq!(long_lines(&doc, &hex(s), 20), 1, "{s:?}");
     }
     // Five keys, plus the legend's dot.

@@ -57,7 +57,7 @@ fn fast_spins_play_back_within_the_tolerance() {
         let clip = clip.to_str().unwrap();
         for tol in [2.0] {
             let tol_s = format!("{tol}");
-            for scheme in ["hermite", "squad", "bezier", "slerp", "minaccel"] {
+            for scheme in ["hermite", "squad", "bezier", "slerp", "nlerp", "minaccel"] {
                 for method in ["greedy", "optimal"] {
                     for vel in [true, false] {
                         let keys = dir.path().join("keys.json");
@@ -405,4 +405,149 @@ fn rounded_keys_meet_the_tolerance_as_written() {
         err.contains("--precision 2: too few digits for --tolerance 0.02"),
         "{err}"
     );
+}
+
+/// A keys CSV's rows (`track,frame,w,x,y,z,…`) as `(track, frame, quaternion)`.
+fn quat_rows(text: &str) -> Vec<(String, f64, DQuat)> {
+    let mut rdr = csv::Reader::from_reader(text.as_bytes());
+    let h = rdr.headers().unwrap().clone();
+    let c = |n: &str| h.iter().position(|x| x == n);
+    let (track, frame) = (c("track"), c("frame").or(c("time")).unwrap());
+    let [w, x, y, z] = ["w", "x", "y", "z"].map(|n| c(n).unwrap());
+    rdr.records()
+        .map(|r| {
+            let r = r.unwrap();
+            let f = |i: usize| r[i].parse::<f64>().unwrap();
+            let name = track.map_or(String::new(), |i| r[i].to_string());
+            (name, f(frame), DQuat::from_xyzw(f(x), f(y), f(z), f(w)))
+        })
+        .collect()
+}
+
+/// The player's nlerp, written here from its definition (not the library's): each key in the
+/// hemisphere of the one before (`--path shortest`), the four components lerped between the two
+/// keys around `t`, normalised.
+fn nlerp_player(times: &[f64], keys: &[DQuat], t: f64) -> DQuat {
+    let mut q = keys.to_vec();
+    for i in 1..q.len() {
+        if q[i].dot(q[i - 1]) < 0.0 {
+            q[i] = -q[i];
+        }
+    }
+    let i = times.partition_point(|&k| k <= t).clamp(1, times.len() - 1) - 1;
+    let u = ((t - times[i]) / (times[i + 1] - times[i])).clamp(0.0, 1.0);
+    let p = q[i] * (1.0 - u) + q[i + 1] * u;
+    p / p.length()
+}
+
+/// The largest angle (degrees) between each frame and the keys played by [`nlerp_player`],
+/// track by track, frames and keys matched by name.
+fn worst_under_nlerp(frames: &str, keys: &str) -> (f64, usize) {
+    let (frames, keys) = (quat_rows(frames), quat_rows(keys));
+    let (mut worst, mut n): (f64, usize) = (0.0, 0);
+    let mut names: Vec<&String> = frames.iter().map(|r| &r.0).collect();
+    names.dedup();
+    for name in names {
+        let own: Vec<_> = keys.iter().filter(|r| &r.0 == name).collect();
+        let (t, q): (Vec<f64>, Vec<DQuat>) = own.iter().map(|r| (r.1, r.2)).unzip();
+        assert!(t.len() >= 2, "track {name}: {} keys", t.len());
+        for (_, f, want) in frames.iter().filter(|r| &r.0 == name) {
+            worst = worst.max(rot_angle(nlerp_player(&t, &q, *f), *want).to_degrees());
+            n += 1;
+        }
+    }
+    (worst, n)
+}
+
+/// Reduce for the player: the keys of `reduce --scheme nlerp` (a real capture, every joint),
+/// played by an nlerp written here, meet the tolerance at every input frame; on a clip with
+/// long segments, slerp's keys played by nlerp do not (so nlerp's guarantee is not slerp's).
+#[test]
+fn nlerp_keys_play_within_the_tolerance_under_an_independent_nlerp() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let bvh = bvh.to_str().unwrap();
+    let frames_csv = out("frames.csv");
+    stdout_of(bin().args(["convert", bvh, "--to", "quat", "-o", &frames_csv]));
+    let frames = std::fs::read_to_string(&frames_csv).unwrap();
+    for tol in [0.25, 1.0] {
+        let keys = out("keys.csv");
+        let tol_s = tol.to_string();
+        let args = [
+            "reduce",
+            bvh,
+            "--scheme",
+            "nlerp",
+            "--tolerance",
+            &tol_s,
+            "--translation-tolerance",
+            "0.01",
+            "--to",
+            "quat",
+            "-o",
+            &keys,
+        ];
+        for method in [&[][..], &["--method", "optimal"], &["--shared-keys"]] {
+            stdout_of(bin().args(args).args(method));
+            let (worst, n) = worst_under_nlerp(&frames, &std::fs::read_to_string(&keys).unwrap());
+            eprintln!("nlerp {tol}° {method:?}: {n} frames, worst {worst:.6}°");
+            assert!(n > 1000, "{n} frames compared");
+            // The keys are written with every digit: only round-off separates the two nlerps.
+            assert!(worst <= tol + 1e-9, "{tol}° {method:?}: {worst}°");
+        }
+    }
+
+    // A constant spin, 2° a frame for 120°: slerp's keys are its two ends.
+    let (text, _) = spin_csv(2.0, 61);
+    let clip = out("spin.csv");
+    std::fs::write(&clip, text).unwrap();
+    let frames = std::fs::read_to_string(&clip).unwrap();
+    let tol = 0.5;
+    let worst_of = |scheme: &str| {
+        let keys = out(&format!("{scheme}.csv"));
+        stdout_of(bin().args([
+            "reduce",
+            &clip,
+            "--scheme",
+            scheme,
+            "--tolerance",
+            "0.5",
+            "-o",
+            &keys,
+        ]));
+        worst_under_nlerp(&frames, &std::fs::read_to_string(&keys).unwrap()).0
+    };
+    let (nlerp, slerp) = (worst_of("nlerp"), worst_of("slerp"));
+    eprintln!("spin, 0.5°: nlerp's keys {nlerp:.4}°, slerp's keys {slerp:.4}° under nlerp");
+    assert!(nlerp <= tol + 1e-9, "{nlerp}");
+    assert!(
+        slerp > tol,
+        "slerp's keys happen to play within {tol}° under nlerp: {slerp}"
+    );
+}
+
+/// glTF plays LINEAR rotations by slerp: keys reduced under nlerp are not written into a glTF
+/// asset (exit 2, nothing written).
+#[test]
+fn nlerp_keys_are_not_written_to_gltf() {
+    let dir = tempfile::tempdir().unwrap();
+    let glb = dir.path().join("x.glb");
+    let src = crate::support::fixtures().join("gltf/samplers.glb");
+    let err = crate::support::stderr_of(
+        bin()
+            .args([
+                "reduce",
+                src.to_str().unwrap(),
+                "--scheme",
+                "nlerp",
+                "--tolerance",
+                "1",
+            ])
+            .arg("-o")
+            .arg(&glb),
+        2,
+    );
+    assert!(err.contains("only --scheme slerp's keys"), "{err}");
+    assert!(!glb.exists());
 }

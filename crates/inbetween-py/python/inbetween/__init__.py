@@ -1,6 +1,6 @@
 """Keyframe in-betweening of 3D orientations, vectorised over joints (docs/python.md).
 
-``Curve`` builds the library's curve (hermite, squad, bezier, slerp, minaccel) through keys
+``Curve`` builds the library's curve (hermite, squad, bezier, slerp, nlerp, minaccel) through keys
 (K, 4) or (K, J, 4) and evaluates rotations, angular velocities and accelerations at many times
 at once; ``resample`` puts dense frames at one exact rate onto another, as ``inbetween interp``
 writes them; ``frame_times`` gives that grid; ``reduce`` keeps the fewest frames as keys whose

@@ -18,6 +18,7 @@ pub mod bezier;
 pub(crate) mod blend4;
 pub mod hermite;
 pub mod minaccel;
+pub mod nlerp;
 pub mod piecewise;
 pub mod slerp;
 pub mod squad;
@@ -27,7 +28,7 @@ pub use piecewise::Curve;
 use crate::clock::Fps;
 use crate::tangent::{EndConditions, Knots, PathMode};
 use crate::track::Tcb;
-use glam::DQuat;
+use glam::{DQuat, DVec3};
 use std::fmt;
 
 /// A scheme's segment (see the module documentation).
@@ -55,10 +56,22 @@ pub trait Segment: Sized {
     fn limitation(&self) -> Option<crate::error::Message> {
         None
     }
+
+    /// The world-frame angular velocity per unit `u` at `u` where the scheme has it in closed
+    /// form (`None`: it is taken by differences of [`Segment::eval`]).
+    fn velocity(&self, _u: f64) -> Option<DVec3> {
+        None
+    }
+
+    /// The world-frame angular acceleration per unit `u`² at `u` where the scheme has it in
+    /// closed form (`None`: differences of the velocity).
+    fn acceleration(&self, _u: f64) -> Option<DVec3> {
+        None
+    }
 }
 
 /// Interpolation scheme (`--scheme`). Names are the command line's: `hermite`, `squad`,
-/// `bezier`, `slerp`, `minaccel`.
+/// `bezier`, `slerp`, `nlerp`, `minaccel`.
 ///
 /// ```
 /// use inbetween::Scheme;
@@ -66,7 +79,7 @@ pub trait Segment: Sized {
 /// let s: Scheme = "minaccel".parse()?;
 /// assert_eq!(s, Scheme::MinAccel);
 /// assert_eq!(s.to_string(), "minaccel");
-/// assert_eq!(Scheme::ALL.len(), 5);
+/// assert_eq!(Scheme::ALL.len(), 6);
 /// assert!("catmull".parse::<Scheme>().is_err());
 /// # Ok::<(), inbetween::InputError>(())
 /// ```
@@ -83,17 +96,21 @@ pub enum Scheme {
     Bezier,
     /// Piecewise great arcs ([`slerp`]); C⁰.
     Slerp,
+    /// The normalised lerp of consecutive keys ([`nlerp`]): how Blender plays `LINEAR`
+    /// quaternion F-curves and ozz-animation its keys; C⁰.
+    Nlerp,
     /// Barr et al.'s minimal tangential acceleration on a grid ([`minaccel`]); not per segment.
     MinAccel,
 }
 
 impl Scheme {
     /// Every scheme, in the order of the command line's help.
-    pub const ALL: [Scheme; 5] = [
+    pub const ALL: [Scheme; 6] = [
         Scheme::Hermite,
         Scheme::Squad,
         Scheme::Bezier,
         Scheme::Slerp,
+        Scheme::Nlerp,
         Scheme::MinAccel,
     ];
 
@@ -104,8 +121,15 @@ impl Scheme {
             Scheme::Squad => "squad",
             Scheme::Bezier => "bezier",
             Scheme::Slerp => "slerp",
+            Scheme::Nlerp => "nlerp",
             Scheme::MinAccel => "minaccel",
         }
+    }
+
+    /// slerp and nlerp: each segment is its two keys' alone, without tangents (positions are
+    /// linear between keys, reduce has no velocities to choose).
+    pub(crate) fn is_keys_only(self) -> bool {
+        matches!(self, Scheme::Slerp | Scheme::Nlerp)
     }
 }
 
@@ -124,7 +148,7 @@ impl std::str::FromStr for Scheme {
             .find(|x| x.name() == s)
             .ok_or_else(|| {
                 crate::error::input_err!(
-                    "expected a scheme from hermite, squad, bezier, slerp, minaccel, found \"{s}\""
+                    "expected a scheme from hermite, squad, bezier, slerp, nlerp, minaccel, found \"{s}\""
                 )
             })
     }

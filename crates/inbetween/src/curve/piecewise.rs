@@ -19,6 +19,7 @@ use crate::clock::TIME_TOL;
 use crate::curve::bezier::Bezier;
 use crate::curve::hermite::Hermite;
 use crate::curve::minaccel::{self, Report};
+use crate::curve::nlerp::Nlerp;
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
 use crate::curve::{Blend, CurveOptions, Scheme, Segment};
@@ -111,6 +112,7 @@ enum Pieces {
 #[derive(Debug, Clone)]
 enum Segs {
     Slerp(Vec<Slerp>),
+    Nlerp(Vec<Nlerp>),
     Hermite(Vec<Hermite>),
     Squad(Vec<Squad>),
     Bezier(Vec<Bezier>),
@@ -125,6 +127,7 @@ impl Segs {
         }
         match scheme {
             Scheme::Slerp => Segs::Slerp(all(keys, blend)),
+            Scheme::Nlerp => Segs::Nlerp(all(keys, blend)),
             Scheme::Hermite => Segs::Hermite(all(keys, blend)),
             Scheme::Squad => Segs::Squad(all(keys, blend)),
             // minaccel is a grid curve and never builds segments.
@@ -136,6 +139,7 @@ impl Segs {
     fn eval(&self, i: usize, u: f64) -> DQuat {
         match self {
             Segs::Slerp(v) => v[i].eval(u),
+            Segs::Nlerp(v) => v[i].eval(u),
             Segs::Hermite(v) => v[i].eval(u),
             Segs::Squad(v) => v[i].eval(u),
             Segs::Bezier(v) => v[i].eval(u),
@@ -171,8 +175,12 @@ pub(crate) fn step_in(keys: &Knots, s: usize) -> f64 {
 }
 
 /// Angular velocity (rad/s) of a segment at parameter `u`, for a segment `delta` seconds long:
-/// fourth-order difference of its exact formula with step `h` in `u` ([`step_in`]).
+/// its closed form ([`Segment::velocity`]) where it has one, else the fourth-order difference of
+/// its exact formula with step `h` in `u` ([`step_in`]).
 pub(crate) fn segment_omega<S: Segment>(seg: &S, u: f64, delta: f64, h: f64) -> DVec3 {
+    if let Some(w) = seg.velocity(u) {
+        return w / delta;
+    }
     let dq = d4(|x| seg.eval(x), u, h) * (1.0 / delta);
     omega_of(seg.eval(u), dq)
 }
@@ -183,9 +191,9 @@ pub(crate) fn chord_omega(a: DQuat, b: DQuat, h: f64) -> DVec3 {
 }
 
 /// The position curve of a curve under `opts` through translations `p` at key `times`: linear
-/// for slerp, else cubic, with the end rule of `opts`.
+/// for slerp and nlerp, else cubic, with the end rule of `opts`.
 fn positions(times: &[f64], p: &[DVec3], opts: &CurveOptions) -> crate::position::Positions {
-    crate::position::Positions::new(times, p, opts.scheme == Scheme::Slerp, opts.ends.ends)
+    crate::position::Positions::new(times, p, opts.scheme.is_keys_only(), opts.ends.ends)
 }
 
 /// `t` clamped to the breaks' span, and within [`TIME_TOL`] of a break that break (the nearer).
@@ -234,6 +242,7 @@ pub(crate) fn segment_rotation(keys: &Knots, scheme: Scheme, blend: Blend, t: f6
     let p = piece(b, t, Side::Right);
     match scheme {
         Scheme::Slerp => at::<Slerp>(keys, blend, p),
+        Scheme::Nlerp => at::<Nlerp>(keys, blend, p),
         Scheme::Hermite => at::<Hermite>(keys, blend, p),
         Scheme::Squad => at::<Squad>(keys, blend, p),
         Scheme::Bezier | Scheme::MinAccel => at::<Bezier>(keys, blend, p),
@@ -302,6 +311,12 @@ impl Curve {
                     ))));
                 }
             }
+        }
+        if opts.path == PathMode::Euler && opts.scheme == Scheme::Nlerp {
+            return Err(InputError::new(
+                "path euler: nlerp blends the keys' four components and cannot keep a turn of a \
+                 whole rotation or more between two keys; use another scheme",
+            ));
         }
         if opts.path == PathMode::Euler && track.len() > 1 && track.euler_angles().is_none() {
             return Err(named(InputError::new(
@@ -584,6 +599,7 @@ impl Curve {
         let u = (u0, du);
         Some(match segs {
             Segs::Slerp(v) => all(&v[i], u, count, visit),
+            Segs::Nlerp(v) => all(&v[i], u, count, visit),
             Segs::Hermite(v) => all(&v[i], u, count, visit),
             Segs::Squad(v) => all(&v[i], u, count, visit),
             Segs::Bezier(v) => all(&v[i], u, count, visit),
@@ -601,6 +617,7 @@ impl Curve {
         let segs = segs.get_or_init(|| Segs::new(keys, self.scheme, *blend));
         match segs {
             Segs::Slerp(v) => crate::curve::antipode_gap(v.get(i)?),
+            Segs::Nlerp(v) => crate::curve::antipode_gap(v.get(i)?),
             Segs::Hermite(v) => crate::curve::antipode_gap(v.get(i)?),
             Segs::Squad(v) => crate::curve::antipode_gap(v.get(i)?),
             Segs::Bezier(v) => crate::curve::antipode_gap(v.get(i)?),
@@ -628,10 +645,24 @@ impl Curve {
         match &self.pieces {
             Pieces::Grid { points, .. } => chord_omega(points[i], points[i + 1], delta),
             Pieces::Segments { .. } => {
+                if let Some(seg) = self.nlerp_piece(i) {
+                    return seg.omega(u) / delta;
+                }
                 let h = step_in(self.knots(), i);
                 let dq = d4(|x| self.eval_piece(i, x), u, h) * (1.0 / delta);
                 omega_of(self.eval_piece(i, u), dq)
             }
+        }
+    }
+
+    /// Segment `i` of an nlerp curve, whose derivatives are in closed form.
+    fn nlerp_piece(&self, i: usize) -> Option<Nlerp> {
+        let Pieces::Segments { segs, keys, blend } = &self.pieces else {
+            return None;
+        };
+        match segs.get_or_init(|| Segs::new(keys, self.scheme, *blend)) {
+            Segs::Nlerp(v) => Some(v[i]),
+            _ => None,
         }
     }
 
@@ -722,6 +753,9 @@ impl Curve {
             }
             Pieces::Segments { .. } => {
                 let b = self.breaks();
+                if let Some(seg) = self.nlerp_piece(i) {
+                    return seg.alpha(u) / ((b[i + 1] - b[i]) * (b[i + 1] - b[i]));
+                }
                 let h = step_in(self.knots(), i);
                 d4(|x| self.omega_piece(i, x), u, h) * (1.0 / (b[i + 1] - b[i]))
             }
@@ -735,8 +769,9 @@ mod tests {
     use crate::curve::test_support::{sample_keys, sample_track};
 
     /// The schemes whose pieces are the keys' segments.
-    const SEGMENT_SCHEMES: [Scheme; 4] = [
+    const SEGMENT_SCHEMES: [Scheme; 5] = [
         Scheme::Slerp,
+        Scheme::Nlerp,
         Scheme::Hermite,
         Scheme::Squad,
         Scheme::Bezier,

@@ -86,7 +86,7 @@ impl<'a> Frames<'a> {
                 velocity_estimates(times, &q)
             }),
             choice: vec![std::cell::Cell::new(0); quats.len()],
-            choices: if opts.velocities && opts.curve.scheme != Scheme::Slerp {
+            choices: if opts.velocities && !opts.curve.scheme.is_keys_only() {
                 ESTIMATES
             } else {
                 1
