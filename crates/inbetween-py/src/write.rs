@@ -279,13 +279,12 @@ fn document(
         for (k, (&t, q)) in times.iter().zip(&quats[0]).enumerate() {
             let when = match (format, fps) {
                 (Format::Bvh, Some(f)) => {
-                    let n = f.nearest_frame(t);
-                    if (f.time_of(n) - t).abs() > inbetween::clock::TIME_TOL {
+                    let Some(n) = f.frame_at(t) else {
                         return Err(input_error(format!(
                             "{}[{k}]: {t} s is not a frame at {f} fps (BVH rows are frames)",
                             what("times")
                         )));
-                    }
+                    };
                     KeyTime::Frame(n as f64)
                 }
                 _ => KeyTime::Seconds(t),

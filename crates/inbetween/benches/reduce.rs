@@ -1,12 +1,12 @@
 //! `reduce` on one track: 1200 frames at 120 fps (10 s) of smooth motion with 0.05° of noise,
-//! bezier with velocities at 0.5°, greedy and optimal; and the six velocity estimates of a
-//! 10-minute joint (72 000 frames at 120 fps), which every reduced track computes first. The end-to-end figure (a 60-joint, 60 s
-//! BVH clip) is in docs/performance.md.
+//! bezier with velocities at 0.5°, greedy and optimal (the six velocity estimates every reduced
+//! track computes first are part of it). The end-to-end figure (a 60-joint, 60 s BVH clip) is in
+//! docs/performance.md.
 //! `cargo bench --bench reduce`
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::{DQuat, DVec3};
-use inbetween::reduce::{Method, ReduceOptions, reduce, velocity_estimates};
+use inbetween::reduce::{Method, ReduceOptions, reduce};
 use inbetween::{CurveOptions, Fps, Scheme};
 use std::hint::black_box;
 
@@ -56,10 +56,6 @@ fn bench(c: &mut Criterion) {
             |b, o| b.iter(|| black_box(reduce(black_box(&t), black_box(&q), None, o).unwrap())),
         );
     }
-    let (t, q) = frames(72_000);
-    g.bench_function("velocity_estimates_72000_frames", |b| {
-        b.iter(|| black_box(velocity_estimates(black_box(&t), black_box(&q))))
-    });
     g.finish();
 }
 

@@ -1,9 +1,9 @@
 //! Baking: a curve's frames on a frame grid, streamed into a [`FrameSink`] (docs/spec.md §3).
 //!
 //! Which frames a track has, which segment each belongs to, and when a frame is a key is the
-//! frame clock's rule ([`Fps::pieces`]). A frame on a key is the key exactly; the others run the
+//! frame clock's rule (`Fps::pieces`). A frame on a key is the key exactly; the others run the
 //! scheme's forward differences from the segment's first frame with step `δ = 1/(fps·Δ_s)`
-//! ([`Segment::frames`]); minaccel's frames are great arcs between the grid points either side.
+//! (`Segment::frames`); minaccel's frames are great arcs between the grid points either side.
 //!
 //! ```
 //! use inbetween::{BakeOptions, Curve, CurveOptions, FrameSink, Fps, Track, bake};

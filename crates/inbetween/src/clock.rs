@@ -6,7 +6,7 @@
 //! taken exactly as written (`12.5` = 25/2). Frame `k` is at time `k·den/num`, computed from the
 //! integer index (one rounding), never by accumulating `t += dt`.
 //!
-//! The frame-clock rule (docs/spec.md §3), in one place ([`Fps::pieces`]): a track's frames are
+//! The frame-clock rule (docs/spec.md §3), in one place (`Fps::pieces`): a track's frames are
 //! those with `t_1 − 1e-9 ≤ k/fps ≤ t_n + 1e-9`. Piece `s` (between breaks `t_s` and `t_{s+1}`:
 //! keys, or minaccel's grid points) takes the frames with `t_s − 1e-9 ≤ k/fps < t_{s+1} − 1e-9`,
 //! except one nearer `t_s` (breaks less than 2e-9 s apart); the last piece runs to
@@ -19,11 +19,10 @@
 //! let fps: Fps = "29.97".parse()?;
 //! assert_eq!((fps.num(), fps.den()), (30000, 1001));
 //! assert_eq!(fps.time_of(30000), 1001.0);
-//! // Keys at 0, 0.1 and 0.25 s at 30 fps: frames 0..=7, split 0..3 and 3..8; frame 3 is the key.
+//! // Keys at 0 and 0.25 s at 30 fps: frames 0..=7; 0.1 s is frame 3, 0.11 s no frame.
 //! let fps = Fps::new(30, 1)?;
-//! let pieces: Vec<_> = fps.pieces(&[0.0, 0.1, 0.25]).collect();
-//! assert_eq!((pieces[0].from, pieces[0].to, pieces[1].from, pieces[1].to), (0, 3, 3, 8));
-//! assert!(pieces[1].snap_start && !pieces[1].snap_end);
+//! assert_eq!(fps.frames_between(0.0, 0.25), (0, 7));
+//! assert_eq!((fps.frame_at(0.1), fps.frame_at(0.11)), (Some(3), None));
 //! # Ok::<(), inbetween::InputError>(())
 //! ```
 
@@ -35,7 +34,7 @@ use std::fmt;
 pub(crate) const MAX_FPS: f64 = 1e7;
 
 /// Tolerance in seconds for a frame to count as inside a track or on a key (docs/spec.md §3).
-pub const TIME_TOL: f64 = 1e-9;
+pub(crate) const TIME_TOL: f64 = 1e-9;
 
 /// A positive rational frame rate, exact (`30000/1001`, not 29.97002997…).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -267,7 +266,7 @@ impl Fps {
     /// The frames of each piece between consecutive `breaks` (strictly increasing, at least two,
     /// [`Fps::in_range`]), by the frame-clock rule of the module documentation. Only pieces with
     /// frames are listed, in order; together they are every frame of the span exactly once.
-    pub fn pieces(self, breaks: &[f64]) -> Pieces<'_> {
+    pub(crate) fn pieces(self, breaks: &[f64]) -> Pieces<'_> {
         let n = breaks.len();
         let (first, last) = self.frames_between(breaks[0], breaks[n - 1]);
         Pieces {
@@ -297,6 +296,13 @@ impl Fps {
             .unwrap_or(k)
     }
 
+    /// The frame whose time is `t` (within 1e-9 s, docs/spec.md §3), or `None` when `t` is
+    /// between frames.
+    pub fn frame_at(&self, t: f64) -> Option<i64> {
+        let k = self.nearest_frame(t);
+        ((self.time_of(k) - t).abs() <= TIME_TOL).then_some(k)
+    }
+
     /// `t` moved onto the grid when it is within `eps` frame periods of a frame, else `t`.
     pub fn snap(&self, t: f64, eps: f64) -> f64 {
         let k = self.nearest_frame(t);
@@ -323,23 +329,23 @@ impl Fps {
 
 /// The frames `from..to` of piece `piece` (between breaks `piece` and `piece + 1`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct PieceFrames {
+pub(crate) struct PieceFrames {
     /// The piece's index.
-    pub piece: usize,
+    pub(crate) piece: usize,
     /// Its first frame.
-    pub from: i64,
+    pub(crate) from: i64,
     /// One past its last frame.
-    pub to: i64,
+    pub(crate) to: i64,
     /// Frame `from` is within 1e-9 s of the piece's start: it is the break itself.
-    pub snap_start: bool,
+    pub(crate) snap_start: bool,
     /// Frame `to − 1` is within 1e-9 s of the last break (last piece only, and not the frame
     /// that already snapped to the start): it is the last break itself.
-    pub snap_end: bool,
+    pub(crate) snap_end: bool,
 }
 
-/// Iterator of [`PieceFrames`], from [`Fps::pieces`].
+/// Iterator of [`PieceFrames`], from `Fps::pieces`.
 #[derive(Debug, Clone)]
-pub struct Pieces<'a> {
+pub(crate) struct Pieces<'a> {
     fps: Fps,
     breaks: &'a [f64],
     s: usize,
@@ -413,6 +419,18 @@ impl fmt::Display for Fps {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Keys at 0, 0.1 and 0.25 s at 30 fps: frames 0..=7, split 0..3 and 3..8; frame 3 is the key.
+    #[test]
+    fn pieces_split_the_frames_at_the_keys() {
+        let fps = Fps::new(30, 1).unwrap();
+        let pieces: Vec<_> = fps.pieces(&[0.0, 0.1, 0.25]).collect();
+        assert_eq!(
+            (pieces[0].from, pieces[0].to, pieces[1].from, pieces[1].to),
+            (0, 3, 3, 8)
+        );
+        assert!(pieces[1].snap_start && !pieces[1].snap_end);
+    }
 
     #[test]
     fn ntsc_rates_are_exact_ratios() {

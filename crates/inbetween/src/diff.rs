@@ -82,26 +82,17 @@ pub struct WorldDiff {
     pub tracks: Vec<Option<Extent>>,
 }
 
-/// A pose source: the rotation and translation of track `t` at frame `f`.
-pub trait Poses: Sync {
-    /// Track `t` at frame `f`.
-    fn at(&self, f: usize, t: usize) -> (DQuat, Option<DVec3>);
-}
-
-impl<F: Fn(usize, usize) -> (DQuat, Option<DVec3>) + Sync> Poses for F {
-    fn at(&self, f: usize, t: usize) -> (DQuat, Option<DVec3>) {
-        self(f, t)
-    }
-}
+/// A pose source: the rotation and translation of track `t` at frame `f`, as `(f, t) → pose`.
+pub(crate) type Poses<'a> = dyn Fn(usize, usize) -> (DQuat, Option<DVec3>) + Sync + 'a;
 
 /// The world displacement between `a` and `b` posed on `skeleton` at `frames` frames, every
 /// point of [`Skeleton::points`] measured (with the three points at `shell` around each joint
-/// when given).
+/// when given). `a` and `b` give the pose of track `t` at frame `f` as `(rotation, translation)`.
 pub fn world_diff(
     skeleton: &Skeleton,
     frames: usize,
-    a: &dyn Poses,
-    b: &dyn Poses,
+    a: &(dyn Fn(usize, usize) -> (DQuat, Option<DVec3>) + Sync),
+    b: &(dyn Fn(usize, usize) -> (DQuat, Option<DVec3>) + Sync),
     shell: Option<f64>,
 ) -> WorldDiff {
     let owner = skeleton.owners();
@@ -145,8 +136,8 @@ pub fn world_diff(
 pub(crate) fn point_displacements(
     skeleton: &Skeleton,
     frames: usize,
-    a: &dyn Poses,
-    b: &dyn Poses,
+    a: &Poses<'_>,
+    b: &Poses<'_>,
     shell: Option<f64>,
 ) -> Vec<(f64, usize)> {
     scan(skeleton, frames, a, b, shell).points
@@ -164,8 +155,8 @@ struct Scan {
 fn scan(
     skeleton: &Skeleton,
     frames: usize,
-    a: &dyn Poses,
-    b: &dyn Poses,
+    a: &Poses<'_>,
+    b: &Poses<'_>,
     shell: Option<f64>,
 ) -> Scan {
     let n_points = skeleton.point_joints(shell.is_some()).len();
@@ -180,8 +171,8 @@ fn scan(
         let (mut wa, mut wb) = (Vec::new(), Vec::new());
         let (mut pa, mut pb) = (Vec::new(), Vec::new());
         for f in s..(s + chunk).min(frames) {
-            skeleton.world(|t| a.at(f, t), &mut wa);
-            skeleton.world(|t| b.at(f, t), &mut wb);
+            skeleton.world(|t| a(f, t), &mut wa);
+            skeleton.world(|t| b(f, t), &mut wb);
             points(skeleton, &wa, shell, &mut pa);
             points(skeleton, &wb, shell, &mut pb);
             for ((x, y), best) in pa.iter().zip(&pb).zip(&mut best) {

@@ -108,7 +108,7 @@ pub struct Knots {
 
 /// Applies `--path` to a sequence of quaternions (`Euler` keeps the signs here: its chords fix
 /// them, [`Knots::new`]).
-pub fn apply_path(quats: &mut [DQuat], mode: PathMode) {
+pub(crate) fn apply_path(quats: &mut [DQuat], mode: PathMode) {
     if mode == PathMode::Shortest {
         for i in 1..quats.len() {
             if quats[i - 1].dot(quats[i]) < 0.0 {
@@ -366,7 +366,7 @@ impl Knots {
     }
 
     /// The great arc of segment `s`'s chord from `q_s` to `q_{s+1}` (slerp; squad's outer arc).
-    pub fn chord_arc(&self, s: usize) -> crate::rotation::arc::Arc {
+    pub(crate) fn chord_arc(&self, s: usize) -> crate::rotation::arc::Arc {
         use crate::rotation::arc::Arc;
         match &self.chords {
             Some(c) => Arc::leaving(

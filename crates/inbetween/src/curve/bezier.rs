@@ -27,7 +27,7 @@ use wide::f64x4;
 
 /// One Bézier segment.
 #[derive(Debug, Clone, Copy)]
-pub struct Bezier {
+pub(crate) struct Bezier {
     r0: Arc,
     r1: Arc,
     r2: Arc,
@@ -36,7 +36,7 @@ pub struct Bezier {
 /// Bézier in-betweens: the three first-level arcs by forward differences, the three blends four
 /// frames at a time (`blend4.rs`).
 #[derive(Debug, Clone)]
-pub struct BezierFrames {
+pub(crate) struct BezierFrames {
     r0: ArcSteps,
     r1: ArcSteps,
     r2: ArcSteps,

@@ -30,7 +30,7 @@ use glam::{DQuat, DVec3};
 
 /// One Hermite segment.
 #[derive(Debug, Clone, Copy)]
-pub struct Hermite {
+pub(crate) struct Hermite {
     c1: Arc,
     c2: Arc,
     chord: f64,
@@ -59,7 +59,7 @@ impl Spin {
 /// Hermite in-betweens: both arcs by forward differences, the blends four frames at a time
 /// (`blend4.rs`).
 #[derive(Debug, Clone)]
-pub struct HermiteFrames {
+pub(crate) struct HermiteFrames {
     c1: ArcSteps,
     c2: ArcSteps,
     u0: f64,

@@ -1,9 +1,9 @@
-//! Interpolating curves on S³, one module per scheme behind the small [`Segment`] trait.
+//! Interpolating curves on S³, one module per scheme behind the small `Segment` trait.
 //!
 //! A segment joins keys `s` and `s+1` over the local parameter `u = (t − t_s)/Δ_s ∈ [0, 1]`. It
-//! can be evaluated directly at any `u` ([`Segment::eval`], for tests and off-grid samples) and
-//! can generate its in-betweens at equally spaced `u` ([`Segment::frames`]), where the fixed great
-//! arcs of the segment advance by forward differences ([`crate::rotation::arc`]) and only the blends are evaluated
+//! can be evaluated directly at any `u` (`Segment::eval`, for tests and off-grid samples) and
+//! can generate its in-betweens at equally spaced `u` (`Segment::frames`), where the fixed great
+//! arcs of the segment advance by forward differences (`rotation::arc`) and only the blends are evaluated
 //! per frame.
 //!
 //! Every blend is the geodesic of S³ between its two points, never hemisphere-flipped, so the
@@ -14,14 +14,14 @@
 //! function of time; [`CurveOptions`] are what shapes it.
 
 pub(crate) mod banded;
-pub mod bezier;
+pub(crate) mod bezier;
 pub(crate) mod blend4;
-pub mod hermite;
+pub(crate) mod hermite;
 pub mod minaccel;
-pub mod nlerp;
+pub(crate) mod nlerp;
 pub mod piecewise;
-pub mod slerp;
-pub mod squad;
+pub(crate) mod slerp;
+pub(crate) mod squad;
 
 pub use piecewise::Curve;
 
@@ -32,7 +32,7 @@ use glam::{DQuat, DVec3};
 use std::fmt;
 
 /// A scheme's segment (see the module documentation).
-pub trait Segment: Sized {
+pub(crate) trait Segment: Sized {
     /// In-betweens at equally spaced `u`; an endless iterator (take what is needed).
     type Frames: Iterator<Item = DQuat>;
 
@@ -58,14 +58,8 @@ pub trait Segment: Sized {
     }
 
     /// The world-frame angular velocity per unit `u` at `u` where the scheme has it in closed
-    /// form (`None`: it is taken by differences of [`Segment::eval`]).
+    /// form (`None`: it is taken by differences of `Segment::eval`).
     fn velocity(&self, _u: f64) -> Option<DVec3> {
-        None
-    }
-
-    /// The world-frame angular acceleration per unit `u`² at `u` where the scheme has it in
-    /// closed form (`None`: differences of the velocity).
-    fn acceleration(&self, _u: f64) -> Option<DVec3> {
         None
     }
 }
@@ -85,18 +79,18 @@ pub trait Segment: Sized {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
 pub enum Scheme {
-    /// Nam & Kim's Hermite by blending two great arcs ([`hermite`]); C¹.
+    /// Nam & Kim's Hermite by blending two great arcs (`curve/hermite.rs`); C¹.
     Hermite,
-    /// Shoemake's squad ([`squad`]); C¹.
+    /// Shoemake's squad (`curve/squad.rs`); C¹.
     Squad,
-    /// Spherical cubic Bézier by de Casteljau's construction ([`bezier`]); C¹. The default:
+    /// Spherical cubic Bézier by de Casteljau's construction (`curve/bezier.rs`); C¹. The default:
     /// third order in the key spacing (hermite is second), local, and the spherical counterpart
     /// of the cubic Hermite of the same tangents (docs/schemes.md).
     #[default]
     Bezier,
-    /// Piecewise great arcs ([`slerp`]); C⁰.
+    /// Piecewise great arcs (`curve/slerp.rs`); C⁰.
     Slerp,
-    /// The normalised lerp of consecutive keys ([`nlerp`]): how Blender plays `LINEAR`
+    /// The normalised lerp of consecutive keys (`curve/nlerp.rs`): how Blender plays `LINEAR`
     /// quaternion F-curves and ozz-animation its keys; C⁰.
     Nlerp,
     /// Barr et al.'s minimal tangential acceleration on a grid ([`minaccel`]); not per segment.

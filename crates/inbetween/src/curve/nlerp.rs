@@ -36,14 +36,14 @@ use glam::{DQuat, DVec3};
 
 /// One nlerp segment: its two keys.
 #[derive(Debug, Clone, Copy)]
-pub struct Nlerp {
+pub(crate) struct Nlerp {
     a: DQuat,
     b: DQuat,
 }
 
 impl Nlerp {
     /// The segment from `a` (`u = 0`) to `b` (`u = 1`), the quaternions as they are blended.
-    pub fn between(a: DQuat, b: DQuat) -> Nlerp {
+    pub(crate) fn between(a: DQuat, b: DQuat) -> Nlerp {
         Nlerp { a, b }
     }
 
@@ -64,14 +64,14 @@ impl Nlerp {
     /// rad/s), exactly: with `ω = 2·vec(Q'·Q⁻¹)` and `Q = p/‖p‖`,
     /// `Q'·Q⁻¹ = vec(p'·p̄)/‖p‖² + scalar`, and `vec((b − a)·p̄) = vec(b·ā)` for unit keys, so
     /// `ω(u) = 2·vec(b·a⁻¹)/‖p(u)‖²`: a fixed axis, the speed varying with `‖p‖⁻²`.
-    pub fn omega(&self, u: f64) -> DVec3 {
+    pub(crate) fn omega(&self, u: f64) -> DVec3 {
         self.chord_sine() * (2.0 / self.lerp(u).length_squared())
     }
 
     /// The world-frame angular acceleration per unit `u`² (divide by the duration squared for
     /// rad/s²), exactly: the derivative of [`Nlerp::omega`],
     /// `α(u) = −4·(p·(b − a))·vec(b·a⁻¹)/‖p(u)‖⁴`, along the same axis.
-    pub fn alpha(&self, u: f64) -> DVec3 {
+    pub(crate) fn alpha(&self, u: f64) -> DVec3 {
         let p = self.lerp(u);
         let n2 = p.length_squared();
         self.chord_sine() * (-4.0 * p.dot(self.b - self.a) / (n2 * n2))
@@ -81,7 +81,7 @@ impl Nlerp {
 /// The frames of an nlerp segment, each evaluated directly ([`Segment::eval`] at
 /// `u₀ + j·δ`).
 #[derive(Debug, Clone)]
-pub struct NlerpFrames {
+pub(crate) struct NlerpFrames {
     seg: Nlerp,
     u0: f64,
     du: f64,
@@ -134,10 +134,6 @@ impl Segment for Nlerp {
 
     fn velocity(&self, u: f64) -> Option<DVec3> {
         Some(self.omega(u))
-    }
-
-    fn acceleration(&self, u: f64) -> Option<DVec3> {
-        Some(self.alpha(u))
     }
 }
 

@@ -15,7 +15,7 @@ use glam::DQuat;
 
 /// One slerp segment.
 #[derive(Debug, Clone, Copy)]
-pub struct Slerp {
+pub(crate) struct Slerp {
     arc: Arc,
 }
 

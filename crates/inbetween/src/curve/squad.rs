@@ -33,7 +33,7 @@ use glam::{DQuat, DVec3};
 
 /// One squad segment.
 #[derive(Debug, Clone, Copy)]
-pub struct Squad {
+pub(crate) struct Squad {
     outer: Arc,
     inner: Arc,
     gap: f64,
@@ -117,7 +117,7 @@ fn b_point(k: &Knots, i: usize) -> DQuat {
 /// Squad in-betweens: both arcs by forward differences, the blends four frames at a time
 /// (`blend4.rs`).
 #[derive(Debug, Clone)]
-pub struct SquadFrames {
+pub(crate) struct SquadFrames {
     outer: ArcSteps,
     inner: ArcSteps,
     u0: f64,

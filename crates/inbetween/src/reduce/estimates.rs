@@ -55,7 +55,7 @@ pub(crate) const ESTIMATES: usize = 6;
 /// Each frame's four steps in the log map (to the frames one and two before and after) are
 /// computed once and shared by the stencils that use them: the same values, to the bit, as
 /// each stencil computing its own (tested).
-pub fn velocity_estimates(times: &[f64], quats: &[DQuat]) -> Vec<[DVec3; ESTIMATES]> {
+pub(crate) fn velocity_estimates(times: &[f64], quats: &[DQuat]) -> Vec<[DVec3; ESTIMATES]> {
     let n = quats.len();
     if n < 3 {
         return direct_estimates(times, quats);

@@ -9,7 +9,7 @@
 //! positions within their own tolerance.
 //!
 //! ## Velocities
-//! A key carries one of its frame's [`velocity_estimates`] (finite differences of the frames:
+//! A key carries one of its frame's `velocity_estimates` (finite differences of the frames:
 //! centred, one-sided of first and second order, wide centred). Which one is chosen so that fewer
 //! keys meet the tolerance: on captured motion the one-sided estimates at a frame where the motion
 //! turns let a key there start or end a long segment. With slerp (no tangents) or without
@@ -61,7 +61,7 @@ mod world;
 pub(crate) use estimates::ESTIMATES;
 #[cfg(test)]
 use estimates::frame_velocities;
-pub use estimates::velocity_estimates;
+pub(crate) use estimates::velocity_estimates;
 use frames::Frames;
 use frames::error;
 pub use frames::error as rotation_error;
@@ -111,7 +111,7 @@ pub struct ReduceOptions {
     pub distance: Option<f64>,
     /// Largest position error (length units), for tracks with translations.
     pub translation_tolerance: Option<f64>,
-    /// Give each key an estimate of the frames' angular velocity at it ([`velocity_estimates`]).
+    /// Give each key an estimate of the frames' angular velocity at it (`velocity_estimates`).
     pub velocities: bool,
     /// Greedy or optimal.
     pub method: Method,

@@ -4,7 +4,7 @@
 //! (which `--path as-given` honours), the others give `w ≥ 0`. On output, quaternions are written
 //! as they are; every other representation describes the rotation, so the sign does not matter.
 
-pub mod arc;
+pub(crate) mod arc;
 mod euler;
 pub mod magnitude;
 mod matrix;

@@ -78,7 +78,7 @@ pub fn exp(v: DVec3) -> DQuat {
 }
 
 /// Pure quaternion (vector part) times a quaternion: `(0, v) · q`.
-pub fn pure_mul(v: DVec3, q: DQuat) -> DQuat {
+pub(crate) fn pure_mul(v: DVec3, q: DQuat) -> DQuat {
     DQuat::from_xyzw(v.x, v.y, v.z, 0.0) * q
 }
 

@@ -13,7 +13,7 @@
 //!   same choice);
 //! * at gimbal lock only the sum (or difference) of the first and third angle is determined; the
 //!   pair is the point of that family nearest the previous pair, which moves both angles by the
-//!   same amount (see [`nearest_triple`]);
+//!   same amount (see `nearest_triple`);
 //! * every triple rebuilds its rotation to 1e-12 rad (while the angles stay below ~1e3 rad in
 //!   magnitude, beyond which the spacing of f64 itself approaches that budget).
 //!
@@ -33,7 +33,7 @@ use glam::DQuat;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
 /// Distance (radians) of the middle angle from its singular value within which a rotation is
-/// treated as gimbal-locked by [`nearest_triple`].
+/// treated as gimbal-locked by `nearest_triple`.
 ///
 /// Snapping the middle angle to the singular value moves the rotation by exactly that distance,
 /// so the tolerance must stay below the 1e-12 rad rebuild budget; 1e-13 leaves a factor of ten.
@@ -69,10 +69,11 @@ pub(crate) const GIMBAL_LOCK_TOL: f64 = 1e-13;
 ///
 /// ```
 /// use inbetween::EulerSeq;
-/// use inbetween::rotation::unwrap::nearest_triple;
+/// use inbetween::rotation::unwrap::EulerUnwrap;
 /// use glam::DQuat;
 ///
 /// let zyx = EulerSeq::parse("ZYX")?;
+/// let nearest_triple = |seq, q, prev| EulerUnwrap::with_start(seq, prev).next(q);
 /// let deg = |t: [f64; 3]| t.map(f64::to_degrees);
 /// // 185° about z: canonically −175°, but next to 170° it is 185°.
 /// let q = DQuat::from_rotation_z(185f64.to_radians());
@@ -90,11 +91,11 @@ pub(crate) const GIMBAL_LOCK_TOL: f64 = 1e-13;
 /// assert!((t[2] - 0.15).abs() < 1e-12);
 /// # Ok::<(), inbetween::InputError>(())
 /// ```
-pub fn nearest_triple(seq: EulerSeq, q: DQuat, prev: [f64; 3]) -> [f64; 3] {
+pub(crate) fn nearest_triple(seq: EulerSeq, q: DQuat, prev: [f64; 3]) -> [f64; 3] {
     nearest_with_tol(seq, q, prev, GIMBAL_LOCK_TOL)
 }
 
-/// [`nearest_triple`] with the gimbal-lock tolerance as a parameter (the tests compare with −∞:
+/// `nearest_triple` with the gimbal-lock tolerance as a parameter (the tests compare with −∞:
 /// never locked).
 fn nearest_with_tol(seq: EulerSeq, q: DQuat, prev: [f64; 3], lock_tol: f64) -> [f64; 3] {
     let canonical = seq.from_quat(q);
@@ -120,7 +121,7 @@ fn nearest_with_tol(seq: EulerSeq, q: DQuat, prev: [f64; 3], lock_tol: f64) -> [
 }
 
 /// Continuous Euler angles along a track: each [`next`](EulerUnwrap::next) returns the triple of
-/// its rotation nearest the previous one ([`nearest_triple`]); the first is nearest the start
+/// its rotation nearest the previous one (`nearest_triple`); the first is nearest the start
 /// triple when one is given, else the canonical triple ([`EulerSeq::from_quat`]).
 ///
 /// ```

@@ -130,7 +130,7 @@ fn end_velocity_holds_to_the_discretisation_order() {
         end: None,
     };
     let keys = Knots::new(&t, PathMode::Shortest, ends);
-    let want = inbetween::rotation::quat::pure_mul(omega * 0.5, keys.quats()[0]);
+    let want = crate::support::pure_mul(omega * 0.5, keys.quats()[0]);
     let mut errors = Vec::new();
     for fps in [25.0, 50.0, 100.0, 200.0] {
         let sol = solve(&keys, fps).unwrap();

@@ -3,9 +3,8 @@
 //! tangents equal `V`, the end conditions hold, forward differences agree with direct
 //! evaluation, and `--path shortest` never takes a segment longer than 180°.
 
-use crate::support::{curve, interpolate, rot_angle, settings, track};
+use crate::support::{curve, interpolate, pure_mul, rot_angle, settings, track};
 use glam::{DQuat, DVec3};
-use inbetween::rotation::quat::pure_mul;
 use inbetween::tangent::Knots;
 use inbetween::{EndConditions, Ends, Fps, PathMode, Scheme, Track};
 use proptest::prelude::*;

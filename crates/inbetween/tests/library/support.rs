@@ -15,6 +15,11 @@ pub fn fixtures() -> PathBuf {
 }
 
 /// Angle between two rotations in radians (q and −q are the same rotation).
+/// The pure quaternion `(0, v)` times `q`: `q̇ = (0, ω)·q / 2` for a world-frame rate `ω`.
+pub fn pure_mul(v: DVec3, q: DQuat) -> DQuat {
+    DQuat::from_xyzw(v.x, v.y, v.z, 0.0) * q
+}
+
 pub fn rot_angle(a: DQuat, b: DQuat) -> f64 {
     inbetween::rotation::quat::rotation_angle_between(a, b)
 }

@@ -5,7 +5,7 @@
 use crate::support::rot_angle;
 use glam::DQuat;
 use inbetween::rotation::EulerSeq;
-use inbetween::rotation::unwrap::{EulerUnwrap, nearest_triple};
+use inbetween::rotation::unwrap::EulerUnwrap;
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
@@ -18,6 +18,11 @@ fn unit_quat() -> impl Strategy<Value = DQuat> {
             a.iter().map(|x| x * x).sum::<f64>() > 1e-2
         })
         .prop_map(|a| DQuat::from_xyzw(a[0], a[1], a[2], a[3]).normalize())
+}
+
+/// The rule's triple of `q` after `prev`: the public unwrapper started at `prev`.
+fn nearest_triple(seq: EulerSeq, q: DQuat, prev: [f64; 3]) -> [f64; 3] {
+    EulerUnwrap::with_start(seq, prev).next(q)
 }
 
 fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
