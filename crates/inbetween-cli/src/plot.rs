@@ -13,7 +13,7 @@ pub fn run(args: &PlotArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Resu
     let input = read_curves(
         &args.input,
         &args.curve,
-        &|_| Scheme::default(),
+        &|_, _| Scheme::default(),
         stdin,
         warn,
     )?;

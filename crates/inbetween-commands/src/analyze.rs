@@ -15,7 +15,7 @@ pub fn run(args: &AnalyzeArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
     let input = read_curves(
         &args.input,
         &args.curve,
-        &|_| Scheme::default(),
+        &|_, _| Scheme::default(),
         stdin,
         warn,
     )?;

@@ -34,7 +34,7 @@ pub fn run(
     warn: &mut dyn Events,
 ) -> Result<Option<String>, Error> {
     // Each side's keys as its format plays them, unless --scheme says how (played::scheme).
-    let scheme = |f| played::scheme(args.scheme, f);
+    let scheme = |f, recorded| played::scheme(args.scheme, f, recorded);
     let a_stdin = args
         .input
         .input

@@ -55,7 +55,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         // The curves' scheme: `--scheme`, else the input format's own (each glTF sampler as glTF
         // plays it, LINEAR keys by slerp; STEP and CUBICSPLINE channels are their samplers
         // whatever the scheme), else bezier.
-        &|f| played::scheme(args.scheme, f),
+        &|f, recorded| played::scheme(args.scheme, f, recorded),
         stdin,
         warn,
     )?;
@@ -459,7 +459,7 @@ fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error
         fps,
         curve: curve_options(
             curve,
-            played::scheme(args.scheme, Format::Bvh),
+            played::scheme(args.scheme, Format::Bvh, None),
             fps,
             args.input.angles,
         ),

@@ -13,14 +13,16 @@ use inbetween::{Curve, CurveOptions, Error, Scheme};
 use inbetween_io::Format;
 use inbetween_io::gltf::document::{Mode, Sampler, TrackSource};
 
-/// The scheme keys are played by: `given` (`--scheme`), else the input format's own: glTF's
+/// The scheme keys are played by: `given` (`--scheme`), else the one their document records
+/// (`"scheme"` of a JSON document, which `reduce` writes), else the input format's own: glTF's
 /// `LINEAR` samplers and USD's samples by slerp, every other format by bezier.
-pub fn scheme(given: Option<SchemeArg>, input: Format) -> Scheme {
-    match (given, input) {
-        (Some(s), _) => s.into(),
+pub fn scheme(given: Option<SchemeArg>, input: Format, recorded: Option<Scheme>) -> Scheme {
+    match (given, recorded, input) {
+        (Some(s), _, _) => s.into(),
+        (None, Some(s), _) => s,
         // glTF's LINEAR and USD's samples play by slerp.
-        (None, Format::Gltf | Format::Usd) => Scheme::Slerp,
-        (None, _) => Scheme::Bezier,
+        (None, None, Format::Gltf | Format::Usd) => Scheme::Slerp,
+        (None, None, _) => Scheme::Bezier,
     }
 }
 

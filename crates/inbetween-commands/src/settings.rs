@@ -320,11 +320,12 @@ pub fn files_read(
 }
 
 /// Reads the input and validates it into tracks, with the output rate and the curve options;
-/// `scheme` gives the curves' scheme for the input's format (a default may depend on it).
+/// `scheme` gives the curves' scheme for the input's format and the scheme its document records
+/// (a default may depend on them).
 pub fn read_curves(
     input: &InputArgs,
     curve: &CurveArgs,
-    scheme: &dyn Fn(Format) -> Scheme,
+    scheme: &dyn Fn(Format, Option<Scheme>) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn Events,
 ) -> Result<Curves, inbetween::Error> {
@@ -337,7 +338,7 @@ pub fn read_curves_in(
     mode: (Mode, bool),
     input: &InputArgs,
     curve: &CurveArgs,
-    scheme: &dyn Fn(Format) -> Scheme,
+    scheme: &dyn Fn(Format, Option<Scheme>) -> Scheme,
     stdin: &mut dyn Read,
     warn: &mut dyn Events,
 ) -> Result<Curves, inbetween::Error> {
@@ -404,7 +405,7 @@ pub fn read_curves_in(
             .into());
         }
     }
-    let opts = curve_options(curve, scheme(format), fps, input.angles);
+    let opts = curve_options(curve, scheme(format, doc.scheme), fps, input.angles);
     let reads = files_read(input, &[], gltf.as_deref());
     Ok(Curves {
         doc,

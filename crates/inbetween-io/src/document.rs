@@ -254,6 +254,9 @@ pub struct Document {
     pub fps: Option<Fps>,
     /// The representation the input used (the first key's, for JSON).
     pub rotation: Option<Repr>,
+    /// The scheme the keys were made for (a JSON document's `"scheme"`, which `reduce`
+    /// writes): how they are played unless `--scheme` says otherwise.
+    pub scheme: Option<inbetween::Scheme>,
     /// The tracks, in input order.
     pub tracks: Vec<DocTrack>,
     /// The input named its tracks (CSV `track` column, JSON `tracks`).

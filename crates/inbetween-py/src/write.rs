@@ -315,6 +315,7 @@ fn document(
         source: source.to_string(),
         fps,
         rotation: Some(Repr::Quat),
+        scheme: None,
         tracks: doc_tracks,
         named_tracks: true,
         warnings: Vec::new(),

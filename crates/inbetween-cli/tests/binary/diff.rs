@@ -616,3 +616,58 @@ fn step_and_cubicspline_samplers_are_played_as_authored() {
         .unwrap();
     assert!(num(&step["max_angle"]) > 1.0, "{step}");
 }
+
+/// A keys document plays by the scheme it records: `reduce --scheme nlerp` writes
+/// `"scheme": "nlerp"`, and `interp` and `diff` play the keys by nlerp without `--scheme` (the
+/// same bytes as with `--scheme nlerp`, other bytes than bezier's), `diff` finds them within the
+/// tolerance they were reduced under, `--scheme` still overrides, and `convert` keeps the field.
+#[test]
+fn a_keys_document_plays_by_the_scheme_it_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("keys.json");
+    let clip = "fixtures/bvh/cmu_01_01.bvh";
+    bin()
+        .args(["reduce", clip, "--scheme", "nlerp", "--tolerance", "0.5"])
+        .args(["--translation-tolerance", "0.1", "-o"])
+        .arg(&keys)
+        .assert()
+        .success();
+    let doc: Value = serde_json::from_slice(&std::fs::read(&keys).unwrap()).unwrap();
+    assert_eq!(doc["scheme"], "nlerp");
+    let interp = |scheme: Option<&str>| {
+        let mut cmd = bin();
+        cmd.arg("interp").arg(&keys).args(["--fps", "120"]);
+        if let Some(s) = scheme {
+            cmd.args(["--scheme", s]);
+        }
+        cmd.output().unwrap().stdout
+    };
+    let played = interp(None);
+    assert!(!played.is_empty());
+    assert_eq!(played, interp(Some("nlerp")));
+    assert_ne!(played, interp(Some("bezier")));
+    let max_angle = |more: &[&str]| {
+        let d = json_of(
+            bin()
+                .args(["diff", clip])
+                .arg(&keys)
+                .args(["--output-format", "json"])
+                .args(more),
+        );
+        num(&d["total"]["max_angle"])
+    };
+    let as_recorded = max_angle(&[]);
+    assert!(as_recorded <= 0.5 + 1e-9, "{as_recorded}");
+    assert_eq!(as_recorded, max_angle(&["--scheme", "nlerp"]));
+    assert_ne!(as_recorded, max_angle(&["--scheme", "bezier"]));
+    let copy = dir.path().join("copy.json");
+    bin()
+        .arg("convert")
+        .arg(&keys)
+        .arg("-o")
+        .arg(&copy)
+        .assert()
+        .success();
+    let doc: Value = serde_json::from_slice(&std::fs::read(&copy).unwrap()).unwrap();
+    assert_eq!(doc["scheme"], "nlerp");
+}

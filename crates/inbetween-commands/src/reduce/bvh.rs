@@ -80,6 +80,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
         source: source.clone(),
         fps: Some(frame_fps),
         rotation: None,
+        scheme: Some(curves.scheme),
         tracks,
         named_tracks: true,
         warnings: Vec::new(),

@@ -62,7 +62,7 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         ),
         &args.input,
         &args.curve,
-        &|f| scheme(args, f),
+        &|f, _| scheme(args, f),
         stdin,
         warn,
     )?;
@@ -101,6 +101,9 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         source: doc.source.clone(),
         fps: doc.fps,
         rotation: doc.rotation,
+        // The scheme the keys were verified under: a JSON document records it, so that
+        // interp and diff play them that way.
+        scheme: Some(input.opts.scheme),
         tracks: doc
             .tracks
             .iter()

@@ -112,7 +112,7 @@ fn read_back(
         max_input_bytes: u64::MAX,
         tracks: None,
     };
-    let scheme = |_| args.scheme.map_or(inbetween::Scheme::Bezier, Into::into);
+    let scheme = |_, _| args.scheme.map_or(inbetween::Scheme::Bezier, Into::into);
     read_curves(
         &input,
         &args.curve,

@@ -414,6 +414,7 @@ impl GltfClip {
             source: src.to_string(),
             fps: None,
             rotation: Some(Repr::Quat),
+            scheme: None,
             tracks,
             named_tracks: true,
             warnings,

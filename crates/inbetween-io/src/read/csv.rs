@@ -159,6 +159,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         // CSV declares no rate: `--key-fps` gives it.
         fps: opts.key_fps,
         rotation: Some(repr),
+        scheme: None,
         tracks: Vec::new(),
         named_tracks: track_col.is_some(),
         warnings: Vec::new(),

@@ -207,6 +207,7 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         source: source.to_string(),
         fps: Some(fps),
         rotation: None,
+        scheme: None,
         tracks: sorted,
         named_tracks: true,
         warnings: Vec::new(),

@@ -182,6 +182,9 @@ pub fn write_keys<W: Write>(
                 &style,
                 velocities,
             );
+            if let Some(s) = doc.scheme {
+                buf.extend_from_slice(format!(", \"scheme\": \"{s}\"").as_bytes());
+            }
             let vel = |buf: &mut Vec<u8>,
                        nums: &mut NumWriter,
                        ti: usize,
@@ -285,6 +288,7 @@ mod tests {
             source: "k.csv".into(),
             fps: None,
             rotation: Some(Repr::Quat),
+            scheme: None,
             tracks: vec![DocTrack {
                 name: Some("hip".into()),
                 keys: vec![key(0.0, DQuat::IDENTITY), key(second.0, second.1)],

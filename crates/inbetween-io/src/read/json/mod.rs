@@ -12,7 +12,8 @@
 //! it when the rate is known) and one rotation field. A document's declarations (`fps`,
 //! `rotation`, `angles`) describe its own values; the flags (`--key-fps`, `--from`,
 //! `--input-angles`) only what it leaves undeclared, and contradicting one is an error
-//! ([`settle`]).
+//! ([`settle`]). `"scheme"` names the scheme the keys were made for (`reduce` writes it), which
+//! plays them unless the command line names another.
 
 use crate::document::{DocTrack, Document, KeyOrigin, shorten};
 use crate::{ReadOptions, settle};
@@ -191,6 +192,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         })?),
         None => None,
     };
+    // The scheme the keys were made for (reduce writes it): how they play unless --scheme says.
+    let scheme = match &wire.scheme {
+        Some(s) => Some(
+            s.parse::<inbetween::Scheme>()
+                .map_err(|e| cut_quote(e, s).at(format!("{source}: \"scheme\"")))?,
+        ),
+        None => None,
+    };
     let rotation_written = format!("\"{}\"", wire.rotation.as_deref().unwrap_or(""));
     let rotation = settle(
         source,
@@ -225,6 +234,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         source: source.to_string(),
         fps,
         rotation: doc_rotation,
+        scheme,
         tracks: Vec::new(),
         named_tracks: wire.tracks.is_some(),
         warnings: Vec::new(),
@@ -328,6 +338,27 @@ mod tests {
         let text = r#"{"tracks": [{"name": "hip", "keys": []}, {"keys": []}]}"#;
         let doc = read(text, "k.json", &ReadOptions::default()).unwrap();
         assert_eq!(doc.tracks[1].name.as_deref(), Some("track1"));
+    }
+
+    /// `"scheme"` is the scheme the keys were made for; an unknown one is refused by name.
+    #[test]
+    fn a_recorded_scheme_is_read_and_checked() {
+        let keys = r#""keys": [{"time": 0, "quat": [1, 0, 0, 0]}]"#;
+        let doc = read(
+            &format!(r#"{{"scheme": "nlerp", {keys}}}"#),
+            "k.json",
+            &ReadOptions::default(),
+        )
+        .unwrap();
+        assert_eq!(doc.scheme, Some(inbetween::Scheme::Nlerp));
+        let doc = read(&format!("{{{keys}}}"), "k.json", &ReadOptions::default()).unwrap();
+        assert_eq!(doc.scheme, None);
+        assert_eq!(
+            err(&format!(r#"{{"scheme": "linear", {keys}}}"#)),
+            "k.json: \"scheme\": expected a scheme from hermite, squad, bezier, slerp, nlerp, \
+             minaccel, found \"linear\""
+        );
+        assert!(err(&format!(r#"{{"scheme": 3, {keys}}}"#)).contains("scheme"));
     }
 
     #[test]
