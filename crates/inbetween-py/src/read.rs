@@ -127,5 +127,6 @@ fn format_name(f: Format) -> &'static str {
         Format::Gltf => "gltf",
         Format::Fbx => "fbx",
         Format::Usd => "usda",
+        Format::Amass => "npz",
     }
 }
