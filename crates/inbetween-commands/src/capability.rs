@@ -72,7 +72,7 @@ pub fn of(format: OutputFormat) -> Capability {
             no_precision: Some("USD stores its values as float32"),
         },
         // Not written (FBX: issue 50): nothing to carry.
-        OutputFormat::Doc(Format::Bvh | Format::Gltf | Format::Fbx) => all,
+        OutputFormat::Doc(Format::Bvh | Format::Gltf | Format::Fbx | Format::Amass) => all,
     }
 }
 

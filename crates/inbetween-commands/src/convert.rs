@@ -92,6 +92,12 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
         {
             OutputFormat::Doc(Format::Json)
         }
+        // An AMASS input's keys default to JSON (tracks = joints, the pelvis' with `trans`).
+        (OutputFormat::Npz, Format::Amass)
+            if args.output.output_format.is_none() && args.output.output.is_none() =>
+        {
+            OutputFormat::Doc(Format::Json)
+        }
         // A glTF input's keys default to JSON (tracks = rotation channels).
         (OutputFormat::Gltf(_), Format::Gltf)
             if args.output.output_format.is_none() && args.output.output.is_none() =>

@@ -31,6 +31,9 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     if let Some(done) = lean_bvh(args, warn) {
         return done;
     }
+    if crate::amass::writes_amass(args) {
+        return crate::amass::interp(args, stdin);
+    }
     // --skeleton: its Frame Time is the rate where --fps gives none.
     let template = args
         .skeleton

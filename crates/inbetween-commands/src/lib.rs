@@ -8,6 +8,7 @@
 //! nothing; its messages name the options as the command line spells them ([`flags`]), which is
 //! also how Python's `process_file` takes them ([`keywords`]).
 
+pub mod amass;
 pub mod analyze;
 pub mod args;
 pub mod batch;

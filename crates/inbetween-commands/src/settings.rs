@@ -441,6 +441,8 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
             // FBX is not written: JSON, which keeps the tracks' names and translations.
             Format::Fbx => OutputFormat::Doc(Format::Json),
             Format::Usd => OutputFormat::Usda,
+            // An AMASS file is written back in its own shape at the output rate.
+            Format::Amass => OutputFormat::Npz,
             f => OutputFormat::Doc(f),
         })
 }

@@ -15,6 +15,7 @@ macro_rules! input_err {
     ($($arg:tt)*) => { inbetween::error::InputError::new(format!($($arg)*)) };
 }
 
+pub mod amass;
 pub mod bvh;
 pub mod clip;
 pub mod document;
@@ -54,11 +55,14 @@ pub enum Format {
     Fbx,
     /// A USD text layer (`.usda`): a UsdSkel skeleton's animation ([`usd::read`]).
     Usd,
+    /// An AMASS motion file, a NumPy `.npz` archive of SMPL-H or SMPL-X poses ([`amass`]):
+    /// input; as output, [`OutputFormat::Npz`] writes it back at the output rate.
+    Amass,
 }
 
 impl Format {
     /// `csv`, `json`, `bvh`, `gltf`/`glb` (either container: it is recognised by its
-    /// bytes), `fbx` or `usda`.
+    /// bytes), `fbx`, `usda` or `npz` (an AMASS motion file).
     pub fn parse(s: &str) -> InputResult<Format> {
         match s {
             "csv" => Ok(Format::Csv),
@@ -67,14 +71,15 @@ impl Format {
             "gltf" | "glb" => Ok(Format::Gltf),
             "fbx" => Ok(Format::Fbx),
             "usda" => Ok(Format::Usd),
+            "npz" => Ok(Format::Amass),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"bvh\", \"gltf\", \"glb\", \"fbx\" or \"usda\", found \"{s}\""
+                "expected \"csv\", \"json\", \"bvh\", \"gltf\", \"glb\", \"fbx\", \"usda\" or \"npz\", found \"{s}\""
             )),
         }
     }
 
     /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, `.fbx`, `.usda`,
-    /// case-insensitive).
+    /// `.npz`, case-insensitive).
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
@@ -84,6 +89,7 @@ impl Format {
             "gltf" | "glb" => Some(Format::Gltf),
             "fbx" => Some(Format::Fbx),
             "usda" | "usd" | "usdc" | "usdz" => Some(Format::Usd),
+            "npz" => Some(Format::Amass),
             _ => None,
         }
     }
@@ -210,7 +216,7 @@ pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> boo
 }
 
 /// Parses a document from raw bytes: the format as given, else from `path`'s extension, else
-/// sniffed. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
+/// sniffed. An `.npz` archive (a zip's bytes, [`amass::is_npz`]) is an AMASS motion file. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
 /// snapped to `--key-fps`, else 30 fps, a `STEP` channel as its held values on those frames
 /// and a `CUBICSPLINE` one as its vertices ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
 /// UTF-8. `source` names the input in messages.
@@ -234,6 +240,10 @@ pub fn parse_bytes(
     if is_fbx_input(&bytes, path, format) {
         let fbx = fbx::read(&bytes, source, None)?;
         return Ok((fbx_document(fbx, source), Format::Fbx));
+    }
+    if amass::is_npz(&bytes, path, format) {
+        let clip = amass::read(&bytes, source, opts.key_fps)?;
+        return Ok((clip.document()?, Format::Amass));
     }
     let usd = format.or_else(|| path.and_then(Format::from_path)) == Some(Format::Usd);
     if bytes.starts_with(b"PXR-USDC") || (usd && bytes.starts_with(b"PK\x03\x04")) {
@@ -384,6 +394,7 @@ pub fn read_document(
             source,
         )),
         Format::Usd => Ok(usd::read::read(text, source)?),
+        Format::Amass => Ok(amass::read(text.as_bytes(), source, opts.key_fps)?.document()?),
         Format::Gltf => {
             let asset = gltf::Asset::from_slice(text.as_bytes(), source, None)?;
             let clip = gltf::document::GltfClip::new(asset, None)?;

@@ -15,7 +15,8 @@ use std::path::Path;
 /// The file at `path` as a dict: `source`, `format`, `fps` (the rate its frames or frame numbers
 /// are at, as text, or None), `names`, `tracks` (per track: times (K,), rotations (K, 4),
 /// translations (K, 3) or None), and for BVH and glTF `parents` (each track's nearest ancestor that is
-/// a track, -1 for none) and `offsets` (J, 3). `rotation` says how CSV e1,e2,e3 columns and JSON
+/// a track, -1 for none) and `offsets` (J, 3); for an AMASS `.npz`, `parents` of the SMPL-H or
+/// SMPL-X tree (no offsets: they need the licensed body model). `rotation` says how CSV e1,e2,e3 columns and JSON
 /// `euler` keys are written when the file does not say (`"euler:ZYX"`, …); `angles` the unit of
 /// undeclared angles; `key_fps` the rate of frame numbers when the file declares none.
 #[pyfunction]
@@ -86,6 +87,18 @@ pub fn read<'py>(
         out.push((PyArray1::from_slice(py, t.times()), q, p));
     }
     d.set_item("tracks", out)?;
+    // An AMASS file: the model's fixed tree (no offsets: they need the body model's files).
+    let model = (format == Format::Amass)
+        .then(|| inbetween_io::amass::Model::of_width(3 * tracks.len() as u64))
+        .flatten();
+    if let Some(m) = model {
+        let parents: Vec<i64> = m
+            .parents()
+            .iter()
+            .map(|p| p.map_or(-1, |t| t as i64))
+            .collect();
+        d.set_item("parents", PyArray1::from_vec(py, parents))?;
+    }
     if let Some(skeleton) = doc
         .hierarchy
         .as_deref()
@@ -127,5 +140,6 @@ fn format_name(f: Format) -> &'static str {
         Format::Gltf => "gltf",
         Format::Fbx => "fbx",
         Format::Usd => "usda",
+        Format::Amass => "npz",
     }
 }

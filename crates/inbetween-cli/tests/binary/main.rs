@@ -3,6 +3,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod amass;
 mod analyze;
 mod animator;
 mod api;

@@ -68,7 +68,12 @@ impl<W: Write> FrameWriter<W> {
         };
         let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
         match format {
-            Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
+            Format::Csv
+            | Format::Bvh
+            | Format::Gltf
+            | Format::Fbx
+            | Format::Usd
+            | Format::Amass => {
                 if track_column {
                     buf.extend_from_slice(b"track,");
                 }
@@ -270,7 +275,12 @@ impl<W: Write> FrameSink for FrameWriter<W> {
         self.frames_in_track = 0;
         self.track_name = name.map(str::to_string);
         match self.format {
-            Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
+            Format::Csv
+            | Format::Bvh
+            | Format::Gltf
+            | Format::Fbx
+            | Format::Usd
+            | Format::Amass => {
                 self.track = csv_field(name.unwrap_or(""));
                 self.track.push(b',');
             }

@@ -116,7 +116,7 @@ pub fn write_keys<W: Write>(
     // BVH keys are written by `io::bvh` on its skeleton; the commands never route them here.
     debug_assert!(format != Format::Bvh, "write_keys writes CSV or JSON");
     match format {
-        Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
+        Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd | Format::Amass => {
             if named {
                 buf.extend_from_slice(b"track,");
             }

@@ -61,7 +61,12 @@ impl RowFormatter {
             // One `is_finite` per written value and one norm per rotation.
             let mut ok = f.time.is_finite() && is_rotation(f.q);
             match self.format {
-                Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd => {
+                Format::Csv
+                | Format::Bvh
+                | Format::Gltf
+                | Format::Fbx
+                | Format::Usd
+                | Format::Amass => {
                     if self.track_column {
                         out.extend_from_slice(track);
                     }

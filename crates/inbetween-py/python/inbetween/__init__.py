@@ -22,7 +22,7 @@ from . import _inbetween
 from ._inbetween import InputError
 
 __all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times",
-           "process_file", "read", "reduce", "resample", "write"]
+           "process_file", "read", "reduce", "resample", "resample_amass", "write"]
 
 #: The package's version (the Rust crate's, which pyproject.toml repeats).
 __version__: str = _inbetween.__version__
@@ -582,3 +582,18 @@ def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], co
     """
     return _inbetween.process_file(os.fspath(path), os.fspath(out), command, dict(options),
                                    refresh)
+
+
+def resample_amass(path: Union[str, os.PathLike], out: Union[str, os.PathLike], fps: Rate,
+                   **options: Any) -> Dict[str, Any]:
+    """Write the AMASS motion file ``path`` (``.npz``) to ``out`` (``.npz``) in AMASS's own
+    layout at the exact rate ``fps``: ``inbetween interp path --fps FPS -o out``
+    (docs/formats.md, *AMASS*): the same keys, dtypes and shapes, ``poses`` from each joint's
+    curve, ``trans`` and the other per-frame arrays linearly, the rate key (as the file spells
+    it) the new rate, everything else copied. ``options`` are ``interp``'s flags as
+    :func:`process_file` takes them (``scheme="slerp"``). Returns the record; a refused file
+    raises ``InputError`` with its message (naming the file and the key)."""
+    record = process_file(path, out, "interp", refresh=True, fps=fps, **options)
+    if record["status"] != "ok":
+        raise InputError(record["error"])
+    return record
