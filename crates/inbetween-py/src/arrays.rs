@@ -4,6 +4,7 @@
 
 use crate::input_error;
 use glam::{DQuat, DVec3};
+use inbetween::rotation::{AngleUnit, Repr};
 use numpy::ndarray::{ArrayViewD, Axis, IxDyn};
 use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
@@ -47,7 +48,10 @@ fn rows_of<'a>(
 }
 
 /// Quaternions (K, 4) or (K, J, 4) — `[w, x, y, z]` rows when `scalar_first`, else
-/// `[x, y, z, w]` — per joint.
+/// `[x, y, z, w]` — per joint, normalised by the command line's rule (docs/spec.md §2: a norm
+/// below 1e-6 is an error naming the row; a norm off 1 by more than 1e-3 is normalised with one
+/// Python `UserWarning` naming the first such row and counting the others); a norm within 1e-12
+/// of 1 is taken as it is.
 pub fn quats(
     a: &PyReadonlyArrayDyn<'_, f64>,
     name: &str,
@@ -55,18 +59,64 @@ pub fn quats(
 ) -> PyResult<(Layout, Vec<Vec<DQuat>>)> {
     let view = a.as_array();
     let (layout, joints) = rows_of(&view, name, 4)?;
-    let per_joint = joints
-        .iter()
-        .map(|j| {
-            j.axis_iter(Axis(0))
-                .map(|r| match scalar_first {
-                    true => DQuat::from_xyzw(r[1], r[2], r[3], r[0]),
-                    false => DQuat::from_xyzw(r[0], r[1], r[2], r[3]),
-                })
-                .collect()
-        })
-        .collect();
+    let place = |k: usize, j: usize| match layout.joints {
+        None => format!("{name}[{k}]"),
+        Some(_) => format!("{name}[{k}, {j}]"),
+    };
+    let mut warned: Option<(String, usize)> = None;
+    let mut per_joint = Vec::with_capacity(joints.len());
+    for (j, rows) in joints.iter().enumerate() {
+        let mut out = Vec::with_capacity(layout.rows);
+        for (k, r) in rows.axis_iter(Axis(0)).enumerate() {
+            let wxyz = match scalar_first {
+                true => [r[0], r[1], r[2], r[3]],
+                false => [r[3], r[0], r[1], r[2]],
+            };
+            let given = DQuat::from_xyzw(wxyz[1], wxyz[2], wxyz[3], wxyz[0]);
+            // Unit to f64's working precision (a clip `read` gave): taken as it is, so that it
+            // is written back to the bit; anything else normalised by the readers' rule.
+            if (given.length() - 1.0).abs() <= 1e-12 {
+                out.push(given);
+                continue;
+            }
+            let (q, warning) = Repr::Quat
+                .to_quat(&wxyz, AngleUnit::Rad)
+                .map_err(|e| input_error(format!("{}: {}", place(k, j), e.message())))?;
+            if let Some(w) = warning {
+                match &mut warned {
+                    None => warned = Some((format!("{}: {w}", place(k, j)), 0)),
+                    Some((_, others)) => *others += 1,
+                }
+            }
+            out.push(q);
+        }
+        per_joint.push(out);
+    }
+    if let Some((first, others)) = warned {
+        let text = match others {
+            0 => first,
+            n => format!("{first} (and {n} other rows)"),
+        };
+        Python::attach(|py| {
+            let message = std::ffi::CString::new(text).unwrap_or_default();
+            PyErr::warn(
+                py,
+                &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+                &message,
+                2,
+            )
+        })?;
+    }
     Ok((layout, per_joint))
+}
+
+/// A joint's track of `times` and `quats`: one key is a constant (a joint that does not move),
+/// as the command line reads a track of one key (docs/spec.md §3).
+pub fn track(times: &[f64], quats: Vec<DQuat>) -> Result<inbetween::Track, inbetween::TrackError> {
+    match (times, &quats[..]) {
+        ([t], [q]) => inbetween::Track::constant(*t, *q),
+        _ => inbetween::Track::new(times.to_vec(), quats),
+    }
 }
 
 /// Vectors (K, 3) or (K, J, 3) per joint, laid out as `like` (same K, same J or none).

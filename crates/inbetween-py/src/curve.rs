@@ -229,7 +229,7 @@ fn tracks(
             None => what.to_string(),
         };
         let fail = |what: &str, e: inbetween::TrackError| input_error(format!("{}: {e}", at(what)));
-        let mut t = Track::new(times.to_vec(), q).map_err(|e| fail("rotations", e))?;
+        let mut t = arrays::track(times, q).map_err(|e| fail("rotations", e))?;
         if let Some(v) = &velocities {
             let v = v[j].iter().map(|&v| given(v)).collect();
             t = t

@@ -6,7 +6,7 @@ use crate::arrays::{self, Layout, quat_row};
 use crate::curve::curve_error;
 use crate::{input_error, options};
 use glam::{DQuat, DVec3};
-use inbetween::{BakeOptions, Fps, FrameSink, Track};
+use inbetween::{BakeOptions, Fps, FrameSink};
 use numpy::{PyArrayDyn, PyReadonlyArrayDyn};
 use pyo3::prelude::*;
 
@@ -140,7 +140,7 @@ pub fn resample<'py>(
     let per_joint: Vec<(usize, &[DQuat])> = quats.iter().map(Vec::as_slice).enumerate().collect();
     let built = py.detach(|| {
         inbetween::parallel::map(&per_joint, |&(_, q)| {
-            Track::new(times.clone(), q.to_vec()).map(|t| inbetween::Curve::new(&t, &opts))
+            arrays::track(&times, q.to_vec()).map(|t| inbetween::Curve::new(&t, &opts))
         })
     });
     drop(quats);

@@ -289,14 +289,7 @@ fn document(
                 }
                 _ => KeyTime::Seconds(t),
             };
-            let norm = q.length();
-            if (norm - 1.0).abs() > 1e-6 || norm.is_nan() {
-                return Err(input_error(format!(
-                    "{}[{k}]: expected a unit quaternion (norm within 1e-6 of 1), found norm \
-                     {norm}",
-                    what("rotations")
-                )));
-            }
+            // Unit by arrays::quats (the command line's normalisation rule).
             keys.push(Key { when, rot: *q });
         }
         doc_tracks.push(DocTrack {

@@ -1,0 +1,65 @@
+"""The command line's rules, as Python applies them: quaternions normalised as the readers
+normalise them, a track of one key, compared with what `inbetween interp` writes for the same
+input (docs/spec.md §2, §3)."""
+
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+import inbetween
+from conftest import angle
+
+
+def cli_frames(cli, tmp_path, rows, fps="30"):
+    """`inbetween interp` of a CSV of keys `rows` (time, w, x, y, z), its frames (N, 4)."""
+    src = tmp_path / "keys.csv"
+    src.write_text("time,w,x,y,z\n" + "".join(",".join(map(str, r)) + "\n" for r in rows))
+    out = subprocess.run([cli, "interp", str(src), "--fps", fps], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    lines = out.stdout.splitlines()[1:]
+    return np.array([[float(x) for x in line.split(",")[2:6]] for line in lines]), out.stderr
+
+
+def test_quaternions_written_to_four_decimals_are_normalised_as_the_cli_does(cli, tmp_path):
+    # 0.7071 is 1e-5 off the unit norm: accepted silently by both, normalised.
+    rows = [(0.0, 1, 0, 0, 0), (1.0, 0.7071, 0.7071, 0, 0)]
+    want, stderr = cli_frames(cli, tmp_path, rows)
+    assert "norm" not in stderr
+    keys = np.array([r[1:] for r in rows], dtype=float)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = inbetween.Curve([0.0, 1.0], keys)(np.arange(31) / 30)
+    assert angle(got, want).max() < 1e-9
+    assert np.abs(np.linalg.norm(got, axis=1) - 1).max() < 1e-15
+
+
+def test_a_norm_off_by_more_than_1e3_warns_once_and_is_normalised(cli, tmp_path):
+    rows = [(0.0, 1.01, 0, 0, 0), (0.5, 1.02, 0, 0, 0), (1.0, 0, 0, 0, 2)]
+    want, stderr = cli_frames(cli, tmp_path, rows)
+    assert "off 1 by more than 1e-3; normalized" in stderr
+    keys = np.array([r[1:] for r in rows], dtype=float)
+    with pytest.warns(UserWarning) as told:
+        got = inbetween.Curve([0.0, 0.5, 1.0], keys)(np.arange(31) / 30)
+    assert len(told) == 1
+    message = str(told[0].message)
+    assert message.startswith("rotations[0]: quaternion norm 1.01 is off 1 by more than 1e-3")
+    assert message.endswith("(and 2 other rows)"), message
+    assert angle(got, want).max() < 1e-9
+    # Joints are named too; a zero quaternion is refused, naming its row.
+    with pytest.raises(inbetween.InputError, match=r"rotations\[1, 0\]: expected a quaternion of non-zero length"):
+        inbetween.Curve([0.0, 1.0], np.array([[[1.0, 0, 0, 0]], [[0.0, 0, 0, 0]]]))
+
+
+def test_one_frame_is_a_constant_as_on_the_command_line(cli, tmp_path):
+    q = np.array([[0.0, 0.6, 0.0, 0.8]])
+    want, _ = cli_frames(cli, tmp_path, [(0.0, *q[0])])
+    got = inbetween.resample(q, 30, 24)
+    assert got.shape == (1, 4) and want.shape == (1, 4)
+    assert angle(got, want).max() < 1e-15
+    frames, w = inbetween.resample(q[:, None, :], 30, 24, velocity=True)
+    assert frames.shape == (1, 1, 4) and np.array_equal(w, np.zeros((1, 1, 3)))
+    c = inbetween.Curve([0.25], q)
+    assert angle(c(np.array([0.25])), q).max() < 1e-15
+    assert np.array_equal(c(np.array([0.25]), order=1), np.zeros((1, 3)))
