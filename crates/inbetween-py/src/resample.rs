@@ -81,6 +81,8 @@ fn grid(n: usize, fps_in: Fps, fps_out: Fps) -> PyResult<(i64, i64)> {
 struct Frames {
     rotations: Vec<[f64; 4]>,
     velocities: Vec<[f64; 3]>,
+    /// The positions, for a track with translations.
+    positions: Vec<[f64; 3]>,
     scalar_first: bool,
     /// Angular velocities in the body's axes (`frame="body"`), else the world's.
     body: bool,
@@ -100,15 +102,29 @@ impl FrameSink for Frames {
         }
         Ok(())
     }
+
+    fn frame_at(
+        &mut self,
+        k: i64,
+        time: f64,
+        q: DQuat,
+        omega: Option<DVec3>,
+        position: DVec3,
+    ) -> std::io::Result<()> {
+        self.positions.push(position.to_array());
+        self.frame(k, time, q, omega)
+    }
 }
 
 /// Frames `rotations` (T, 4) or (T, J, 4) at `fps_in` resampled onto `fps_out`: (M, 4) or
 /// (M, J, 4), M = ⌊(T − 1)/fps_in · fps_out⌋ + 1 frames; with `velocity`, also the angular
-/// velocities (M, 3) or (M, J, 3), rad/s, world frame (`frame="body"`: the body's axes).
+/// velocities (M, 3) or (M, J, 3), rad/s, world frame (`frame="body"`: the body's axes); with
+/// `translations` (T, 3) or (T, J, 3), also the positions at the new frames (M, 3) or (M, J, 3),
+/// last in the tuple, as `interp` writes a track's translations.
 #[pyfunction]
 #[pyo3(signature = (
     rotations, fps_in, fps_out, *, scheme = "bezier", ends = "chord", path = "shortest",
-    scalar_first = true, velocity = false, frame = None
+    scalar_first = true, velocity = false, frame = None, translations = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn resample<'py>(
@@ -122,6 +138,7 @@ pub fn resample<'py>(
     scalar_first: bool,
     velocity: bool,
     frame: Option<&str>,
+    translations: Option<PyReadonlyArrayDyn<'py, f64>>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let body = options::body_frame(frame)?;
     let (fps_in, fps_out) = (
@@ -129,9 +146,14 @@ pub fn resample<'py>(
         options::rate("fps_out", &fps_out)?,
     );
     let (layout, quats): (Layout, _) = arrays::quats(&rotations, "rotations", scalar_first)?;
+    let positions = match &translations {
+        Some(p) => Some(arrays::vectors(p, "translations", layout, "rotations")?),
+        None => None,
+    };
     let (first, last) = grid(layout.rows, fps_in, fps_out)?;
     let joints = layout.joints.unwrap_or(1) as i64;
-    fits(last - first + 1, joints * if velocity { 7 } else { 4 })?;
+    let width = 4 + if velocity { 3 } else { 0 } + if positions.is_some() { 3 } else { 0 };
+    fits(last - first + 1, joints * width)?;
     let frames = usize::try_from(last - first + 1).unwrap_or(0);
     let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
     let opts = options::curve(scheme, ends, path, fps_out)?;
@@ -139,8 +161,13 @@ pub fn resample<'py>(
     // first joint whose keys are refused, else the first whose curve is.
     let per_joint: Vec<(usize, &[DQuat])> = quats.iter().map(Vec::as_slice).enumerate().collect();
     let built = py.detach(|| {
-        inbetween::parallel::map(&per_joint, |&(_, q)| {
-            arrays::track(&times, q.to_vec()).map(|t| inbetween::Curve::new(&t, &opts))
+        inbetween::parallel::map(&per_joint, |&(j, q)| {
+            let track = arrays::track(&times, q.to_vec());
+            let track = match &positions {
+                Some(p) => track.and_then(|t| t.with_translations(p[j].clone())),
+                None => track,
+            };
+            track.map(|t| inbetween::Curve::new(&t, &opts))
         })
     });
     drop(quats);
@@ -169,6 +196,7 @@ pub fn resample<'py>(
             let mut sink = Frames {
                 rotations: Vec::with_capacity(frames),
                 velocities: Vec::with_capacity(if velocity { frames } else { 0 }),
+                positions: Vec::with_capacity(if positions.is_some() { frames } else { 0 }),
                 scalar_first,
                 body,
             };
@@ -179,14 +207,29 @@ pub fn resample<'py>(
         .into_iter()
         .collect::<std::io::Result<Vec<Frames>>>()
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    let (rows, w): (Vec<_>, Vec<_>) = baked
-        .into_iter()
-        .map(|f| (f.rotations, f.velocities))
-        .unzip();
-    let out: Bound<'py, PyArrayDyn<f64>> = arrays::output(py, &rows, layout.joints)?;
-    if !velocity {
-        return Ok(out.into_any());
+    let mut rows = Vec::with_capacity(baked.len());
+    let mut w = Vec::with_capacity(baked.len());
+    let mut p = Vec::with_capacity(baked.len());
+    for f in baked {
+        rows.push(f.rotations);
+        w.push(f.velocities);
+        p.push(f.positions);
     }
-    let w = arrays::output(py, &w, layout.joints)?;
-    Ok((out, w).into_pyobject(py)?.into_any())
+    let out: Bound<'py, PyArrayDyn<f64>> = arrays::output(py, &rows, layout.joints)?;
+    let p = match positions {
+        Some(_) => Some(arrays::output(py, &p, layout.joints)?),
+        None => None,
+    };
+    match (velocity, p) {
+        (false, None) => Ok(out.into_any()),
+        (false, Some(p)) => Ok((out, p).into_pyobject(py)?.into_any()),
+        (true, None) => {
+            let w = arrays::output(py, &w, layout.joints)?;
+            Ok((out, w).into_pyobject(py)?.into_any())
+        }
+        (true, Some(p)) => {
+            let w = arrays::output(py, &w, layout.joints)?;
+            Ok((out, w, p).into_pyobject(py)?.into_any())
+        }
+    }
 }

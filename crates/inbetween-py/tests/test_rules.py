@@ -63,3 +63,34 @@ def test_one_frame_is_a_constant_as_on_the_command_line(cli, tmp_path):
     c = inbetween.Curve([0.25], q)
     assert angle(c(np.array([0.25])), q).max() < 1e-15
     assert np.array_equal(c(np.array([0.25]), order=1), np.zeros((1, 3)))
+
+
+def test_translations_are_resampled_as_interp_writes_them(cli, tmp_path):
+    # Two joints, 9 frames at 24 fps onto 30 fps, each with a moving translation.
+    t = np.arange(9) / 24
+    q = np.stack([np.stack([np.cos(0.3 * t * (j + 1)), np.sin(0.3 * t * (j + 1)),
+                            np.zeros_like(t), np.zeros_like(t)], -1) for j in range(2)], 1)
+    p = np.stack([np.stack([np.sin(t + j), t ** 2, np.full_like(t, j)], -1) for j in range(2)], 1)
+    src = tmp_path / "moves.csv"
+    with open(src, "w") as f:
+        f.write("track,frame,w,x,y,z,tx,ty,tz\n")
+        for j in range(2):
+            for k in range(len(t)):
+                f.write(",".join([f"j{j}", str(k), *map(repr, q[k, j].tolist()), *map(repr, p[k, j].tolist())]) + "\n")
+    out = subprocess.run([cli, "interp", str(src), "--key-fps", "24", "--fps", "30"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    header, *lines = out.stdout.splitlines()
+    cols = header.split(",")
+    rows = [line.split(",") for line in lines]
+    want_p = np.array([[float(r[cols.index(c)]) for c in ("tx", "ty", "tz")] for r in rows]).reshape(2, -1, 3)
+    want_q = np.array([[float(r[cols.index(c)]) for c in ("w", "x", "y", "z")] for r in rows]).reshape(2, -1, 4)
+    got_q, got_p = inbetween.resample(q, 24, 30, translations=p)
+    assert got_p.shape == (want_p.shape[1], 2, 3)
+    assert np.abs(got_p - want_p.transpose(1, 0, 2)).max() < 1e-12
+    assert angle(got_q.reshape(-1, 4), want_q.transpose(1, 0, 2).reshape(-1, 4)).max() < 1e-12
+    # With velocities the positions come last; a shape that does not match is refused.
+    r, w, pos = inbetween.resample(q, 24, 30, translations=p, velocity=True)
+    assert np.array_equal(pos, got_p) and w.shape == (len(pos), 2, 3)
+    with pytest.raises(inbetween.InputError, match="translations: shape"):
+        inbetween.resample(q, 24, 30, translations=p[:, :1])

@@ -184,13 +184,16 @@ def resample(
     scalar_first: bool = True,
     velocity: bool = False,
     frame: str = "world",
+    translations: Any = None,
 ) -> Any:
     """Frames ``rotations`` (T, 4) or (T, J, 4) at ``fps_in`` onto the exact grid of
     ``fps_out``: (M, 4) or (M, J, 4) with M = ⌊(T − 1)/fps_in · fps_out⌋ + 1, at the times
     ``frame_times(T, fps_in, fps_out)``, as ``inbetween interp --fps`` writes them (every input
     frame a key); a scipy ``Rotation`` of T frames gives a ``Rotation`` of M. With
     ``velocity``, a pair: the rotations and the angular velocities (M, 3) or (M, J, 3), rad/s,
-    in the world frame, or with ``frame="body"`` in the body's own axes (R(q)ᵀ ω)."""
+    in the world frame, or with ``frame="body"`` in the body's own axes (R(q)ᵀ ω). With
+    ``translations`` (T, 3) or (T, J, 3), the positions at the new frames come last in the
+    tuple, (M, 3) or (M, J, 3), as ``interp`` writes a track's translations."""
     frame = _check_frame(frame)
     out = _inbetween.resample(
         _rotations(rotations, scalar_first),
@@ -202,11 +205,12 @@ def resample(
         scalar_first=scalar_first,
         velocity=velocity,
         frame=frame,
+        translations=_optional(translations, "translations"),
     )
     if not _is_rotation(rotations):
         return out
-    if velocity:
-        return _to_rotation(type(rotations), out[0], scalar_first), out[1]
+    if isinstance(out, tuple):
+        return (_to_rotation(type(rotations), out[0], scalar_first),) + out[1:]
     return _to_rotation(type(rotations), out, scalar_first)
 
 
