@@ -82,16 +82,28 @@ impl Curve {
     /// `order=1` angular velocity and `order=2` angular acceleration, (N, 3) or (N, J, 3),
     /// rad/s and rad/s², in the world frame, or with `frame="body"` in the body's own axes:
     /// R(q)ᵀ ω and R(q)ᵀ α, where R(q)ᵀ α is also the time derivative of R(q)ᵀ ω (the term
-    /// −R(q)ᵀ (ω × ω) of that derivative is zero).
-    #[pyo3(signature = (t, order = None, frame = None))]
+    /// −R(q)ᵀ (ω × ω) of that derivative is zero). A time outside the keys' span (by more than
+    /// 1e-9 s) is an error unless `outside="hold"`, which holds the end keys (at rest).
+    #[pyo3(signature = (t, order = None, frame = None, outside = None))]
     fn __call__<'py>(
         &self,
         py: Python<'py>,
         t: PyReadonlyArrayDyn<'py, f64>,
         order: Option<Bound<'py, PyAny>>,
         frame: Option<&str>,
+        outside: Option<&str>,
     ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let body = options::body_frame(frame)?;
+        let hold = match outside {
+            None | Some("error") => false,
+            Some("hold") => true,
+            Some(other) => {
+                return Err(input_error(format!(
+                    "outside: expected \"error\" or \"hold\", found \"{}\"",
+                    inbetween::error::shorten(other)
+                )));
+            }
+        };
         let order = match order {
             None => 0,
             Some(o) => crate::options::integer("order", &o, (0, 2))?.ok_or_else(|| {
@@ -107,6 +119,19 @@ impl Curve {
             return Err(input_error(format!(
                 "t: expected finite times, found {bad}"
             )));
+        }
+        if let (false, Some(c)) = (hold, self.curves.first()) {
+            let (lo, hi) = c.span();
+            if let Some((i, x)) = t
+                .iter()
+                .enumerate()
+                .find(|&(_, &x)| x < lo - 1e-9 || x > hi + 1e-9)
+            {
+                return Err(input_error(format!(
+                    "t[{i}]: {x} s is outside the keys' span [{lo}, {hi}] s; outside=\"hold\" \
+                     holds the end keys there"
+                )));
+            }
         }
         let joints = self.layout.joints;
         let sf = self.scalar_first;

@@ -93,7 +93,25 @@ def test_joints_are_the_curves_of_each_joint_alone():
     for j in range(4):
         alone = inbetween.Curve(times, q[:, j], "squad", ends="rest")
         for order in (0, 1, 2):
-            assert np.array_equal(together(t, order)[:, j], alone(t, order))
+            assert np.array_equal(together(t, order, outside="hold")[:, j],
+                                  alone(t, order, outside="hold"))
+
+
+def test_outside_the_span_is_refused_unless_held():
+    times, q = keys(5)
+    c = inbetween.Curve(times, q)
+    lo, hi = c.span
+    # Within 1e-9 s of an end is the end (the frame clock's tolerance).
+    assert np.array_equal(c(hi + 5e-10), c(hi))
+    with pytest.raises(inbetween.InputError, match=r"t\[1\]: .* outside the keys' span"):
+        c([lo, hi + 1e-6])
+    with pytest.raises(inbetween.InputError, match="outside the keys' span"):
+        c(lo - 0.5, order=1)
+    # Held: the end keys at rest (zero rates), as before.
+    assert np.array_equal(c(hi + 1.0, outside="hold"), c(hi))
+    assert np.array_equal(c(lo - 1.0, order=1, outside="hold"), np.zeros(3))
+    with pytest.raises(inbetween.InputError, match="outside: expected"):
+        c(lo, outside="clamp")
 
 
 def test_shapes_orders_and_conventions():

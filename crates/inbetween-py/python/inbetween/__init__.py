@@ -131,7 +131,7 @@ class Curve:
         )
 
     def __call__(self, t: Any, order: int = 0, *, frame: str = "world",
-                 scalar_first: Optional[bool] = None) -> Any:
+                 scalar_first: Optional[bool] = None, outside: str = "error") -> Any:
         """Rotations at ``t`` (a number or (N,) seconds): (N, 4) or (N, J, 4) unit
         quaternions for ``order=0``; angular velocity (``order=1``, rad/s) or acceleration
         (``order=2``, rad/s²), (N, 3) or (N, J, 3). A number gives one row.
@@ -141,11 +141,15 @@ class Curve:
         ``RotationSpline(t, 1)`` and ``(t, 2)`` convention; R(q)ᵀ α is the time derivative of
         R(q)ᵀ ω). Rotations come back as the keys came in: a scipy ``Rotation`` for keys given
         as one, else arrays in the keys' order (``scalar_first`` of the constructor);
-        ``scalar_first=True`` or ``False`` here asks for arrays in that order instead."""
+        ``scalar_first=True`` or ``False`` here asks for arrays in that order instead.
+
+        A time outside the keys' span (``span``, by more than 1e-9 s) is an ``InputError``, as
+        scipy's ``Slerp`` refuses one; ``outside="hold"`` holds the end keys there, at rest
+        (glTF's clamp: the first key before it, the last after, zero rates)."""
         frame = _check_frame(frame)
         a = _array(t, "t")
         one = a.ndim == 0
-        out = self._curve(a.reshape(1) if one else a, order, frame)
+        out = self._curve(a.reshape(1) if one else a, order, frame, outside)
         if out.shape[-1] == 4:
             if scalar_first is None and self._rotation_type is not None:
                 r = _to_rotation(self._rotation_type, out, self._scalar_first)
