@@ -18,10 +18,12 @@ use std::path::Path;
 /// a track, -1 for none) and `offsets` (J, 3); for an AMASS `.npz`, `parents` of the SMPL-H or
 /// SMPL-X tree (no offsets: they need the licensed body model). `rotation` says how CSV e1,e2,e3 columns and JSON
 /// `euler` keys are written when the file does not say (`"euler:ZYX"`, …); `angles` the unit of
-/// undeclared angles; `key_fps` the rate of frame numbers when the file declares none.
+/// the file's angles, as the command line's `--input-angles` (a document that declares another
+/// is an error, not silently read in its own; without it, undeclared angles are degrees);
+/// `key_fps` the rate of frame numbers when the file declares none.
 #[pyfunction]
 #[pyo3(signature = (
-    path, *, rotation = None, angles = "deg", key_fps = None, quat_order = "wxyz",
+    path, *, rotation = None, angles = None, key_fps = None, quat_order = "wxyz",
     scalar_first = true, max_bytes = inbetween_io::DEFAULT_MAX_INPUT_BYTES
 ))]
 #[allow(clippy::too_many_arguments)]
@@ -29,7 +31,7 @@ pub fn read<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
     rotation: Option<&str>,
-    angles: &str,
+    angles: Option<&str>,
     key_fps: Option<Bound<'py, PyAny>>,
     quat_order: &str,
     scalar_first: bool,
@@ -41,9 +43,11 @@ pub fn read<'py>(
             .map(Repr::parse)
             .transpose()
             .map_err(|e| input_error(format!("rotation: {}", crate::message(&e))))?,
-        angles: AngleUnit::parse(angles)
+        angles: AngleUnit::Deg,
+        input_angles: angles
+            .map(AngleUnit::parse)
+            .transpose()
             .map_err(|e| input_error(format!("angles: {}", crate::message(&e))))?,
-        input_angles: None,
         key_fps: key_fps
             .as_ref()
             .map(|r| options::rate("key_fps", r))

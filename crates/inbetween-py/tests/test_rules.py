@@ -94,3 +94,20 @@ def test_translations_are_resampled_as_interp_writes_them(cli, tmp_path):
     assert np.array_equal(pos, got_p) and w.shape == (len(pos), 2, 3)
     with pytest.raises(inbetween.InputError, match="translations: shape"):
         inbetween.resample(q, 24, 30, translations=p[:, :1])
+
+
+def test_angles_contradicting_a_documents_own_unit_are_refused(tmp_path):
+    doc = tmp_path / "deg.json"
+    doc.write_text('{"angles": "deg", "rotation": "euler:ZYX", "keys": '
+                   '[{"time": 0, "euler": [0, 0, 90]}, {"time": 1, "euler": [0, 0, 180]}]}')
+    # Its own unit, whether or not said: 90° about x.
+    for given in (None, "deg"):
+        q = inbetween.read(doc, angles=given).tracks[0][1]
+        assert angle(q[:1], np.array([[np.cos(np.pi / 4), np.sin(np.pi / 4), 0, 0]])).max() < 1e-12
+    with pytest.raises(inbetween.InputError, match='declares "angles": "deg" but angles says rad'):
+        inbetween.read(doc, angles="rad")
+    # A CSV declares none: angles says what its numbers are.
+    csv = tmp_path / "rad.csv"
+    csv.write_text("time,e1,e2,e3\n0,0,0,1.5707963267948966\n1,0,0,3.141592653589793\n")
+    q = inbetween.read(csv, rotation="euler:ZYX", angles="rad").tracks[0][1]
+    assert angle(q[:1], np.array([[np.cos(np.pi / 4), np.sin(np.pi / 4), 0, 0]])).max() < 1e-12

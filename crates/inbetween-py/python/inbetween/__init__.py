@@ -440,7 +440,7 @@ def read(
     path: Any,
     *,
     rotation: Optional[str] = None,
-    angles: str = "deg",
+    angles: Optional[str] = None,
     key_fps: Optional[Rate] = None,
     quat_order: str = "wxyz",
     scalar_first: bool = True,
@@ -448,7 +448,10 @@ def read(
     """Reads a keyframe or motion file as the command line does — CSV, JSON, BVH or glTF
     (.gltf, .glb), by extension or content — into a ``Clip``. ``rotation`` (``"euler:ZYX"``,
     ``"matrix"``, …) says how CSV ``e1,e2,e3`` columns and JSON ``euler`` keys are written
-    when the file does not; ``angles`` the unit of undeclared angles; ``key_fps`` the rate of
+    when the file does not; ``angles`` (``"deg"`` or ``"rad"``) the unit the file's angles are in,
+    as the command line's ``--input-angles``: a JSON document that declares another unit is an
+    ``InputError`` (it was silently read in its own), and without ``angles`` undeclared angles
+    are degrees; ``key_fps`` the rate of
     frame numbers when the file declares none; ``quat_order`` the order of JSON quaternion
     arrays. Rotations come out as unit quaternions (``scalar_first`` as elsewhere)."""
     path = os.fspath(path)
