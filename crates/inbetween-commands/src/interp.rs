@@ -137,6 +137,11 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     let style = super::settings::style(&args.input, &args.output);
     let track_column = doc.named_tracks || tracks.len() > 1;
     let positions = tracks.iter().any(|t| t.translations().is_some());
+    // An input with a skeleton gives the npz its tracks' tree (parents and rest offsets).
+    let tree = doc
+        .hierarchy
+        .as_deref()
+        .and_then(|s| inbetween_io::write::npz::Tree::of(s, tracks.len()));
     let npz = match format {
         OutputFormat::Npz => Some(npz_shape(
             args,
@@ -144,7 +149,7 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             &style,
             span,
             fps,
-            positions,
+            (positions, tree.is_some()),
             &doc.source,
         )?),
         _ => None,
@@ -228,7 +233,13 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             let w = NpyWriter::new(out, style, rows, track_column, args.velocity);
             Box::new(if positions { w.with_positions() } else { w })
         }
-        OutputFormat::Npz => Box::new(NpzWriter::new(out, style, fps, npz.expect("checked above"))),
+        OutputFormat::Npz => {
+            let w = NpzWriter::new(out, style, fps, npz.expect("checked above"));
+            Box::new(match tree {
+                Some(tree) => w.with_tree(tree),
+                None => w,
+            })
+        }
         OutputFormat::Usda => Box::new(UsdFrames::new(
             out,
             usd.expect("checked above"),
@@ -310,7 +321,7 @@ fn npz_shape(
     style: &inbetween_io::write::Style,
     span: impl Fn(usize) -> (f64, f64),
     fps: inbetween::Fps,
-    positions: bool,
+    (positions, tree): (bool, bool),
     source: &str,
 ) -> Result<NpzShape, Error> {
     let ranges: Vec<(i64, i64)> = (0..tracks.len())
@@ -340,6 +351,7 @@ fn npz_shape(
         tracks: tracks.len(),
         velocity: args.velocity,
         positions,
+        tree,
     };
     let longest = tracks
         .iter()

@@ -18,7 +18,7 @@ pub fn write<W: Write>(
     doc: &Document,
     target: OutputFormat,
     style: Style,
-    fps: Fps,
+    (fps, tree): (Fps, Option<inbetween_io::write::npz::Tree>),
 ) -> PyResult<()> {
     let frame = |k: &inbetween_io::document::Key| match k.when {
         KeyTime::Frame(n) => n as i64,
@@ -44,8 +44,13 @@ pub fn write<W: Write>(
                 tracks: doc.tracks.len(),
                 velocity: false,
                 positions,
+                tree: tree.is_some(),
             };
-            Box::new(NpzWriter::new(out, style, fps, shape))
+            let w = NpzWriter::new(out, style, fps, shape);
+            Box::new(match tree {
+                Some(tree) => w.with_tree(tree),
+                None => w,
+            })
         }
         _ => {
             let rows = doc.tracks.iter().map(|t| t.keys.len() as u64).sum();

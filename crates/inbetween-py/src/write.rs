@@ -31,11 +31,12 @@ type TrackArrays<'py> = (
 /// of the frames (BVH: the skeleton's when None), `skeleton` the BVH file whose hierarchy BVH
 /// output is written on, `asset` the glTF asset glTF output is written into (its name in
 /// messages, its path, its bytes); `to`, `angles`, `precision` and `euler` as `inbetween
-/// convert`'s options.
+/// convert`'s options; `parents` (J,) and `offsets` (J, 3), the clip's tree, go into `.npz`
+/// output as `interp` writes them.
 #[pyfunction]
 #[pyo3(signature = (
     path, tracks, *, fps = None, skeleton = None, asset = None, to = "quat", angles = "deg",
-    precision = None, euler = "continuous", scalar_first = true
+    precision = None, euler = "continuous", scalar_first = true, parents = None, offsets = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn write<'py>(
@@ -50,7 +51,27 @@ pub fn write<'py>(
     precision: Option<Bound<'py, PyAny>>,
     euler: &str,
     scalar_first: bool,
+    parents: Option<Vec<i64>>,
+    offsets: Option<Vec<[f64; 3]>>,
 ) -> PyResult<()> {
+    let tree = match (parents, offsets) {
+        (Some(parents), Some(offsets)) => {
+            let j = tracks.len() as i64;
+            if parents.len() != tracks.len()
+                || offsets.len() != tracks.len()
+                || parents.iter().any(|&p| p < -1 || p >= j)
+                || offsets.iter().flatten().any(|x| !x.is_finite())
+            {
+                return Err(input_error(format!(
+                    "parents, offsets: expected {j} parents in -1..{j} and {j} finite offsets, \
+                     one per track"
+                )));
+            }
+            Some(inbetween_io::write::npz::Tree { parents, offsets })
+        }
+        (None, None) => None,
+        _ => return Err(input_error("parents, offsets: give both or neither")),
+    };
     let precision = match precision {
         None => None,
         Some(p) => match crate::options::integer("precision", &p, (0, 17))? {
@@ -139,7 +160,7 @@ pub fn write<'py>(
         let frames = rate.unwrap_or(Fps::DEFAULT);
         match (&skeleton, target) {
             (_, OutputFormat::Npy | OutputFormat::Npz) => {
-                crate::frames::write(out, &doc, target, style, frames)
+                crate::frames::write(out, &doc, target, style, (frames, tree))
             }
             (Some(s), _) => inbetween_io::bvh::keys::write_keys(out, &doc, s, frames, style.euler)
                 .map_err(located),

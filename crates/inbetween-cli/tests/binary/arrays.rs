@@ -99,6 +99,37 @@ fn npz(bytes: &[u8]) -> Vec<(String, Array)> {
     out
 }
 
+/// A BVH hierarchy's joints (ROOT and JOINT, in file order): each one's parent index (−1 for a
+/// root) and its OFFSET numbers, from the text alone.
+fn bvh_tree(text: &str) -> (Vec<i64>, Vec<f64>) {
+    let (mut parents, mut offsets) = (Vec::new(), Vec::new());
+    // The enclosing blocks: Some(joint index) for a joint's, None for an End Site's.
+    let (mut stack, mut pending): (Vec<Option<i64>>, Option<Option<i64>>) = (Vec::new(), None);
+    for line in text.lines().map(str::trim) {
+        let word = line.split_whitespace().next().unwrap_or("");
+        match word {
+            "ROOT" | "JOINT" => {
+                let parent = stack.iter().rev().flatten().next().copied().unwrap_or(-1);
+                parents.push(parent);
+                pending = Some(Some(parents.len() as i64 - 1));
+            }
+            "End" => pending = Some(None),
+            "{" => stack.push(pending.take().expect("a block opens after its name")),
+            "}" => {
+                stack.pop();
+            }
+            "OFFSET" if matches!(stack.last(), Some(Some(_))) => offsets.extend(
+                line.split_whitespace()
+                    .skip(1)
+                    .map(|x| x.parse::<f64>().unwrap()),
+            ),
+            "MOTION" => break,
+            _ => {}
+        }
+    }
+    (parents, offsets)
+}
+
 fn interp_to(args: &[&str], out: &Path) {
     stdout_of(bin().arg("interp").args(args).arg("-o").arg(out));
 }
@@ -185,6 +216,8 @@ fn npz_holds_the_documented_arrays() {
             "velocities",
             "translations",
             "has_translation",
+            "parents",
+            "offsets",
             "fps",
             "rotation",
             "angles"
@@ -203,6 +236,23 @@ fn npz_holds_the_documented_arrays() {
     for (name, width) in [("rotations", 4), ("velocities", 3), ("translations", 3)] {
         assert_eq!(get[name].shape, [t as u64, j as u64, width], "{name}");
     }
+    // The tree, against the file's text read here: every ROOT/JOINT in order, its parent the
+    // joint whose block encloses it, its OFFSET (End Sites are no tracks).
+    let (parents, offsets) = bvh_tree(
+        &std::fs::read_to_string(crate::support::fixtures().join("bvh/cmu_01_01.bvh")).unwrap(),
+    );
+    assert_eq!(
+        (get["parents"].descr.as_str(), get["parents"].shape.clone()),
+        ("<i8", vec![j as u64])
+    );
+    let got_parents: Vec<i64> = get["parents"]
+        .data
+        .chunks_exact(8)
+        .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(got_parents, parents);
+    assert_eq!(get["offsets"].shape, [j as u64, 3]);
+    assert_eq!(get["offsets"].f64s(), offsets);
     let has: Vec<u8> = get["has_translation"].data.clone();
     assert_eq!(get["has_translation"].descr, "|b1");
     assert_eq!(has[0], 1);

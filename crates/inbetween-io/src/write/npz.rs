@@ -9,6 +9,9 @@
 //! velocities.npy       (T, J, 3)  <f8   world-frame angular velocity (with velocities)
 //! translations.npy     (T, J, 3)  <f8   positions, zeros for a track without (when any has them)
 //! has_translation.npy  (J,)       |b1   which tracks have positions (beside translations.npy)
+//! parents.npy          (J,)       <i8   each track's nearest ancestor that is a track, −1 for
+//!                                       none (an input with a skeleton: BVH, FBX, glTF, USD)
+//! offsets.npy          (J, 3)     <f8   each track's joint's rest translation (with parents.npy)
 //! fps.npy              ()         <U    the output rate as the tool spells it: "30", "30000/1001"
 //! rotation.npy         ()         <U    the representation: "quat", "euler:ZYX", …
 //! angles.npy           ()         <U    the unit of every angle written: "deg" or "rad"
@@ -39,6 +42,39 @@ pub struct NpzShape {
     pub velocity: bool,
     /// Write `translations.npy` and `has_translation.npy` (some track has positions).
     pub positions: bool,
+    /// Write `parents.npy` and `offsets.npy` ([`NpzWriter::with_tree`]).
+    pub tree: bool,
+}
+
+/// The tracks' tree: each track's nearest ancestor that is a track and its joint's rest
+/// translation (a BVH `OFFSET`, a glTF node's `translation`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tree {
+    /// Per track, the index of its parent track, −1 for none.
+    pub parents: Vec<i64>,
+    /// Per track, its joint's rest translation.
+    pub offsets: Vec<[f64; 3]>,
+}
+
+impl Tree {
+    /// The tree of `tracks` tracks on `skeleton`, when the skeleton animates exactly those
+    /// tracks, each through a joint.
+    pub fn of(skeleton: &inbetween::skeleton::Skeleton, tracks: usize) -> Option<Tree> {
+        if skeleton.track_count() != tracks {
+            return None;
+        }
+        let joints: Option<Vec<usize>> = skeleton.track_joints().into_iter().collect();
+        let offsets = joints?
+            .iter()
+            .map(|&j| skeleton.joints()[j].translation.to_array())
+            .collect();
+        let parents = skeleton
+            .track_parents()
+            .iter()
+            .map(|p| p.map_or(-1, |t| t as i64))
+            .collect();
+        Some(Tree { parents, offsets })
+    }
 }
 
 /// The most bytes `names.npy` may take: NumPy's fixed-width unicode gives every track the
@@ -73,6 +109,10 @@ pub fn npz_size(width: usize, shape: NpzShape, name_chars: usize) -> u64 {
         entries.push(("translations.npy", vectors));
         entries.push(("has_translation.npy", shape.tracks as u64));
     }
+    if shape.tree {
+        entries.push(("parents.npy", 8 * shape.tracks as u64));
+        entries.push(("offsets.npy", 24 * shape.tracks as u64));
+    }
     let sized: Vec<(usize, u64)> = entries
         .iter()
         .map(|&(name, bytes)| (name.len(), bytes.saturating_add(128)))
@@ -94,6 +134,7 @@ pub struct NpzWriter<W: Write> {
     velocities: Vec<u8>,
     translations: Vec<u8>,
     has_translation: Vec<bool>,
+    tree: Option<Tree>,
     /// The current track's index and its frames so far.
     track: usize,
     frame: u64,
@@ -120,11 +161,20 @@ impl<W: Write> NpzWriter<W> {
             velocities: zeros(cells.saturating_mul(24), shape.velocity),
             translations: zeros(cells.saturating_mul(24), shape.positions),
             has_translation: Vec::with_capacity(shape.tracks),
+            tree: None,
             track: 0,
             frame: 0,
             vals: [0.0; MAX_WIDTH],
             unwrap: None,
         }
+    }
+
+    /// Also writes the tracks' tree (`shape.tree` must be set, and `tree` must be of
+    /// `shape.tracks` tracks).
+    pub fn with_tree(mut self, tree: Tree) -> Self {
+        debug_assert!(self.shape.tree && tree.parents.len() == self.shape.tracks);
+        self.tree = Some(tree);
+        self
     }
 
     /// The writer, after [`FrameSink::finish`].
@@ -304,6 +354,21 @@ impl<W: Write> FrameSink for NpzWriter<W> {
             let flags: Vec<u8> = self.has_translation.iter().map(|&b| u8::from(b)).collect();
             entry("has_translation.npy", "|b1", &[j], &flags)?;
         }
+        if let Some(tree) = self
+            .tree
+            .as_ref()
+            .filter(|t| t.parents.len() == self.shape.tracks)
+        {
+            let parents: Vec<u8> = tree.parents.iter().flat_map(|p| p.to_le_bytes()).collect();
+            entry("parents.npy", "<i8", &[j], &parents)?;
+            let offsets: Vec<u8> = tree
+                .offsets
+                .iter()
+                .flatten()
+                .flat_map(|x| x.to_le_bytes())
+                .collect();
+            entry("offsets.npy", "<f8", &[j, 3], &offsets)?;
+        }
         let rotation = self.style.repr.to_string();
         for (name, text) in [
             ("fps.npy", self.fps.to_string()),
@@ -337,6 +402,7 @@ mod tests {
             tracks,
             velocity: true,
             positions,
+            tree: false,
         };
         NpzWriter::new(Vec::new(), style, Fps::new(24, 1).unwrap(), shape)
     }

@@ -566,7 +566,15 @@ def write(
                      fps=fps if fps is not None else clip.fps,
                      skeleton=None if skeleton is None else os.fspath(skeleton),
                      asset=asset, to=to, angles=angles, precision=precision, euler=euler,
-                     scalar_first=scalar_first)
+                     scalar_first=scalar_first, **_tree(clip))
+
+
+def _tree(clip: Clip) -> Dict[str, Any]:
+    """The clip's parents and offsets for ``write`` (npz output), when it has both."""
+    if clip.parents is None or clip.offsets is None:
+        return {}
+    return {"parents": [int(p) for p in clip.parents],
+            "offsets": [tuple(float(x) for x in o) for o in clip.offsets]}
 
 
 def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], command: str,
