@@ -243,7 +243,8 @@ pub struct InputArgs {
     pub input: Option<PathBuf>,
 
     /// Input representation when the data does not say: the Euler sequence of CSV e1,e2,e3
-    /// columns and of JSON "euler" keys (quat, euler:SEQ, matrix, axis-angle, rotvec). A JSON
+    /// columns and of JSON "euler" keys, the convention of "rot6d" keys (quat, euler:SEQ, matrix,
+    /// axis-angle, rotvec, rot6d:rows, rot6d:columns). A JSON
     /// "rotation" it contradicts is an error.
     #[cfg_attr(feature = "clap", arg(long, value_name = "REPR", value_parser = parse_repr))]
     pub from: Option<Repr>,
@@ -299,7 +300,8 @@ pub struct InputArgs {
 #[cfg_attr(feature = "clap", derive(clap::Args))]
 pub struct OutputArgs {
     /// Output representation: quat, euler:SEQ (scipy letters: ZYX intrinsic, zyx extrinsic),
-    /// matrix, axis-angle, rotvec.
+    /// matrix, axis-angle, rotvec, rot6d:rows (pytorch3d's 6D: the matrix's first two rows),
+    /// rot6d:columns (Zhou et al.'s: its first two columns).
     #[cfg_attr(feature = "clap", arg(long, value_name = "REPR", value_parser = parse_repr, default_value = "quat"))]
     pub to: Repr,
 

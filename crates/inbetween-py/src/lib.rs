@@ -25,6 +25,7 @@ mod options;
 mod read;
 mod reduce;
 mod resample;
+mod rot6d;
 mod write;
 
 pyo3::create_exception!(
@@ -80,6 +81,7 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<curve::Curve>()?;
     m.add_function(wrap_pyfunction!(resample::resample, m)?)?;
     m.add_function(wrap_pyfunction!(resample::frame_times, m)?)?;
+    m.add_function(wrap_pyfunction!(rot6d::rot6d, m)?)?;
     m.add_function(wrap_pyfunction!(reduce::reduce, m)?)?;
     m.add_function(wrap_pyfunction!(read::read, m)?)?;
     m.add_function(wrap_pyfunction!(write::write, m)?)?;

@@ -36,6 +36,7 @@ mod reduce_bvh;
 mod reduce_guarantee;
 mod reduce_world;
 mod reliability;
+mod rot6d;
 mod roundtrip;
 mod usage;
 mod usd;

@@ -42,6 +42,8 @@ fn rotation_candidates() -> Vec<(Repr, Vec<&'static str>)> {
         (Repr::Matrix, Repr::Matrix.columns().to_vec()),
         (Repr::AxisAngle, Repr::AxisAngle.columns().to_vec()),
         (Repr::RotVec, Repr::RotVec.columns().to_vec()),
+        (Repr::Rot6dRows, Repr::Rot6dRows.columns().to_vec()),
+        (Repr::Rot6dColumns, Repr::Rot6dColumns.columns().to_vec()),
     ]
 }
 

@@ -21,8 +21,8 @@ import numpy as np
 from . import _inbetween
 from ._inbetween import InputError
 
-__all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times",
-           "process_file", "read", "reduce", "resample", "resample_amass", "write"]
+__all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times", "from_rot6d",
+           "process_file", "read", "reduce", "resample", "resample_amass", "to_rot6d", "write"]
 
 #: The package's version (the Rust crate's, which pyproject.toml repeats).
 __version__: str = _inbetween.__version__
@@ -131,7 +131,8 @@ class Curve:
         )
 
     def __call__(self, t: Any, order: int = 0, *, frame: str = "world",
-                 scalar_first: Optional[bool] = None, outside: str = "error") -> Any:
+                 scalar_first: Optional[bool] = None, outside: str = "error",
+                 to: str = "quat", dtype: Any = None) -> Any:
         """Rotations at ``t`` (a number or (N,) seconds): (N, 4) or (N, J, 4) unit
         quaternions for ``order=0``; angular velocity (``order=1``, rad/s) or acceleration
         (``order=2``, rad/s²), (N, 3) or (N, J, 3). A number gives one row.
@@ -145,17 +146,26 @@ class Curve:
 
         A time outside the keys' span (``span``, by more than 1e-9 s) is an ``InputError``, as
         scipy's ``Slerp`` refuses one; ``outside="hold"`` holds the end keys there, at rest
-        (glTF's clamp: the first key before it, the last after, zero rates)."""
+        (glTF's clamp: the first key before it, the last after, zero rates).
+
+        ``to="rot6d:rows"`` (pytorch3d's ``matrix_to_rotation_6d``) or ``"rot6d:columns"``
+        (Zhou et al.) gives the rotations as (N, 6) or (N, J, 6) arrays instead
+        (:func:`to_rot6d`); ``dtype=np.float32`` casts the result at the end (computed in
+        float64)."""
         frame = _check_frame(frame)
+        convention = _rot6d_convention(to)
         a = _array(t, "t")
         one = a.ndim == 0
         out = self._curve(a.reshape(1) if one else a, order, frame, outside)
         if out.shape[-1] == 4:
-            if scalar_first is None and self._rotation_type is not None:
+            if convention is not None:
+                out = _inbetween.rot6d(out, convention, False, scalar_first=self._scalar_first)
+            elif scalar_first is None and self._rotation_type is not None:
                 r = _to_rotation(self._rotation_type, out, self._scalar_first)
                 return r[0] if one else r
-            if scalar_first is not None:
+            elif scalar_first is not None:
                 out = _as_order(out, self._scalar_first, bool(scalar_first))
+        out = _cast(out, dtype)
         return out[0] if one else out
 
     @property
@@ -177,6 +187,50 @@ class Curve:
         return repr(self._curve)
 
 
+def _rot6d_convention(to: str) -> Optional[str]:
+    """``None`` for ``"quat"``, ``"rows"`` or ``"columns"`` for the 6D representations."""
+    if to == "quat":
+        return None
+    if to in ("rot6d:rows", "rot6d:columns"):
+        return to.split(":")[1]
+    raise InputError(f'to: expected "quat", "rot6d:rows" (pytorch3d) or "rot6d:columns" '
+                     f'(Zhou et al.), found {to!r}')
+
+
+def _cast(out: Any, dtype: Any) -> Any:
+    """``out`` (an array, or a tuple of them) as ``dtype``: float64 (the default, as computed)
+    or float32."""
+    if dtype is None:
+        return out
+    dt = np.dtype(dtype)
+    if dt not in (np.dtype(np.float64), np.dtype(np.float32)):
+        raise InputError(f"dtype: expected float64 or float32, found {dt}")
+    if isinstance(out, tuple):
+        return tuple(o.astype(dt, copy=False) for o in out)
+    return out.astype(dt, copy=False)
+
+
+def to_rot6d(q: Any, convention: str = "rows", *, scalar_first: bool = True,
+             dtype: Any = None) -> np.ndarray:
+    """Unit quaternions (..., 4) (or a scipy ``Rotation``) as the 6D representation (..., 6):
+    ``convention="rows"`` is pytorch3d's ``matrix_to_rotation_6d`` (the rotation matrix's first
+    two rows), ``"columns"`` Zhou et al.'s (its first two columns); the matrix is scipy's
+    ``as_matrix()``. Quaternions are normalised as everywhere (docs/python.md)."""
+    if _is_rotation(q):
+        q, scalar_first = q.as_quat(scalar_first=True), True
+    return _cast(_inbetween.rot6d(_array(q, "q"), convention, False, scalar_first=scalar_first),
+                 dtype)
+
+
+def from_rot6d(a: Any, convention: str = "rows", *, scalar_first: bool = True) -> np.ndarray:
+    """The inverse of :func:`to_rot6d`: 6D vectors (..., 6) — a network's output, not
+    necessarily orthonormal — as unit quaternions (..., 4) by Gram–Schmidt, as pytorch3d's
+    ``rotation_6d_to_matrix`` (``b1 = a1/‖a1‖``, ``b2`` the part of ``a2`` orthogonal to it,
+    normalised, ``b3 = b1 × b2``; rows or columns by ``convention``). A zero or parallel pair
+    is an ``InputError`` naming its row."""
+    return _inbetween.rot6d(_array(a, "a"), convention, True, scalar_first=scalar_first)
+
+
 def resample(
     rotations: Any,
     fps_in: Rate,
@@ -189,6 +243,8 @@ def resample(
     velocity: bool = False,
     frame: str = "world",
     translations: Any = None,
+    to: str = "quat",
+    dtype: Any = None,
 ) -> Any:
     """Frames ``rotations`` (T, 4) or (T, J, 4) at ``fps_in`` onto the exact grid of
     ``fps_out``: (M, 4) or (M, J, 4) with M = ⌊(T − 1)/fps_in · fps_out⌋ + 1, at the times
@@ -197,8 +253,11 @@ def resample(
     ``velocity``, a pair: the rotations and the angular velocities (M, 3) or (M, J, 3), rad/s,
     in the world frame, or with ``frame="body"`` in the body's own axes (R(q)ᵀ ω). With
     ``translations`` (T, 3) or (T, J, 3), the positions at the new frames come last in the
-    tuple, (M, 3) or (M, J, 3), as ``interp`` writes a track's translations."""
+    tuple, (M, 3) or (M, J, 3), as ``interp`` writes a track's translations. ``to`` and
+    ``dtype`` as for :class:`Curve`: ``"rot6d:rows"`` / ``"rot6d:columns"`` rotations,
+    float32 results."""
     frame = _check_frame(frame)
+    convention = _rot6d_convention(to)
     out = _inbetween.resample(
         _rotations(rotations, scalar_first),
         fps_in,
@@ -211,11 +270,14 @@ def resample(
         frame=frame,
         translations=_optional(translations, "translations"),
     )
-    if not _is_rotation(rotations):
-        return out
-    if isinstance(out, tuple):
-        return (_to_rotation(type(rotations), out[0], scalar_first),) + out[1:]
-    return _to_rotation(type(rotations), out, scalar_first)
+    if convention is not None:
+        six = lambda r: _inbetween.rot6d(r, convention, False, scalar_first=scalar_first)
+        out = (six(out[0]),) + out[1:] if isinstance(out, tuple) else six(out)
+    elif _is_rotation(rotations):
+        if isinstance(out, tuple):
+            return (_to_rotation(type(rotations), out[0], scalar_first),) + out[1:]
+        return _to_rotation(type(rotations), out, scalar_first)
+    return _cast(out, dtype)
 
 
 def frame_times(n: int, fps_in: Rate, fps_out: Rate) -> np.ndarray:

@@ -34,6 +34,12 @@ pub enum Repr {
     AxisAngle,
     /// A rotation vector, axis × angle (`rotvec`).
     RotVec,
+    /// The 6D representation of networks as pytorch3d's `matrix_to_rotation_6d` takes it: the
+    /// first two *rows* of the rotation matrix, `m00, m01, m02, m10, m11, m12` (`rot6d:rows`).
+    Rot6dRows,
+    /// The 6D representation of Zhou et al. (2019): the first two *columns* of the rotation
+    /// matrix, `m00, m10, m20, m01, m11, m21` (`rot6d:columns`).
+    Rot6dColumns,
 }
 
 /// Component order of quaternions written as JSON arrays.
@@ -82,18 +88,25 @@ pub const QUAT_NORM_WARN: f64 = 1e-3;
 pub const MAX_WIDTH: usize = 9;
 
 impl Repr {
-    /// Parses `quat`, `euler:SEQ`, `matrix`, `axis-angle`, `rotvec`.
+    /// Parses `quat`, `euler:SEQ`, `matrix`, `axis-angle`, `rotvec`, `rot6d:rows`,
+    /// `rot6d:columns`.
     pub fn parse(s: &str) -> InputResult<Repr> {
         match s {
             "quat" => Ok(Repr::Quat),
             "matrix" => Ok(Repr::Matrix),
             "axis-angle" => Ok(Repr::AxisAngle),
             "rotvec" => Ok(Repr::RotVec),
+            "rot6d:rows" => Ok(Repr::Rot6dRows),
+            "rot6d:columns" => Ok(Repr::Rot6dColumns),
+            "rot6d" => Err(input_err!(
+                "expected rot6d:rows (pytorch3d's matrix_to_rotation_6d: the matrix's first two \
+                 rows) or rot6d:columns (Zhou et al.: its first two columns), found \"rot6d\""
+            )),
             _ => match s.strip_prefix("euler:") {
                 Some(seq) => Ok(Repr::Euler(EulerSeq::parse(seq)?)),
                 None => Err(input_err!(
                     "expected one of quat, euler:SEQ (e.g. euler:ZYX), matrix, axis-angle, \
-                     rotvec, found \"{s}\""
+                     rotvec, rot6d:rows, rot6d:columns, found \"{s}\""
                 )),
             },
         }
@@ -109,6 +122,8 @@ impl Repr {
             ],
             Repr::AxisAngle => &["ax", "ay", "az", "angle"],
             Repr::RotVec => &["rx", "ry", "rz"],
+            Repr::Rot6dRows => &["r0x", "r0y", "r0z", "r1x", "r1y", "r1z"],
+            Repr::Rot6dColumns => &["c0x", "c0y", "c0z", "c1x", "c1y", "c1z"],
         }
     }
 
@@ -125,6 +140,7 @@ impl Repr {
             Repr::Matrix => "matrix",
             Repr::AxisAngle => "axis_angle",
             Repr::RotVec => "rotvec",
+            Repr::Rot6dRows | Repr::Rot6dColumns => "rot6d",
         }
     }
 
@@ -206,6 +222,19 @@ impl Repr {
                     from_unit_axis(axis / n, angle)
                 }
             }
+            Repr::Rot6dRows | Repr::Rot6dColumns => {
+                let (b1, b2, b3) = gram_schmidt(v)?;
+                // b1, b2 (and b3) are the matrix's rows, or its columns.
+                let rows = match *self {
+                    Repr::Rot6dRows => [b1, b2, b3],
+                    _ => [
+                        [b1[0], b2[0], b3[0]],
+                        [b1[1], b2[1], b3[1]],
+                        [b1[2], b2[2], b3[2]],
+                    ],
+                };
+                matrix::to_quat(rows)?
+            }
             Repr::RotVec => {
                 let (s, w) = magnitude::split([v[0], v[1], v[2]]);
                 let dir = DVec3::from_array(w);
@@ -259,8 +288,50 @@ impl Repr {
                 let r = quat::log(quat::canonical(q)) * 2.0;
                 out[..3].copy_from_slice(&r.to_array().map(|x| unit.from_rad(x)));
             }
+            Repr::Rot6dRows => {
+                let rows = matrix::to_rows(&DMat3::from_quat(q));
+                out[..3].copy_from_slice(&rows[0]);
+                out[3..6].copy_from_slice(&rows[1]);
+            }
+            Repr::Rot6dColumns => {
+                let m = DMat3::from_quat(q);
+                out[..3].copy_from_slice(&m.x_axis.to_array());
+                out[3..6].copy_from_slice(&m.y_axis.to_array());
+            }
         }
     }
+}
+
+/// pytorch3d's `rotation_6d_to_matrix` (Zhou et al. 2019, §B): `b1 = a1/‖a1‖`,
+/// `b2 = (a2 − (b1·a2) b1)/‖…‖`, `b3 = b1 × b2`, for `v = [a1, a2]`. Two vectors that are
+/// (nearly) zero or parallel span no frame: an error, never NaN.
+fn gram_schmidt(v: &[f64]) -> InputResult<([f64; 3], [f64; 3], [f64; 3])> {
+    let a1 = DVec3::new(v[0], v[1], v[2]);
+    let a2 = DVec3::new(v[3], v[4], v[5]);
+    // Scale-free: both vectors brought to unit-ish size before any product (no overflow).
+    let unit = |a: DVec3| {
+        let (_, w) = magnitude::split(a.to_array());
+        let w = DVec3::from_array(w);
+        let n = w.length();
+        (n > 0.0).then(|| w / n)
+    };
+    let (Some(b1), Some(u2)) = (unit(a1), unit(a2)) else {
+        return Err(input_err!(
+            "expected two non-zero vectors (6D rotation), found a zero vector"
+        ));
+    };
+    let e2 = u2 - b1 * b1.dot(u2);
+    // sin of the angle between a1 and a2: below 1e-6 they are parallel for this purpose.
+    let s = e2.length();
+    if s < 1e-6 {
+        return Err(input_err!(
+            "expected two non-parallel vectors (6D rotation), found vectors {}° apart",
+            num(b1.dot(u2).clamp(-1.0, 1.0).acos().to_degrees())
+        ));
+    }
+    let b2 = e2 / s;
+    let b3 = b1.cross(b2);
+    Ok((b1.to_array(), b2.to_array(), b3.to_array()))
 }
 
 /// The rotation by `angle` (radians) about the unit `axis`: `(cos ½angle, sin ½angle·axis)`.
@@ -278,6 +349,8 @@ impl fmt::Display for Repr {
             Repr::Matrix => f.write_str("matrix"),
             Repr::AxisAngle => f.write_str("axis-angle"),
             Repr::RotVec => f.write_str("rotvec"),
+            Repr::Rot6dRows => f.write_str("rot6d:rows"),
+            Repr::Rot6dColumns => f.write_str("rot6d:columns"),
         }
     }
 }
@@ -300,6 +373,8 @@ mod tests {
             Repr::Matrix,
             Repr::AxisAngle,
             Repr::RotVec,
+            Repr::Rot6dRows,
+            Repr::Rot6dColumns,
             Repr::parse("euler:zxz").unwrap(),
         ];
         for repr in reprs {

@@ -113,7 +113,8 @@ proptest! {
     fn every_representation_round_trips(q in unit_quat(), seq_i in 0usize..24, deg in any::<bool>()) {
         let unit = if deg { AngleUnit::Deg } else { AngleUnit::Rad };
         let seq = EulerSeq::all()[seq_i];
-        for repr in [Repr::Euler(seq), Repr::Quat, Repr::Matrix, Repr::AxisAngle, Repr::RotVec] {
+        for repr in [Repr::Euler(seq), Repr::Quat, Repr::Matrix, Repr::AxisAngle, Repr::RotVec,
+                     Repr::Rot6dRows, Repr::Rot6dColumns] {
             let back = round_trip(repr, q, unit);
             prop_assert!(rot_angle(back, q) < ROT_TOL, "{repr} {unit:?}: {q} -> {back}");
         }

@@ -15,6 +15,8 @@ pub(super) struct KeyContext<'a> {
     pub(super) source: &'a str,
     pub(super) angles: AngleUnit,
     pub(super) euler_seq: Option<inbetween::rotation::EulerSeq>,
+    /// The convention of `rot6d` keys: the document's `rotation` (or `--from`).
+    pub(super) rot6d: Option<Repr>,
     /// The rate of `frame` values, declared (`"fps"`) or given, and which.
     pub(super) rate: Option<(Fps, RateFrom)>,
     pub(super) opts: &'a ReadOptions,
@@ -149,18 +151,30 @@ impl KeyContext<'_> {
                     1 => Repr::Euler(seq),
                     2 => Repr::Matrix,
                     3 => Repr::AxisAngle,
-                    _ => Repr::RotVec,
+                    4 => Repr::RotVec,
+                    _ => match self.rot6d {
+                        Some(r) => r,
+                        None => {
+                            return Err(here(InputError::new(message![
+                                "\"rot6d\": the convention is unknown: set the document's \
+                                 \"rotation\" (\"rot6d:rows\", pytorch3d's, or \
+                                 \"rot6d:columns\", Zhou et al.'s) or pass ",
+                                Setting::Rotation,
+                                " rot6d:rows"
+                            ])));
+                        }
+                    },
                 },
                 0 => {
                     return Err(here(input_err!(
-                        "expected a rotation (\"quat\", \"euler\", \"matrix\", \"axis_angle\" \
-                         or \"rotvec\"), found none"
+                        "expected a rotation (\"quat\", \"euler\", \"matrix\", \"axis_angle\", \
+                         \"rotvec\" or \"rot6d\"), found none"
                     )));
                 }
                 _ => {
                     return Err(here(input_err!(
                         "expected one rotation, found {}",
-                        KEY_FIELDS[FIRST_ROTATION..FIRST_ROTATION + 5]
+                        KEY_FIELDS[FIRST_ROTATION..FIRST_ROTATION + 6]
                             .iter()
                             .enumerate()
                             .filter(|&(r, _)| present(r))

@@ -212,6 +212,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         Some(Repr::Euler(seq)) => Some(seq),
         _ => None,
     };
+    let rot6d = rotation.filter(|r| matches!(r, Repr::Rot6dRows | Repr::Rot6dColumns));
     let velocity =
         |v: Option<[f64; 3]>, field: &dyn Fn() -> String| -> InputResult<Option<DVec3>> {
             match v {
@@ -247,6 +248,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         source,
         angles,
         euler_seq,
+        rot6d,
         rate: fps.map(|f| (f, rate_from)),
         opts,
     };

@@ -35,6 +35,7 @@ pub(super) const KEY_FIELDS: &[&str] = &[
     "matrix",
     "axis_angle",
     "rotvec",
+    "rot6d",
     "angular_velocity",
     "velocity",
     "tension",
@@ -367,6 +368,12 @@ impl<'de> Visitor<'de> for KeyVisitor {
                 ),
                 "euler" | "rotvec" => rotation(
                     map.next_value::<Option<Fixed<Num, 3>>>()?
+                        .map(nums)
+                        .as_ref()
+                        .map(|a| &a[..]),
+                ),
+                "rot6d" => rotation(
+                    map.next_value::<Option<Fixed<Num, 6>>>()?
                         .map(nums)
                         .as_ref()
                         .map(|a| &a[..]),
