@@ -278,6 +278,25 @@ pub struct Document {
 }
 
 impl Document {
+    /// An empty document from `source`: no rate, representation, scheme or tracks, unnamed
+    /// tracks, no warnings, skeleton, hierarchy, unit or up axis; the readers fill in what
+    /// their format says (`Document { fps, tracks, ..Document::new(source) }`).
+    pub fn new(source: impl Into<String>) -> Document {
+        Document {
+            source: source.into(),
+            fps: None,
+            rotation: None,
+            scheme: None,
+            tracks: Vec::new(),
+            named_tracks: false,
+            warnings: Vec::new(),
+            skeleton: None,
+            hierarchy: None,
+            unit_meters: None,
+            z_up: None,
+        }
+    }
+
     /// Key times in seconds for one track, frames read at `frame_fps`; validated by
     /// [`check_times`] (finite, strictly increasing, at least 1e-12 s apart), with at least
     /// `min_keys` keys. Errors name the track, the line or key and the field.

@@ -326,16 +326,10 @@ fn document(
         });
     }
     Ok(Document {
-        source: source.to_string(),
         fps,
         rotation: Some(Repr::Quat),
-        scheme: None,
         tracks: doc_tracks,
         named_tracks: true,
-        warnings: Vec::new(),
-        skeleton: None,
-        hierarchy: None,
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source.to_string())
     })
 }

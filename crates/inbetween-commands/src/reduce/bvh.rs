@@ -77,17 +77,11 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
         }
     }
     let doc = Document {
-        source: source.clone(),
         fps: Some(frame_fps),
-        rotation: None,
         scheme: Some(curves.scheme),
         tracks,
         named_tracks: true,
-        warnings: Vec::new(),
-        skeleton: None,
-        hierarchy: None,
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source.clone())
     };
     for w in &warnings {
         warn.warning(w);

@@ -98,7 +98,6 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     let style = keys_style(args, input.opts.path, tracks, &doc.source)?;
     // The kept keys, as the input gave them (frame numbers or times, Euler angles, positions).
     let doc_of = |reduced: &[Reduced]| Document {
-        source: doc.source.clone(),
         fps: doc.fps,
         rotation: doc.rotation,
         // The scheme the keys were verified under: a JSON document records it, so that
@@ -111,11 +110,10 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             .map(|(d, r)| kept(d, r))
             .collect(),
         named_tracks: doc.named_tracks,
-        warnings: Vec::new(),
-        skeleton: None,
         hierarchy: doc.hierarchy.clone(),
         unit_meters: doc.unit_meters,
         z_up: doc.z_up,
+        ..Document::new(doc.source.clone())
     };
     // USD stores float32 rotations and translations: the tolerances are tightened by what that
     // rounding can move a key (as for glTF output).

@@ -276,18 +276,14 @@ impl Amass {
             });
         }
         Ok(Document {
-            source: self.source.clone(),
             fps: Some(self.fps),
             rotation: Some(Repr::RotVec),
-            scheme: None,
             tracks,
             named_tracks: true,
-            warnings: Vec::new(),
-            skeleton: None,
-            hierarchy: None,
             // AMASS's translations are metres, its world Z up.
             unit_meters: Some(1.0),
             z_up: Some(true),
+            ..Document::new(self.source.clone())
         })
     }
 }

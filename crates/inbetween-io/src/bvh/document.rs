@@ -42,17 +42,13 @@ pub fn document(clip: Clip, source: &str, warnings: Vec<String>) -> Document {
         .filter_map(|joint| joint_track(&clip, joint))
         .collect();
     Document {
-        source: source.to_string(),
         fps: Some(clip.fps()),
-        rotation: None,
-        scheme: None,
         tracks,
         named_tracks: true,
         warnings,
         hierarchy: Some(Arc::new(clip.skeleton())),
         skeleton: Some(Arc::new(clip)),
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source.to_string())
     }
 }
 
@@ -114,17 +110,10 @@ pub fn joint_tracks(
         return Ok(None);
     };
     let mut doc = Document {
-        source: source.to_string(),
         fps: Some(clip.fps()),
-        rotation: None,
-        scheme: None,
         tracks: vec![doc_track],
         named_tracks: true,
-        warnings: Vec::new(),
-        skeleton: None,
-        hierarchy: None,
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source.to_string())
     };
     let track = doc.tracks_shaped(clip.fps(), tcb)?.pop();
     Ok(doc.tracks.pop().zip(track))

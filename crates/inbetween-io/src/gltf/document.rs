@@ -411,17 +411,13 @@ impl GltfClip {
         }
         warnings.extend(found.into_lines());
         let doc = Document {
-            source: src.to_string(),
-            fps: None,
             rotation: Some(Repr::Quat),
-            scheme: None,
             tracks,
             named_tracks: true,
             warnings,
-            skeleton: None,
             hierarchy: self.skeleton().map(std::sync::Arc::new),
             unit_meters: Some(1.0),
-            z_up: None,
+            ..Document::new(src.to_string())
         };
         if mode == Mode::Posed {
             return self.on_shared_times(doc, fps);

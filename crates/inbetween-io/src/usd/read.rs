@@ -204,17 +204,13 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
         .number("metersPerUnit")
         .filter(|u| u.is_finite() && *u > 0.0);
     Ok(Document {
-        source: source.to_string(),
         fps: Some(fps),
-        rotation: None,
-        scheme: None,
         tracks: sorted,
         named_tracks: true,
-        warnings: Vec::new(),
-        skeleton: None,
         hierarchy: Some(Arc::new(hierarchy)),
         unit_meters: Some(unit.unwrap_or(0.01)),
         z_up: Some(layer.word("upAxis").is_some_and(|a| a == "Z")),
+        ..Document::new(source.to_string())
     })
 }
 

@@ -285,10 +285,7 @@ mod tests {
             rot,
         };
         Document {
-            source: "k.csv".into(),
-            fps: None,
             rotation: Some(Repr::Quat),
-            scheme: None,
             tracks: vec![DocTrack {
                 name: Some("hip".into()),
                 keys: vec![key(0.0, DQuat::IDENTITY), key(second.0, second.1)],
@@ -301,11 +298,7 @@ mod tests {
                 translations: Vec::new(),
             }],
             named_tracks: true,
-            warnings: Vec::new(),
-            skeleton: None,
-            hierarchy: None,
-            unit_meters: None,
-            z_up: None,
+            ..Document::new("k.csv")
         }
     }
 

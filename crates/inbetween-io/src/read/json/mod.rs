@@ -232,17 +232,11 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
     let doc_start = velocity(wire.start_velocity, &|| "start_velocity".into())?;
     let doc_end = velocity(wire.end_velocity, &|| "end_velocity".into())?;
     let mut doc = Document {
-        source: source.to_string(),
         fps,
         rotation: doc_rotation,
         scheme,
-        tracks: Vec::new(),
         named_tracks: wire.tracks.is_some(),
-        warnings: Vec::new(),
-        skeleton: None,
-        hierarchy: None,
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source.to_string())
     };
     let ctx = KeyContext {
         source,
