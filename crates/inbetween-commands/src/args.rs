@@ -7,6 +7,7 @@
 use inbetween::Fps;
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 use inbetween_io::num::{MAX_PRECISION, NumFormat};
+use inbetween_io::read::log::{ColumnMap, TimeOrigin, TimeUnit};
 use inbetween_io::write::EulerMode;
 use inbetween_io::{Format, OutputFormat};
 use std::path::PathBuf;
@@ -264,10 +265,28 @@ pub struct InputArgs {
     #[cfg_attr(feature = "clap", arg(long, value_name = "RATE", value_parser = parse_fps, allow_hyphen_values = true))]
     pub key_fps: Option<Fps>,
 
-    /// CSV field delimiter: , ; or tab. Default: the one of the three found most often in the
-    /// header line (outside quotes), a comma on a tie or when there is none.
+    /// CSV field delimiter: , ; tab, or space (runs of spaces and tabs). Default: the one of
+    /// the three found most often in the header line (outside quotes), a comma on a tie; space
+    /// when there is none and the header has spaces.
     #[cfg_attr(feature = "clap", arg(long, value_name = "C", value_parser = parse_delimiter))]
     pub delimiter: Option<u8>,
+
+    /// Read a timestamped log (one orientation per row, `#` comments): a preset (tum, euroc,
+    /// rostopic) or FIELD=COLUMN items time=…,w=…,x=…,y=…,z=… (optional tx=…,ty=…,tz=…), each
+    /// column a header name or a number from 1; items after a preset override its own
+    /// (rostopic,time=field.header.stamp).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "PRESET|MAP", value_parser = parse_columns))]
+    pub columns: Option<ColumnMap>,
+
+    /// With --columns: the unit of the time stamps, s, ms, us or ns (us and ns whole numbers,
+    /// read exactly). Default: the preset's (tum s; euroc and rostopic ns), else s.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "U", value_parser = parse_time_unit))]
+    pub time_unit: Option<TimeUnit>,
+
+    /// With --columns: key times relative (the first stamp is 0 s, the others their exact
+    /// difference from it) or absolute (the stamps in seconds). Default relative.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "T", value_parser = parse_times))]
+    pub times: Option<TimeOrigin>,
 
     /// Component order of quaternions in JSON arrays (CSV columns are named).
     #[cfg_attr(feature = "clap", arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz"))]
@@ -628,8 +647,23 @@ pub(crate) fn parse_delimiter(s: &str) -> Result<u8, String> {
         "," => Ok(b','),
         ";" => Ok(b';'),
         "tab" | "\t" => Ok(b'\t'),
-        _ => Err(format!("expected \",\", \";\" or \"tab\", found \"{s}\"")),
+        "space" | " " => Ok(b' '),
+        _ => Err(format!(
+            "expected \",\", \";\", \"tab\" or \"space\", found \"{s}\""
+        )),
     }
+}
+
+pub(crate) fn parse_columns(s: &str) -> Result<ColumnMap, String> {
+    ColumnMap::parse(s).map_err(|e| e.message().to_string())
+}
+
+pub(crate) fn parse_time_unit(s: &str) -> Result<TimeUnit, String> {
+    TimeUnit::parse(s).map_err(|e| e.message().to_string())
+}
+
+pub(crate) fn parse_times(s: &str) -> Result<TimeOrigin, String> {
+    TimeOrigin::parse(s).map_err(|e| e.message().to_string())
 }
 
 pub(crate) fn parse_repr(s: &str) -> Result<Repr, String> {

@@ -5,9 +5,10 @@
 
 use crate::args::{
     BlendArg, ConvertArgs, CurveArgs, EndsArg, EulerArg, InputArgs, InterpArgs, MethodArg,
-    OutputArgs, PathArg, ReduceArgs, SchemeArg, SpanArg, parse_angles, parse_delimiter,
-    parse_format, parse_fps, parse_non_negative, parse_output_format, parse_positive,
-    parse_precision, parse_quat_order, parse_repr, parse_snap, parse_unit_interval, parse_vec3,
+    OutputArgs, PathArg, ReduceArgs, SchemeArg, SpanArg, parse_angles, parse_columns,
+    parse_delimiter, parse_format, parse_fps, parse_non_negative, parse_output_format,
+    parse_positive, parse_precision, parse_quat_order, parse_repr, parse_snap, parse_time_unit,
+    parse_times, parse_unit_interval, parse_vec3,
 };
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 
@@ -51,6 +52,9 @@ impl Default for InputArgs {
             input_angles: None,
             key_fps: None,
             delimiter: None,
+            columns: None,
+            time_unit: None,
+            times: None,
             quat_order: QuatOrder::Wxyz,
             input_format: None,
             animation: None,
@@ -68,6 +72,9 @@ impl Keywords for InputArgs {
             "input-angles",
             "key-fps",
             "delimiter",
+            "columns",
+            "time-unit",
+            "times",
             "quat-order",
             "input-format",
             "animation",
@@ -83,6 +90,9 @@ impl Keywords for InputArgs {
             "input-angles" => self.input_angles = Some(parse_angles(text)?),
             "key-fps" => self.key_fps = Some(parse_fps(text)?),
             "delimiter" => self.delimiter = Some(parse_delimiter(text)?),
+            "columns" => self.columns = Some(parse_columns(text)?),
+            "time-unit" => self.time_unit = Some(parse_time_unit(text)?),
+            "times" => self.times = Some(parse_times(text)?),
             "quat-order" => self.quat_order = parse_quat_order(text)?,
             "input-format" => self.input_format = Some(parse_format(text)?),
             "animation" => self.animation = Some(text.to_string()),

@@ -105,6 +105,7 @@ pub fn read_input(
         key_fps: args.key_fps,
         quat_order: args.quat_order,
         delimiter: args.delimiter,
+        columns: column_map(args)?,
     };
     let path = args.input.as_deref().filter(|p| p.as_os_str() != "-");
     let (bytes, source) = match path {
@@ -142,6 +143,9 @@ pub fn read_input(
             inbetween_io::parse_bytes(bytes, &source, path, args.input_format, &opts)?;
         (doc, format, None)
     };
+    if args.columns.is_some() && format != Format::Csv {
+        return Err(inbetween_io::columns_refused(&source, format).into());
+    }
     // A BVH joint declares its rotation order in CHANNELS and glTF stores quaternions: --from,
     // which says how CSV columns and JSON keys are written, would be silently ignored.
     if let (Some(r), Format::Bvh | Format::Gltf | Format::Fbx) = (args.from, format) {
@@ -163,6 +167,30 @@ pub fn read_input(
         None => doc,
     };
     Ok((doc, format, clip))
+}
+
+/// `--columns` with `--time-unit` and `--times` in it; either of those without `--columns` is an
+/// error (they describe a log's stamps), and so is a `--from` other than quat (a log's columns
+/// are a quaternion's).
+fn column_map(args: &InputArgs) -> Result<Option<inbetween_io::read::log::ColumnMap>, InputError> {
+    let Some(map) = &args.columns else {
+        if args.time_unit.is_some() || args.times.is_some() {
+            return Err(InputError::new(
+                "--time-unit and --times describe the stamps of a log read with --columns; \
+                 give --columns too (e.g. --columns tum)",
+            ));
+        }
+        return Ok(None);
+    };
+    if let Some(r) = args.from.filter(|r| *r != Repr::Quat) {
+        return Err(InputError::new(format!(
+            "--from {r}: a log read with --columns holds quaternions (w, x, y, z)"
+        )));
+    }
+    let mut map = map.clone();
+    map.time_unit = args.time_unit.or(map.time_unit);
+    map.times = args.times.unwrap_or(map.times);
+    Ok(Some(map))
 }
 
 /// `--tracks`: the document's tracks whose names match one of the comma-separated patterns, in

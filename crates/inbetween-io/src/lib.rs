@@ -148,7 +148,7 @@ impl OutputFormat {
 
 /// How to interpret input values the data does not describe itself: the command line's
 /// statements about the input, applied by the one precedence rule of [`settle`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
 pub struct ReadOptions {
     /// `--from`: the representation when the data does not say (the Euler sequence of CSV
     /// `e1,e2,e3` columns and of JSON `euler` keys); contradicting a JSON `rotation` is an error.
@@ -165,8 +165,11 @@ pub struct ReadOptions {
     /// `--quat-order`: component order of JSON quaternion arrays.
     pub quat_order: QuatOrder,
     /// `--delimiter`: the CSV field delimiter (`,`, `;` or tab); by default detected from the
-    /// header line (`detect_delimiter`).
+    /// header line (`detect_delimiter`); `b' '` is runs of spaces and tabs.
     pub delimiter: Option<u8>,
+    /// `--columns`: read CSV input as a timestamped log through this column map
+    /// ([`read::log`]) instead of by its column names.
+    pub columns: Option<read::log::ColumnMap>,
 }
 
 impl ReadOptions {
@@ -228,6 +231,9 @@ pub fn parse_bytes(
     opts: &ReadOptions,
 ) -> Result<(Document, Format), Error> {
     if is_gltf(&bytes, path, format) {
+        if opts.columns.is_some() {
+            return Err(columns_refused(source, Format::Gltf).into());
+        }
         let dir = path.map(gltf_dir);
         let asset = gltf::Asset::from_slice(&bytes, source, dir.as_deref())?;
         let clip = gltf::document::GltfClip::new(asset, None)?;
@@ -238,6 +244,9 @@ pub fn parse_bytes(
         ));
     }
     if is_fbx_input(&bytes, path, format) {
+        if opts.columns.is_some() {
+            return Err(columns_refused(source, Format::Fbx).into());
+        }
         let fbx = fbx::read(&bytes, source, None)?;
         return Ok((fbx_document(fbx, source), Format::Fbx));
     }
@@ -263,6 +272,15 @@ pub fn parse_bytes(
         .or_else(|| path.and_then(Format::from_path))
         .unwrap_or_else(|| Format::sniff(&text));
     Ok((read_document(&text, source, format, opts)?, format))
+}
+
+/// The error of a column map given for input that is not CSV: a map says where a timestamped
+/// log's fields are, and nothing else has columns.
+pub fn columns_refused(source: &str, format: Format) -> InputError {
+    input_err!(
+        "{source}: a column map reads CSV and text logs (tum, euroc, rostopic), not {}",
+        format!("{format:?}").to_ascii_uppercase()
+    )
 }
 
 /// Whether bytes are FBX: the format as given, else `path`'s extension, else the bytes
@@ -383,7 +401,11 @@ pub fn read_document(
     opts: &ReadOptions,
 ) -> Result<Document, Error> {
     match format {
-        Format::Csv => Ok(read::csv::read(text, source, opts)?),
+        Format::Csv => Ok(match &opts.columns {
+            Some(map) => read::log::read(text, source, map, opts)?,
+            None => read::csv::read(text, source, opts)?,
+        }),
+        _ if opts.columns.is_some() => Err(columns_refused(source, format).into()),
         Format::Json => Ok(read::json::read(text, source, opts)?),
         Format::Bvh => {
             let (clip, warnings) = bvh::parse(text, source)?;

@@ -6,6 +6,7 @@ use crate::arrays::quat_row;
 use crate::{input_error, options};
 use inbetween::rotation::{AngleUnit, QuatOrder, Repr};
 use inbetween::{Fps, Tcb};
+use inbetween_io::read::log::{Column, ColumnMap, Preset, TimeOrigin, TimeUnit};
 use inbetween_io::{Format, ReadOptions};
 use numpy::{PyArray1, PyArray2};
 use pyo3::prelude::*;
@@ -21,10 +22,16 @@ use std::path::Path;
 /// the file's angles, as the command line's `--input-angles` (a document that declares another
 /// is an error, not silently read in its own; without it, undeclared angles are degrees);
 /// `key_fps` the rate of frame numbers when the file declares none.
+/// `columns` reads a timestamped log: a preset (`"tum"`, `"euroc"`, `"rostopic"`), the command
+/// line's map (`"time=1,w=8,x=5,y=6,z=7"`), or a dict of fields to header names or column
+/// numbers from 1 (`{"time": "%time", "w": "field.orientation.w", ...}`, a `"preset"` key
+/// under them); `time_unit` (`"s"`, `"ms"`, `"us"`, `"ns"`) and `times` (`"relative"`,
+/// `"absolute"`) as `--time-unit` and `--times`.
 #[pyfunction]
 #[pyo3(signature = (
     path, *, rotation = None, angles = None, key_fps = None, quat_order = "wxyz",
-    scalar_first = true, max_bytes = inbetween_io::DEFAULT_MAX_INPUT_BYTES
+    scalar_first = true, max_bytes = inbetween_io::DEFAULT_MAX_INPUT_BYTES, columns = None,
+    time_unit = None, times = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn read<'py>(
@@ -36,6 +43,9 @@ pub fn read<'py>(
     quat_order: &str,
     scalar_first: bool,
     max_bytes: u64,
+    columns: Option<Bound<'py, PyAny>>,
+    time_unit: Option<&str>,
+    times: Option<&str>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let located = |e: inbetween::InputError| input_error(crate::message(&e));
     let opts = ReadOptions {
@@ -55,6 +65,7 @@ pub fn read<'py>(
         quat_order: QuatOrder::parse(quat_order)
             .map_err(|e| input_error(format!("quat_order: {}", crate::message(&e))))?,
         delimiter: None,
+        columns: column_map(columns.as_ref(), time_unit, times)?,
     };
     let (doc, format) = py
         .detach(|| {
@@ -130,6 +141,69 @@ pub fn read<'py>(
         }
     }
     Ok(d)
+}
+
+/// The `columns`, `time_unit` and `times` keywords as a column map (`None` without `columns`;
+/// `time_unit` or `times` without it is an error).
+fn column_map(
+    columns: Option<&Bound<'_, PyAny>>,
+    time_unit: Option<&str>,
+    times: Option<&str>,
+) -> PyResult<Option<ColumnMap>> {
+    let bad = |what: &str, e: inbetween::InputError| {
+        input_error(format!("{what}: {}", crate::message(&e)))
+    };
+    let Some(columns) = columns else {
+        if time_unit.is_some() || times.is_some() {
+            return Err(input_error(
+                "time_unit and times describe the stamps of a log read with columns; give \
+                 columns too (e.g. columns=\"tum\")",
+            ));
+        }
+        return Ok(None);
+    };
+    let mut map = if let Ok(text) = columns.extract::<String>() {
+        ColumnMap::parse(&text).map_err(|e| bad("columns", e))?
+    } else if let Ok(dict) = columns.cast::<PyDict>() {
+        let mut map = ColumnMap::default();
+        if let Some(p) = dict.get_item("preset")? {
+            let name: String = p.extract()?;
+            map.preset = Some(Preset::parse(&name).ok_or_else(|| {
+                input_error(format!(
+                    "columns: expected a preset tum, euroc or rostopic, found \"{}\"",
+                    inbetween::error::shorten(&name)
+                ))
+            })?);
+        }
+        for (k, v) in dict.iter() {
+            let field: String = k.extract()?;
+            if field == "preset" {
+                continue;
+            }
+            let column = match v.extract::<usize>() {
+                Ok(n) => Column::parse(&n.to_string()),
+                Err(_) => Ok(Column::Name(v.extract::<String>().map_err(|_| {
+                    input_error(format!(
+                        "columns[\"{field}\"]: expected a column name (str) or number from 1 (int)"
+                    ))
+                })?)),
+            }
+            .map_err(|e| bad(&format!("columns[\"{field}\"]"), e))?;
+            map.set(&field, column).map_err(|e| bad("columns", e))?;
+        }
+        map
+    } else {
+        return Err(input_error(
+            "columns: expected a preset or map (str) or a dict of fields to columns",
+        ));
+    };
+    if let Some(u) = time_unit {
+        map.time_unit = Some(TimeUnit::parse(u).map_err(|e| bad("time_unit", e))?);
+    }
+    if let Some(t) = times {
+        map.times = TimeOrigin::parse(t).map_err(|e| bad("times", e))?;
+    }
+    Ok(Some(map))
 }
 
 fn runtime(e: impl std::fmt::Display) -> PyErr {

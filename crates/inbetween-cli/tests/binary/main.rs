@@ -25,6 +25,7 @@ mod gltf_reduce;
 mod gltf_tracks;
 mod gltf_untrusted;
 mod hard_cases;
+mod logs;
 mod numbers;
 mod numeric_untrusted;
 mod output;

@@ -277,7 +277,8 @@ fn spreadsheet_csv_reads_like_plain_csv() {
     assert_eq!(code, 2);
     assert!(
         err.contains(
-            "invalid value '|' for '--delimiter <C>': expected \",\", \";\" or \"tab\", found \"|\""
+            "invalid value '|' for '--delimiter <C>': expected \",\", \";\", \"tab\" or \"space\", \
+             found \"|\""
         ),
         "{err}"
     );

@@ -6,7 +6,8 @@
 //! hip,0.5,0.7071,0,0.7071,0   each track keeps its row order.
 //! ```
 //! Accepted as a user would expect: a UTF-8 BOM, CRLF line ends, blank lines, spaces around
-//! fields and header names, quoted fields. Errors: an unknown or duplicated column, a missing
+//! fields and header names, quoted fields, comment lines starting with `#`, columns separated by
+//! runs of spaces (a header without `,`, `;` or tab). Errors: an unknown or duplicated column, a missing
 //! rotation column, a row with a different number of fields than the header, a field that is
 //! not a finite number.
 
@@ -56,6 +57,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         ));
     }
     let delimiter = opts.delimiter.unwrap_or_else(|| detect_delimiter(text));
+    // Comment lines become blank and runs of blanks one tab, line by line (line numbers kept),
+    // for the csv crate (whose own comments lose count of lines).
+    let blanks = delimiter == b' ';
+    let cleaned = (blanks || text.contains('#')).then(|| clean(text, blanks));
+    let (text, delimiter) = match &cleaned {
+        Some(t) => (t.as_str(), if blanks { b'\t' } else { delimiter }),
+        None => (text, delimiter),
+    };
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
@@ -72,7 +81,9 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             ));
         }
     };
-    let header_line = header.position().map_or(1, |p| p.line());
+    // Lines counted from the records' byte offsets: the csv crate's own count skips blank lines.
+    let mut lines = LineCounter::default();
+    let header_line = lines.at(text, header.position());
     // Fields are trimmed here rather than by the csv crate, whose trimming copies every record.
     // Header names match case-insensitively (ASCII): `Time, W, X, Y, Z` as a spreadsheet writes
     // them. Messages quote them as written.
@@ -157,18 +168,11 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
         translation.then(|| TRANSLATION_COLUMNS.iter().filter_map(|n| col(n)).collect());
 
     let mut doc = Document {
-        source: source.to_string(),
         // CSV declares no rate: `--key-fps` gives it.
         fps: opts.key_fps,
         rotation: Some(repr),
-        scheme: None,
-        tracks: Vec::new(),
         named_tracks: track_col.is_some(),
-        warnings: Vec::new(),
-        skeleton: None,
-        hierarchy: None,
-        unit_meters: None,
-        z_up: None,
+        ..Document::new(source)
     };
     let mut values = [0.0; MAX_WIDTH];
     let mut track_index: HashMap<String, usize> = HashMap::new();
@@ -179,7 +183,7 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
             Ok(true) => {}
             Err(e) => return Err(csv_error(source, &e)),
         }
-        let line = record.position().map_or(0, |p| p.line());
+        let line = lines.at(text, record.position());
         // Built only for a message: formatting it for every row would cost as much as the row.
         let loc = || format!("{source}:{line}");
         if record.len() != names.len() {
@@ -328,12 +332,14 @@ pub fn read(text: &str, source: &str, opts: &ReadOptions) -> InputResult<Documen
 }
 
 /// The delimiter of a CSV document without `--delimiter`: of `,`, `;` and tab, the one that
-/// occurs most often outside double quotes in the header line (the first line that is not
-/// blank); ties go to the first of `,`, `;`, tab; none at all is `,`.
+/// occurs most often outside double quotes in the header line (the first line that is neither
+/// blank nor a `#` comment); ties go to the first of `,`, `;`, tab; none at all is `b' '` (runs
+/// of blanks) when the line has a space, else `,`.
 pub(crate) fn detect_delimiter(text: &str) -> u8 {
     let header = text
         .lines()
-        .find(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .find(|l| !l.is_empty() && !l.starts_with('#'))
         .unwrap_or_default();
     let mut counts = [0usize; 3];
     let mut quoted = false;
@@ -346,8 +352,68 @@ pub(crate) fn detect_delimiter(text: &str) -> u8 {
             _ => {}
         }
     }
+    if counts == [0; 3] && header.contains(' ') {
+        return b' ';
+    }
     let best = (0..3).fold(0, |best, i| if counts[i] > counts[best] { i } else { best });
     [b',', b';', b'\t'][best]
+}
+
+/// `text` with its comment lines (first non-blank character `#`) made empty and, with
+/// `blanks`, each line trimmed and its runs of spaces and tabs made one tab (lines and their
+/// numbers kept).
+fn clean(text: &str, blanks: bool) -> String {
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let comment = line.trim_start().starts_with('#');
+        if comment {
+            // Nothing of the line but its end.
+        } else if blanks {
+            let mut words = line.split_ascii_whitespace();
+            if let Some(w) = words.next() {
+                out.push_str(w);
+                for w in words {
+                    out.push('\t');
+                    out.push_str(w);
+                }
+            }
+        } else {
+            out.push_str(line.strip_suffix('\n').unwrap_or(line));
+        }
+        if line.ends_with('\n') {
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// The line of a byte offset, counted forward from the last offset asked (records come in
+/// order, so reading stays linear).
+#[derive(Default)]
+struct LineCounter {
+    byte: usize,
+    line: u64,
+}
+
+impl LineCounter {
+    /// The 1-based line where a record starts: the csv crate's position is where it started
+    /// reading, before the empty lines it skipped.
+    fn at(&mut self, text: &str, pos: Option<&csv::Position>) -> u64 {
+        let mut byte = pos.map_or(0, |p| p.byte() as usize).min(text.len());
+        while matches!(text.as_bytes().get(byte), Some(b'\r' | b'\n')) {
+            byte += 1;
+        }
+        if byte < self.byte {
+            *self = LineCounter::default();
+        }
+        let newlines = text.as_bytes()[self.byte..byte]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
+        self.line += newlines as u64;
+        self.byte = byte;
+        self.line + 1
+    }
 }
 
 /// Levenshtein distance between two short names (in characters).
@@ -510,6 +576,8 @@ mod tests {
         let doc = read(text, "k.csv", &opts()).unwrap();
         assert_eq!(doc.tracks[0].keys.len(), 2);
         assert!(!doc.named_tracks);
+        // Lines are counted across blank lines and CRLF ends.
+        assert_eq!(doc.tracks[0].loc(1), crate::document::Loc::Line(4));
     }
 
     #[test]
@@ -581,6 +649,27 @@ mod tests {
         assert_eq!(detect_delimiter("a;b,c\n"), b',');
         assert_eq!(detect_delimiter("a\tb;c\n"), b';');
         assert_eq!(detect_delimiter("time\n"), b',');
+        // Comment lines are not the header; a header of words between blanks is blanks.
+        assert_eq!(detect_delimiter("# a;b;c\ntime,w,x,y,z\n"), b',');
+        assert_eq!(detect_delimiter("# a,b\ntime  w x\ty z\n"), b'\t');
+        assert_eq!(detect_delimiter("time  w x y z\n"), b' ');
+    }
+
+    #[test]
+    fn comments_and_blank_separated_columns() {
+        let text =
+            "# exported by hand\n  time   w x y z\n# a comment row\n0 1 0 0 0\n\n1\t0 0 0 1\r\n";
+        let doc = read(text, "k.csv", &opts()).unwrap();
+        assert_eq!(doc.tracks[0].keys.len(), 2);
+        assert_eq!(doc.tracks[0].keys[1].when, KeyTime::Seconds(1.0));
+        assert_eq!(doc.tracks[0].loc(1), crate::document::Loc::Line(6));
+        let err = read("time w x y z\n0 1 0 0\n", "k.csv", &opts()).unwrap_err();
+        assert_eq!(
+            err.message(),
+            "k.csv:2: expected 5 fields as in the header, found 4"
+        );
+        assert_eq!(clean(" a  b\t c \r\n #x\nd", true), "a\tb\tc\n\nd");
+        assert_eq!(clean("a,b\r\n#x,y\nd", false), "a,b\r\n\nd");
     }
 
     #[test]

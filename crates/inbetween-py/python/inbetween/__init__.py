@@ -506,6 +506,9 @@ def read(
     key_fps: Optional[Rate] = None,
     quat_order: str = "wxyz",
     scalar_first: bool = True,
+    columns: Optional[Union[str, Dict[str, Union[str, int]]]] = None,
+    time_unit: Optional[str] = None,
+    times: Optional[str] = None,
 ) -> Clip:
     """Reads a keyframe or motion file as the command line does — CSV, JSON, BVH or glTF
     (.gltf, .glb), by extension or content — into a ``Clip``. ``rotation`` (``"euler:ZYX"``,
@@ -515,11 +518,18 @@ def read(
     ``InputError`` (it was silently read in its own), and without ``angles`` undeclared angles
     are degrees; ``key_fps`` the rate of
     frame numbers when the file declares none; ``quat_order`` the order of JSON quaternion
-    arrays. Rotations come out as unit quaternions (``scalar_first`` as elsewhere)."""
+    arrays. Rotations come out as unit quaternions (``scalar_first`` as elsewhere).
+    ``columns`` reads a timestamped log as ``--columns`` does: a preset (``"tum"``,
+    ``"euroc"``, ``"rostopic"``), a map ``"time=1,w=8,x=5,y=6,z=7"``, or a dict of fields to
+    header names or column numbers from 1 (``{"preset": "rostopic", "time":
+    "field.header.stamp"}``); ``time_unit`` (``"s"``, ``"ms"``, ``"us"``, ``"ns"``) and
+    ``times`` (``"relative"``, the default, or ``"absolute"``) as ``--time-unit`` and
+    ``--times``."""
     path = os.fspath(path)
     before = _stat(path)
     d = _inbetween.read(path, rotation=rotation, angles=angles, key_fps=key_fps,
-                        quat_order=quat_order, scalar_first=scalar_first)
+                        quat_order=quat_order, scalar_first=scalar_first, columns=columns,
+                        time_unit=time_unit, times=times)
     if d["format"] == "gltf":
         d["asset"] = _asset_record(path, before, d)
     return Clip(d)

@@ -70,6 +70,9 @@ def read(
     quat_order: str = ...,
     scalar_first: bool = ...,
     max_bytes: int = ...,
+    columns: Optional[Union[str, Dict[str, Union[str, int]]]] = ...,
+    time_unit: Optional[str] = ...,
+    times: Optional[str] = ...,
 ) -> Dict[str, Any]: ...
 def write(
     path: str,
