@@ -95,5 +95,7 @@ def test_curves_and_resample_give_6d_and_float32():
     assert w.dtype == np.float32 and np.array_equal(w, w64.astype(np.float32))
     with pytest.raises(inbetween.InputError, match="to: expected"):
         c(t, to="rot6d")
+    with pytest.raises(inbetween.InputError, match="not of order=1"):
+        c(t, order=1, to="rot6d:rows")
     with pytest.raises(inbetween.InputError, match="dtype"):
         c(t, dtype=np.int32)

@@ -73,7 +73,7 @@ fn bad_option_values_name_option_and_value() {
     let cases: [(&[&str], &str); 11] = [
         (
             &["--to", "quaternion"],
-            "error: invalid value 'quaternion' for '--to <REPR>': expected one of quat, euler:SEQ (e.g. euler:ZYX), matrix, axis-angle, rotvec, found \"quaternion\"",
+            "error: invalid value 'quaternion' for '--to <REPR>': expected one of quat, euler:SEQ (e.g. euler:ZYX), matrix, axis-angle, rotvec, rot6d:rows, rot6d:columns, found \"quaternion\"",
         ),
         (
             &["--to", "euler:XXY"],

@@ -154,6 +154,9 @@ class Curve:
         float64)."""
         frame = _check_frame(frame)
         convention = _rot6d_convention(to)
+        if convention is not None and order != 0:
+            raise InputError(f"to: {to!r} is a representation of rotations (order=0), not of "
+                             f"order={order}'s rates")
         a = _array(t, "t")
         one = a.ndim == 0
         out = self._curve(a.reshape(1) if one else a, order, frame, outside)
