@@ -129,8 +129,8 @@ pub fn read_input(
         let doc = clip.document(fps.unwrap_or(Fps::DEFAULT), mode)?;
         (doc, Format::Gltf, Some(Arc::new(clip)))
     } else if inbetween_io::is_fbx_input(&bytes, path, args.input_format) {
-        let fbx = inbetween_io::fbx::read(&bytes, &source, args.animation.as_deref())?;
-        (inbetween_io::fbx_document(fbx, &source), Format::Fbx, None)
+        let doc = inbetween_io::read_fbx(&bytes, &source, args.animation.as_deref())?;
+        (doc, Format::Fbx, None)
     } else {
         if args.animation.is_some() {
             return Err(InputError::new(format!(

@@ -219,7 +219,7 @@ impl DocTrack {
 
 /// Records key `n − 1`'s own velocity and TCB values in lists that stay empty until a key has
 /// one ([`DocTrack::velocities`], [`DocTrack::tcb`]).
-pub fn push_shape(
+pub(crate) fn push_shape(
     velocities: &mut Vec<Option<DVec3>>,
     tcbs: &mut Vec<[Option<f64>; 3]>,
     n: usize,

@@ -69,13 +69,9 @@ pub(crate) fn is_fbx(bytes: &[u8]) -> bool {
 
 /// What an FBX scene's chosen stack became.
 #[derive(Debug, Clone)]
-pub struct FbxClip {
+pub(crate) struct FbxClip {
     /// The clip, as [`crate::bvh::parse`] reads it.
     pub clip: Clip,
-    /// The stack read, by name.
-    pub stack: String,
-    /// The stack's start in the file (seconds): the clip's time 0.
-    pub start: f64,
     /// The scene's unit in metres (`UnitScaleFactor` / 100), which lengths are in.
     pub unit_meters: f64,
     /// Whether the scene is Z up (its `UpAxis`); else Y up.
@@ -86,7 +82,7 @@ pub struct FbxClip {
 
 /// Reads FBX bytes (`source` names them in messages) and the stack chosen by `animation` (a
 /// name, else an index; `None`: the first, with a warning when there are several).
-pub fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> Result<FbxClip, Error> {
+pub(crate) fn read(bytes: &[u8], source: &str, animation: Option<&str>) -> Result<FbxClip, Error> {
     read_back(sample(bytes, source, animation)?, source)
 }
 
@@ -103,8 +99,6 @@ fn read_back(sampled: Sampled, source: &str) -> Result<FbxClip, Error> {
     warnings.extend(bvh_warnings);
     Ok(FbxClip {
         clip,
-        stack: sampled.stack,
-        start: sampled.start,
         unit_meters: sampled.unit_meters,
         z_up: sampled.z_up,
         warnings,
@@ -114,8 +108,6 @@ fn read_back(sampled: Sampled, source: &str) -> Result<FbxClip, Error> {
 /// A stack sampled into BVH text, with what the text cannot say.
 struct Sampled {
     text: String,
-    stack: String,
-    start: f64,
     unit_meters: f64,
     z_up: bool,
     warnings: Vec<String>,
@@ -347,8 +339,6 @@ fn sample(bytes: &[u8], source: &str, animation: Option<&str>) -> InputResult<Sa
     };
     Ok(Sampled {
         text,
-        stack: stack.element.name.to_string(),
-        start,
         unit_meters: scene.settings.unit_meters,
         z_up,
         warnings,
@@ -553,8 +543,6 @@ mod tests {
     fn text_that_does_not_read_back_is_an_internal_error() {
         let sampled = Sampled {
             text: "HIERARCHY\nROOT a\n{\n".to_string(),
-            stack: "Take 001".to_string(),
-            start: 0.0,
             unit_meters: 0.01,
             z_up: false,
             warnings: Vec::new(),

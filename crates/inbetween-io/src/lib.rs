@@ -219,7 +219,7 @@ pub fn is_gltf(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -> boo
 }
 
 /// Parses a document from raw bytes: the format as given, else from `path`'s extension, else
-/// sniffed. An `.npz` archive (a zip's bytes, [`amass::is_npz`]) is an AMASS motion file. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
+/// sniffed. An `.npz` archive (a zip's bytes, `amass::is_npz`) is an AMASS motion file. A glTF asset (binary or JSON, [`is_gltf`]) is read with every animation, its keys
 /// snapped to `--key-fps`, else 30 fps, a `STEP` channel as its held values on those frames
 /// and a `CUBICSPLINE` one as its vertices ([`gltf::document`]); external buffers are looked up beside `path`. Anything else must be
 /// UTF-8. `source` names the input in messages.
@@ -291,8 +291,14 @@ pub fn is_fbx_input(bytes: &[u8], path: Option<&Path>, format: Option<Format>) -
         .map_or_else(|| fbx::is_fbx(bytes), |f| f == Format::Fbx)
 }
 
+/// An FBX file's animation stack (`animation` names it when the scene has several) as a
+/// document: its BVH clip's ([`bvh::document::document`]), with its warnings, unit and up axis.
+pub fn read_fbx(bytes: &[u8], source: &str, animation: Option<&str>) -> Result<Document, Error> {
+    Ok(fbx_document(fbx::read(bytes, source, animation)?, source))
+}
+
 /// An FBX clip as a document: its BVH clip's ([`bvh::document::document`]), with its warnings.
-pub fn fbx_document(fbx: fbx::FbxClip, source: &str) -> Document {
+pub(crate) fn fbx_document(fbx: fbx::FbxClip, source: &str) -> Document {
     let (unit, z_up) = (fbx.unit_meters, fbx.z_up);
     let mut doc = bvh::document::document(fbx.clip, source, fbx.warnings);
     doc.unit_meters = (unit.is_finite() && unit > 0.0).then_some(unit);

@@ -8,7 +8,7 @@
 //! 60000/1001). Everything else (`betas`, `gender`, `dmpls`, the split `root_orient`,
 //! `pose_body`, … of SMPL-X files) is kept to be written back ([`Amass::resample`]).
 //!
-//! [`read`] checks the archive ([`zip`]) and each array ([`npy`]) against the file before
+//! [`read`] checks the archive (`zip`) and each array ([`npy`]) against the file before
 //! allocating from it; [`Amass::document`] makes one track per joint (named as smplx names them,
 //! [`joints`]), the pelvis' carrying `trans`. The joints' rest offsets depend on the body's shape
 //! (`betas`) and on the model files, which are not redistributed: the document has no hierarchy,
@@ -17,7 +17,7 @@
 pub mod joints;
 pub mod npy;
 mod write;
-pub mod zip;
+pub(crate) mod zip;
 
 pub use joints::Model;
 pub use npy::{Array, Kind};
@@ -32,7 +32,7 @@ use inbetween::rotation::{AngleUnit, Repr};
 use std::path::Path;
 
 /// The two spellings of the rate key: AMASS's SMPL-H files, then its SMPL-X release.
-pub const RATE_KEYS: [&str; 2] = ["mocap_framerate", "mocap_frame_rate"];
+pub(crate) const RATE_KEYS: [&str; 2] = ["mocap_framerate", "mocap_frame_rate"];
 
 /// An AMASS motion file as read.
 #[derive(Debug, Clone)]
@@ -50,7 +50,7 @@ pub struct Amass {
 /// Whether the input is an `.npz` archive: the format as given, else `path`'s extension
 /// (`.npz`), else the bytes are a zip archive (`PK\3\4`, or `PK\5\6` for an empty one) of a
 /// path with no extension the formats know.
-pub fn is_npz(bytes: &[u8], path: Option<&Path>, format: Option<crate::Format>) -> bool {
+pub(crate) fn is_npz(bytes: &[u8], path: Option<&Path>, format: Option<crate::Format>) -> bool {
     if let Some(f) = format {
         return f == crate::Format::Amass;
     }

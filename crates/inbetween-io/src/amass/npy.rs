@@ -128,7 +128,7 @@ pub fn parse(bytes: Vec<u8>, what: &str) -> InputResult<Array> {
 }
 
 /// `(3, 156)` as Python writes it.
-pub fn shape_text(shape: &[u64]) -> String {
+pub(crate) fn shape_text(shape: &[u64]) -> String {
     match shape {
         [n] => format!("({n},)"),
         _ => format!(

@@ -15,7 +15,7 @@ use inbetween::error::InputResult;
 
 /// The most bytes the entries of one archive may inflate to, together: 1 GiB, the default input
 /// size limit, so that a small compressed file cannot claim an unbounded allocation.
-pub const MAX_INFLATED: u64 = crate::DEFAULT_MAX_INPUT_BYTES;
+pub(crate) const MAX_INFLATED: u64 = crate::DEFAULT_MAX_INPUT_BYTES;
 
 const END_RECORD: usize = 22;
 const ZIP64_LOCATOR: usize = 20;

@@ -64,7 +64,7 @@ pub struct Channel<T> {
 
 /// Consecutive rotation keys in opposite hemispheres ([`RotationChannel::sign_flips`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SignFlips {
+pub(crate) struct SignFlips {
     /// The first pair: keys `key` and `key + 1`.
     pub key: usize,
     /// Their normalised values' dot product (negative).
@@ -204,7 +204,7 @@ impl Channel<DQuat> {
     /// Consecutive keys whose values lie in opposite hemispheres (`v_k · v_{k+1} < 0`, on the
     /// normalised values; for `CUBICSPLINE` the vertices): how many pairs, and the first pair's
     /// `k` and dot product. `None` when there is none, and for `STEP` (a step does not blend).
-    pub fn sign_flips(&self) -> Option<SignFlips> {
+    pub(crate) fn sign_flips(&self) -> Option<SignFlips> {
         if self.interpolation == Interpolation::Step {
             return None;
         }

@@ -48,7 +48,7 @@ mod warnings;
 mod write;
 
 pub(crate) use channel::snap_key_time;
-pub use channel::{Channel, Interpolation, RotationChannel, SignFlips, TranslationChannel};
+pub use channel::{Channel, Interpolation, RotationChannel, TranslationChannel};
 pub(crate) use json::has_asset_member;
 pub use write::{ContainerFormat, Resampled, Values};
 

@@ -9,7 +9,7 @@ use std::collections::{HashMap, VecDeque};
 
 /// A value as written.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Value {
+pub(crate) enum Value {
     /// A number.
     Num(f64),
     /// A quoted string.
@@ -32,54 +32,54 @@ pub enum Value {
 
 /// A property of a prim: `[uniform] type name = value`, `name.timeSamples = {…}` or `rel`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Property {
+pub(crate) struct Property {
     /// The name, without `.timeSamples`.
-    pub name: String,
+    pub(crate) name: String,
     /// The type as written (`quatf[]`, `rel`).
-    pub type_name: String,
+    pub(crate) type_name: String,
     /// The default value, if any.
-    pub value: Option<Value>,
+    pub(crate) value: Option<Value>,
     /// The time samples, if any.
-    pub samples: Option<Vec<(f64, Value)>>,
+    pub(crate) samples: Option<Vec<(f64, Value)>>,
     /// The line where it starts.
-    pub line: usize,
+    pub(crate) line: usize,
 }
 
 /// A prim: `def Type "name" (…) { … }`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Prim {
+pub(crate) struct Prim {
     /// Its name, `Skeleton`.
-    pub name: String,
+    pub(crate) name: String,
     /// Its parent's index in [`Layer::prims`], `None` at the root.
-    pub parent: Option<usize>,
+    pub(crate) parent: Option<usize>,
     /// Its type (`Skeleton`), empty for none.
-    pub type_name: String,
+    pub(crate) type_name: String,
     /// Its properties in order.
-    pub properties: Vec<Property>,
+    pub(crate) properties: Vec<Property>,
     /// The line where it starts.
-    pub line: usize,
+    pub(crate) line: usize,
 }
 
 impl Prim {
     /// The property called `name`.
-    pub fn property(&self, name: &str) -> Option<&Property> {
+    pub(crate) fn property(&self, name: &str) -> Option<&Property> {
         self.properties.iter().find(|p| p.name == name)
     }
 }
 
 /// A parsed layer: its metadata (`key = value`) and every prim, depth first.
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct Layer {
+pub(crate) struct Layer {
     /// The layer's metadata values by key.
-    pub metadata: Vec<(String, Value)>,
+    pub(crate) metadata: Vec<(String, Value)>,
     /// Every prim, parents before children.
-    pub prims: Vec<Prim>,
+    pub(crate) prims: Vec<Prim>,
 }
 
 impl Layer {
     /// The path of prim `i`, `/Clip/Skeleton` (as long as its nesting: built on demand, so that
     /// nested prims cost memory linear in the text, not quadratic in depth).
-    pub fn path(&self, i: usize) -> String {
+    pub(crate) fn path(&self, i: usize) -> String {
         let mut names = Vec::new();
         let mut at = Some(i);
         while let Some(k) = at {
@@ -96,7 +96,7 @@ impl Layer {
 
     /// The index of the prim at the absolute `path` (`/Clip/Skeleton`), the first where two
     /// define it; one pass over the prims.
-    pub fn find(&self, path: &str) -> Option<usize> {
+    pub(crate) fn find(&self, path: &str) -> Option<usize> {
         let mut parent: Option<usize> = None;
         let mut from = 0;
         for name in path.split('/').filter(|n| !n.is_empty()) {
@@ -109,7 +109,7 @@ impl Layer {
     }
 
     /// A word or string of the layer's metadata (`upAxis = "Z"`).
-    pub fn word(&self, key: &str) -> Option<&str> {
+    pub(crate) fn word(&self, key: &str) -> Option<&str> {
         self.metadata
             .iter()
             .find(|(k, _)| k == key)
@@ -120,7 +120,7 @@ impl Layer {
     }
 
     /// A number of the layer's metadata.
-    pub fn number(&self, key: &str) -> Option<f64> {
+    pub(crate) fn number(&self, key: &str) -> Option<f64> {
         self.metadata
             .iter()
             .find(|(k, _)| k == key)
@@ -132,7 +132,7 @@ impl Layer {
 }
 
 /// Parses `.usda` text (`source` names it in messages, with the line).
-pub fn parse(text: &str, source: &str) -> InputResult<Layer> {
+pub(crate) fn parse(text: &str, source: &str) -> InputResult<Layer> {
     let body = text.strip_prefix('\u{feff}').unwrap_or(text);
     if !body.starts_with("#usda ") {
         return Err(InputError::new(format!(

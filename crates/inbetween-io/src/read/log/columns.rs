@@ -10,7 +10,7 @@ pub(crate) const FIELDS: usize = 8;
 
 /// The fields' names in a column map: the time, the quaternion's `w,x,y,z`, the translation's
 /// `tx,ty,tz` (optional, all three or none).
-pub const FIELD_NAMES: [&str; FIELDS] = ["time", "w", "x", "y", "z", "tx", "ty", "tz"];
+pub(crate) const FIELD_NAMES: [&str; FIELDS] = ["time", "w", "x", "y", "z", "tx", "ty", "tz"];
 
 /// Where a field is in a row.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -83,7 +83,7 @@ impl Preset {
 pub struct ColumnMap {
     /// The preset the fields start from, if any.
     pub preset: Option<Preset>,
-    /// Fields set by name (index into [`FIELD_NAMES`]), over the preset's.
+    /// Fields set by name (index into `FIELD_NAMES`), over the preset's.
     pub fields: Vec<(usize, Column)>,
     /// The unit of the stamps; default the preset's, else seconds.
     pub time_unit: Option<TimeUnit>,
@@ -115,7 +115,7 @@ impl ColumnMap {
         Ok(map)
     }
 
-    /// Sets `field` (one of [`FIELD_NAMES`]) to `column`; a field set twice is an error.
+    /// Sets `field` (one of `FIELD_NAMES`) to `column`; a field set twice is an error.
     pub fn set(&mut self, field: &str, column: Column) -> InputResult<()> {
         let Some(i) = FIELD_NAMES.iter().position(|f| *f == field) else {
             return Err(input_err!(
