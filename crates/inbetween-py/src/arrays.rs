@@ -148,6 +148,25 @@ pub fn vectors(
         .collect())
 }
 
+/// The first non-finite value of per-joint vectors from [`vectors`], as an error naming its
+/// row (`name[k]`, or `name[k, j]` for (K, J, 3)).
+pub fn finite(v: &[Vec<DVec3>], name: &str, layout: Layout) -> PyResult<()> {
+    for (j, rows) in v.iter().enumerate() {
+        for (k, r) in rows.iter().enumerate() {
+            if let Some(bad) = r.to_array().into_iter().find(|x| !x.is_finite()) {
+                let place = match layout.joints {
+                    None => format!("{name}[{k}]"),
+                    Some(_) => format!("{name}[{k}, {j}]"),
+                };
+                return Err(input_error(format!(
+                    "{place}: expected a finite number, found {bad}"
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// One vector (3,) for every joint, or one per joint (J, 3).
 pub fn end_vectors(
     a: &PyReadonlyArrayDyn<'_, f64>,

@@ -50,6 +50,11 @@ impl Curve {
     ) -> PyResult<Curve> {
         let times = arrays::times(&times, "times")?;
         let (layout, quats) = arrays::quats(&rotations, "rotations", scalar_first)?;
+        if layout.rows == 0 {
+            return Err(input_error(
+                "rotations: expected at least 1 key (one key is a constant), found 0",
+            ));
+        }
         if times.len() != layout.rows {
             return Err(input_error(format!(
                 "times: {} times for {} rotations",

@@ -147,7 +147,11 @@ pub fn resample<'py>(
     );
     let (layout, quats): (Layout, _) = arrays::quats(&rotations, "rotations", scalar_first)?;
     let positions = match &translations {
-        Some(p) => Some(arrays::vectors(p, "translations", layout, "rotations")?),
+        Some(p) => {
+            let v = arrays::vectors(p, "translations", layout, "rotations")?;
+            arrays::finite(&v, "translations", layout)?;
+            Some(v)
+        }
         None => None,
     };
     let (first, last) = grid(layout.rows, fps_in, fps_out)?;

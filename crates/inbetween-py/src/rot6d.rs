@@ -19,14 +19,14 @@ pub fn rot6d<'py>(
     inverse: bool,
     scalar_first: bool,
 ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let repr = match convention {
+    let repr = match convention.strip_prefix("rot6d:").unwrap_or(convention) {
         "rows" => Repr::Rot6dRows,
         "columns" => Repr::Rot6dColumns,
-        other => {
+        _ => {
             return Err(input_error(format!(
                 "convention: expected \"rows\" (pytorch3d's matrix_to_rotation_6d) or \
-                 \"columns\" (Zhou et al.), found \"{}\"",
-                inbetween::error::shorten(other)
+                 \"columns\" (Zhou et al.), or rot6d:rows, rot6d:columns, found \"{}\"",
+                inbetween::error::shorten(convention)
             )));
         }
     };
@@ -46,6 +46,8 @@ pub fn rot6d<'py>(
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
     let mut out = Vec::with_capacity(rows.len_of(Axis(0)) * width_out);
     let mut buf = [0.0; MAX_WIDTH];
+    // The first quaternion normalised with a warning, and how many others (as arrays::quats).
+    let mut warned: Option<(String, usize)> = None;
     for (i, r) in rows.axis_iter(Axis(0)).enumerate() {
         let r: Vec<f64> = r.iter().copied().collect();
         if let Some(bad) = r.iter().find(|x| !x.is_finite()) {
@@ -66,12 +68,30 @@ pub fn rot6d<'py>(
                 true => [r[0], r[1], r[2], r[3]],
                 false => [r[3], r[0], r[1], r[2]],
             };
-            let (q, _) = Repr::Quat
+            let (q, warning) = Repr::Quat
                 .to_quat(&wxyz, AngleUnit::Rad)
                 .map_err(|e| input_error(format!("{name}[{i}]: {}", crate::message(&e))))?;
+            match (&mut warned, warning) {
+                (None, Some(w)) => warned = Some((format!("{name}[{i}]: {w}"), 0)),
+                (Some((_, others)), Some(_)) => *others += 1,
+                _ => {}
+            }
             repr.from_quat(q, AngleUnit::Rad, &mut buf);
             out.extend_from_slice(&buf[..6]);
         }
+    }
+    if let Some((first, others)) = warned {
+        let text = match others {
+            0 => first,
+            n => format!("{first} (and {n} other rows)"),
+        };
+        let message = std::ffi::CString::new(text).unwrap_or_default();
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &message,
+            2,
+        )?;
     }
     let mut shape = shape;
     *shape.last_mut().expect("checked above") = width_out;

@@ -73,6 +73,10 @@ def test_the_inverse_round_trips_and_reads_network_outputs():
         inbetween.from_rot6d(np.array([[1.0, 0, 0, 0, 1, 0], [1, 0, 0, 2, 0, 0]]))
     with pytest.raises(inbetween.InputError, match="convention"):
         inbetween.to_rot6d(q, "pytorch3d")
+    # Both spellings; a norm off 1 warns once, as Curve does.
+    assert np.array_equal(inbetween.to_rot6d(q, "rot6d:rows"), inbetween.to_rot6d(q, "rows"))
+    with pytest.warns(UserWarning, match=r"q\[0\]: quaternion norm 1.5 .*\(and 1 other rows\)"):
+        inbetween.to_rot6d(np.full((2, 4), 0.75), "rows")
 
 
 def test_curves_and_resample_give_6d_and_float32():
@@ -99,3 +103,5 @@ def test_curves_and_resample_give_6d_and_float32():
         c(t, order=1, to="rot6d:rows")
     with pytest.raises(inbetween.InputError, match="dtype"):
         c(t, dtype=np.int32)
+    with pytest.raises(inbetween.InputError, match="dtype: the rotations come back as a scipy Rotation"):
+        inbetween.Curve(times, Rotation.from_quat(q, scalar_first=True))(t, dtype=np.float32)

@@ -94,6 +94,12 @@ def test_translations_are_resampled_as_interp_writes_them(cli, tmp_path):
     assert np.array_equal(pos, got_p) and w.shape == (len(pos), 2, 3)
     with pytest.raises(inbetween.InputError, match="translations: shape"):
         inbetween.resample(q, 24, 30, translations=p[:, :1])
+    bad = p.copy()
+    bad[2, 1, 1] = np.nan
+    with pytest.raises(inbetween.InputError, match=r"translations\[2, 1\]: expected a finite number, found NaN"):
+        inbetween.resample(q, 24, 30, translations=bad)
+    with pytest.raises(inbetween.InputError, match="expected at least 1 key"):
+        inbetween.Curve(np.zeros(0), np.zeros((0, 4)))
 
 
 def test_angles_contradicting_a_documents_own_unit_are_refused(tmp_path):

@@ -117,6 +117,24 @@ pub fn read(bytes: &[u8], source: &str, key_rate: Option<Fps>) -> InputResult<Am
             values[i]
         ));
     }
+    // AMASS's other per-frame arrays: a row count other than poses' is a broken file, not an
+    // array to copy as it is.
+    for key in [
+        "dmpls",
+        "root_orient",
+        "pose_body",
+        "pose_hand",
+        "pose_jaw",
+        "pose_eye",
+    ] {
+        if let Some(a) = find(key).filter(|a| a.shape.first() != Some(&(frames as u64))) {
+            return Err(input_err!(
+                "{source}: key \"{key}\": expected one row per frame of poses ({frames}), \
+                 found shape {}",
+                npy::shape_text(&a.shape)
+            ));
+        }
+    }
     let trans = match find("trans") {
         None => None,
         Some(t) => {

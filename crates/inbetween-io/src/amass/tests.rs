@@ -355,3 +355,16 @@ fn a_zip64_end_record_reads_as_the_classic_one() {
     bad[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
     assert!(err(&bad).contains("ZIP64"), "{}", err(&bad));
 }
+
+/// AMASS's other per-frame arrays must have poses' row count: a short `dmpls` is a broken
+/// file, refused naming the key (it was copied with its own rows).
+#[test]
+fn a_per_frame_array_of_another_length_is_refused() {
+    let mut x = smplh(120.0);
+    x.push(("dmpls", npy("<f8", &[1, 8], &f8(&[0.0; 8]))));
+    let e = err(&stored(&x));
+    assert!(
+        e.contains("key \"dmpls\": expected one row per frame of poses (2), found shape (1, 8)"),
+        "{e}"
+    );
+}

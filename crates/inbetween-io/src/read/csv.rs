@@ -532,7 +532,7 @@ fn choose_rotation(
             } else {
                 Err(input_err!(
                     "{hloc}: expected rotation columns (w,x,y,z or e1,e2,e3 or m00..m22 or \
-                     ax,ay,az,angle or rx,ry,rz), found {}",
+                     ax,ay,az,angle or rx,ry,rz or r0x..r1z or c0x..c1z), found {}",
                     joined(names)
                 ))
             }

@@ -164,6 +164,9 @@ class Curve:
             if convention is not None:
                 out = _inbetween.rot6d(out, convention, False, scalar_first=self._scalar_first)
             elif scalar_first is None and self._rotation_type is not None:
+                if dtype is not None:
+                    raise InputError("dtype: the rotations come back as a scipy Rotation (float64); "
+                                     "ask for arrays with scalar_first=True or False")
                 r = _to_rotation(self._rotation_type, out, self._scalar_first)
                 return r[0] if one else r
             elif scalar_first is not None:
@@ -218,7 +221,9 @@ def to_rot6d(q: Any, convention: str = "rows", *, scalar_first: bool = True,
     """Unit quaternions (..., 4) (or a scipy ``Rotation``) as the 6D representation (..., 6):
     ``convention="rows"`` is pytorch3d's ``matrix_to_rotation_6d`` (the rotation matrix's first
     two rows), ``"columns"`` Zhou et al.'s (its first two columns); the matrix is scipy's
-    ``as_matrix()``. Quaternions are normalised as everywhere (docs/python.md)."""
+    ``as_matrix()``. Quaternions are normalised as everywhere (docs/python.md: a norm off 1 by
+    more than 1e-3 with one ``UserWarning``). ``convention`` may also be spelt as ``to=`` spells
+    it, ``"rot6d:rows"`` or ``"rot6d:columns"``."""
     if _is_rotation(q):
         q, scalar_first = q.as_quat(scalar_first=True), True
     return _cast(_inbetween.rot6d(_array(q, "q"), convention, False, scalar_first=scalar_first),
@@ -277,6 +282,9 @@ def resample(
         six = lambda r: _inbetween.rot6d(r, convention, False, scalar_first=scalar_first)
         out = (six(out[0]),) + out[1:] if isinstance(out, tuple) else six(out)
     elif _is_rotation(rotations):
+        if dtype is not None:
+            raise InputError("dtype: the frames come back as a scipy Rotation (float64); pass "
+                             "the quaternions as an array for float32")
         if isinstance(out, tuple):
             return (_to_rotation(type(rotations), out[0], scalar_first),) + out[1:]
         return _to_rotation(type(rotations), out, scalar_first)
