@@ -68,12 +68,12 @@ impl<W: Write> FrameWriter<W> {
         };
         let mut buf = Vec::with_capacity(FLUSH_AT + 1024);
         match format {
-            Format::Csv
-            | Format::Bvh
-            | Format::Gltf
-            | Format::Fbx
-            | Format::Usd
-            | Format::Amass => {
+            Format::Json => {
+                json_head(&mut buf, Some(fps), &style, velocity);
+                buf.extend_from_slice(b", \"tracks\": [\n");
+            }
+            // Every other format is written here as CSV (the writers write CSV or JSON).
+            _ => {
                 if track_column {
                     buf.extend_from_slice(b"track,");
                 }
@@ -86,10 +86,6 @@ impl<W: Write> FrameWriter<W> {
                     buf.extend_from_slice(b",wx,wy,wz");
                 }
                 buf.push(b'\n');
-            }
-            Format::Json => {
-                json_head(&mut buf, Some(fps), &style, velocity);
-                buf.extend_from_slice(b", \"tracks\": [\n");
             }
         }
         let parallel = std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
@@ -275,15 +271,6 @@ impl<W: Write> FrameSink for FrameWriter<W> {
         self.frames_in_track = 0;
         self.track_name = name.map(str::to_string);
         match self.format {
-            Format::Csv
-            | Format::Bvh
-            | Format::Gltf
-            | Format::Fbx
-            | Format::Usd
-            | Format::Amass => {
-                self.track = csv_field(name.unwrap_or(""));
-                self.track.push(b',');
-            }
             Format::Json => {
                 if self.tracks_written > 0 {
                     self.buf.extend_from_slice(b",\n");
@@ -294,6 +281,11 @@ impl<W: Write> FrameSink for FrameWriter<W> {
                         .extend_from_slice(format!("\"name\": {}, ", json_string(n)).as_bytes());
                 }
                 self.buf.extend_from_slice(b"\"frames\": [");
+            }
+            // Every other format is written here as CSV (the writers write CSV or JSON).
+            _ => {
+                self.track = csv_field(name.unwrap_or(""));
+                self.track.push(b',');
             }
         }
         self.tracks_written += 1;

@@ -116,60 +116,6 @@ pub fn write_keys<W: Write>(
     // BVH keys are written by `io::bvh` on its skeleton; the commands never route them here.
     debug_assert!(format != Format::Bvh, "write_keys writes CSV or JSON");
     match format {
-        Format::Csv | Format::Bvh | Format::Gltf | Format::Fbx | Format::Usd | Format::Amass => {
-            if named {
-                buf.extend_from_slice(b"track,");
-            }
-            buf.extend_from_slice(when_name.as_bytes());
-            for c in style.repr.columns() {
-                buf.push(b',');
-                buf.extend_from_slice(c.as_bytes());
-            }
-            if key_velocities {
-                buf.extend_from_slice(b",wx,wy,wz");
-            }
-            if positions {
-                buf.extend_from_slice(b",tx,ty,tz");
-            }
-            buf.push(b'\n');
-            for (ti, track) in doc.tracks.iter().enumerate() {
-                let mut key_euler = KeyEuler::of(&style, track);
-                for (i, key) in track.keys.iter().enumerate() {
-                    if named {
-                        buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
-                        buf.push(b',');
-                    }
-                    let t = when(key.when);
-                    when_value(&mut nums, &mut buf, t, all_frames);
-                    let euler = key_euler.next(i, key.rot);
-                    let ok = rot.csv(&mut buf, key.rot, euler);
-                    check_key(&mut rot, ti, i, t, ok)?;
-                    if key_velocities {
-                        match key_velocity(track, i) {
-                            Some(w) => {
-                                for x in w {
-                                    buf.push(b',');
-                                    nums.float(&mut buf, x);
-                                }
-                            }
-                            None => buf.extend_from_slice(b",,,"),
-                        }
-                    }
-                    if positions {
-                        match track.translations.get(i).copied().flatten() {
-                            Some(p) => {
-                                for x in p.to_array() {
-                                    buf.push(b',');
-                                    nums.shortest(&mut buf, x);
-                                }
-                            }
-                            None => buf.extend_from_slice(b",,,"),
-                        }
-                    }
-                    buf.push(b'\n');
-                }
-            }
-        }
         Format::Json => {
             let velocities = doc
                 .tracks
@@ -265,6 +211,61 @@ pub fn write_keys<W: Write>(
                 }
             }
             buf.extend_from_slice(if named { b"\n]}\n".as_slice() } else { b"}\n" });
+        }
+        // Every other format is written here as CSV (the writers write CSV or JSON).
+        _ => {
+            if named {
+                buf.extend_from_slice(b"track,");
+            }
+            buf.extend_from_slice(when_name.as_bytes());
+            for c in style.repr.columns() {
+                buf.push(b',');
+                buf.extend_from_slice(c.as_bytes());
+            }
+            if key_velocities {
+                buf.extend_from_slice(b",wx,wy,wz");
+            }
+            if positions {
+                buf.extend_from_slice(b",tx,ty,tz");
+            }
+            buf.push(b'\n');
+            for (ti, track) in doc.tracks.iter().enumerate() {
+                let mut key_euler = KeyEuler::of(&style, track);
+                for (i, key) in track.keys.iter().enumerate() {
+                    if named {
+                        buf.extend_from_slice(&csv_field(track.name.as_deref().unwrap_or("")));
+                        buf.push(b',');
+                    }
+                    let t = when(key.when);
+                    when_value(&mut nums, &mut buf, t, all_frames);
+                    let euler = key_euler.next(i, key.rot);
+                    let ok = rot.csv(&mut buf, key.rot, euler);
+                    check_key(&mut rot, ti, i, t, ok)?;
+                    if key_velocities {
+                        match key_velocity(track, i) {
+                            Some(w) => {
+                                for x in w {
+                                    buf.push(b',');
+                                    nums.float(&mut buf, x);
+                                }
+                            }
+                            None => buf.extend_from_slice(b",,,"),
+                        }
+                    }
+                    if positions {
+                        match track.translations.get(i).copied().flatten() {
+                            Some(p) => {
+                                for x in p.to_array() {
+                                    buf.push(b',');
+                                    nums.shortest(&mut buf, x);
+                                }
+                            }
+                            None => buf.extend_from_slice(b",,,"),
+                        }
+                    }
+                    buf.push(b'\n');
+                }
+            }
         }
     }
     w.write_all(&buf)?;

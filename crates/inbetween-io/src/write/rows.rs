@@ -61,40 +61,6 @@ impl RowFormatter {
             // One `is_finite` per written value and one norm per rotation.
             let mut ok = f.time.is_finite() && is_rotation(f.q);
             match self.format {
-                Format::Csv
-                | Format::Bvh
-                | Format::Gltf
-                | Format::Fbx
-                | Format::Usd
-                | Format::Amass => {
-                    if self.track_column {
-                        out.extend_from_slice(track);
-                    }
-                    self.nums.int(out, f.k);
-                    out.push(b',');
-                    self.nums.shortest(out, f.time);
-                    ok &= self.rot.csv(out, f.q, f.euler);
-                    if let Some(w) = omega {
-                        for x in w {
-                            out.push(b',');
-                            ok &= x.is_finite();
-                            self.nums.float(out, x);
-                        }
-                    }
-                    if self.positions {
-                        match f.position {
-                            Some(p) => {
-                                for x in p.to_array() {
-                                    out.push(b',');
-                                    ok &= x.is_finite();
-                                    self.nums.float(out, x);
-                                }
-                            }
-                            None => out.extend_from_slice(b",,,"),
-                        }
-                    }
-                    out.push(b'\n');
-                }
                 Format::Json => {
                     out.extend_from_slice(if start + i == 0 {
                         b"\n{\"frame\": "
@@ -129,6 +95,36 @@ impl RowFormatter {
                         out.push(b']');
                     }
                     out.push(b'}');
+                }
+                // Every other format is written here as CSV (the writers write CSV or JSON).
+                _ => {
+                    if self.track_column {
+                        out.extend_from_slice(track);
+                    }
+                    self.nums.int(out, f.k);
+                    out.push(b',');
+                    self.nums.shortest(out, f.time);
+                    ok &= self.rot.csv(out, f.q, f.euler);
+                    if let Some(w) = omega {
+                        for x in w {
+                            out.push(b',');
+                            ok &= x.is_finite();
+                            self.nums.float(out, x);
+                        }
+                    }
+                    if self.positions {
+                        match f.position {
+                            Some(p) => {
+                                for x in p.to_array() {
+                                    out.push(b',');
+                                    ok &= x.is_finite();
+                                    self.nums.float(out, x);
+                                }
+                            }
+                            None => out.extend_from_slice(b",,,"),
+                        }
+                    }
+                    out.push(b'\n');
                 }
             }
             if !ok || (self.velocity && omega.is_none()) {
