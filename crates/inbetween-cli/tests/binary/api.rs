@@ -2,43 +2,12 @@
 //! rotations and angular velocities `interp` writes, and [`bake`] streams the same frames. (The
 //! library's own API tests are in crates/inbetween/tests/library.)
 
-use crate::support::{Collect, assert_rot_close, assert_vec_close, bin, stdout_of};
-use glam::{DQuat, DVec3, EulerRot};
-use inbetween::{BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, Scheme, Track, bake};
-
-/// Five keys, unevenly spaced, turning about every axis (one step over 90°).
-fn keys() -> (Vec<f64>, Vec<DQuat>) {
-    let times = vec![0.0, 0.37, 0.9, 1.55, 2.0];
-    let quats = [
-        (0.0, 0.0, 0.0),
-        (0.9, -0.3, 0.2),
-        (1.4, 0.5, -0.6),
-        (2.9, 0.1, 0.4),
-        (3.3, -0.2, 1.1),
-    ]
-    .iter()
-    .map(|&(a, b, c)| DQuat::from_euler(EulerRot::ZYX, a, b, c))
-    .collect();
-    (times, quats)
-}
-
-fn track() -> Track {
-    let (t, q) = keys();
-    Track::new(t, q).unwrap()
-}
-
-fn options(scheme: Scheme, fps: Fps) -> CurveOptions {
-    CurveOptions {
-        scheme,
-        ends: EndConditions {
-            ends: Ends::Chord,
-            start: Some(DVec3::new(0.0, 0.5, -1.0)),
-            end: None,
-        },
-        grid_rate: fps,
-        ..CurveOptions::default()
-    }
-}
+use crate::support::{
+    Collect, api_keys as keys, api_options as options, api_track as track, assert_rot_close,
+    assert_vec_close, bin, stdout_of,
+};
+use glam::{DQuat, DVec3};
+use inbetween::{BakeOptions, Curve, Fps, Scheme, bake};
 
 /// `interp` on the same keys: `(time, rotation, angular velocity in rad/s)` per frame.
 fn interp(scheme: Scheme, fps: &str) -> Vec<(f64, DQuat, DVec3)> {

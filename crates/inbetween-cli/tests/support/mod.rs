@@ -102,7 +102,9 @@ pub fn stderr_of(cmd: &mut assert_cmd::Command, code: i32) -> String {
 #[path = "../../../inbetween/tests/library/support.rs"]
 mod library;
 #[allow(unused_imports)]
-pub use library::{assert_rot_close, assert_vec_close, read_table, rot_angle};
+pub use library::{
+    api_keys, api_options, api_track, assert_rot_close, assert_vec_close, read_table, rot_angle,
+};
 
 /// One baked frame: number, time, rotation, angular velocity (when asked for).
 pub type Frame = (i64, f64, DQuat, Option<DVec3>);

@@ -4,45 +4,14 @@
 //! gives what `interp` writes is checked against the binary in
 //! crates/inbetween-cli/tests/binary/api.rs.)
 
-use crate::support::{Collect, assert_rot_close, assert_vec_close};
-use glam::{DQuat, DVec3, EulerRot};
+use crate::support::{
+    Collect, api_keys as keys, api_options as options, api_track as track, assert_rot_close,
+    assert_vec_close,
+};
+use glam::{DQuat, DVec3};
 use inbetween::{
     BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, Scheme, Track, TrackError,
 };
-
-/// Five keys, unevenly spaced, turning about every axis (one step over 90°).
-fn keys() -> (Vec<f64>, Vec<DQuat>) {
-    let times = vec![0.0, 0.37, 0.9, 1.55, 2.0];
-    let quats = [
-        (0.0, 0.0, 0.0),
-        (0.9, -0.3, 0.2),
-        (1.4, 0.5, -0.6),
-        (2.9, 0.1, 0.4),
-        (3.3, -0.2, 1.1),
-    ]
-    .iter()
-    .map(|&(a, b, c)| DQuat::from_euler(EulerRot::ZYX, a, b, c))
-    .collect();
-    (times, quats)
-}
-
-fn track() -> Track {
-    let (t, q) = keys();
-    Track::new(t, q).unwrap()
-}
-
-fn options(scheme: Scheme, fps: Fps) -> CurveOptions {
-    CurveOptions {
-        scheme,
-        ends: EndConditions {
-            ends: Ends::Chord,
-            start: Some(DVec3::new(0.0, 0.5, -1.0)),
-            end: None,
-        },
-        grid_rate: fps,
-        ..CurveOptions::default()
-    }
-}
 
 #[test]
 fn off_the_grid_derivatives_agree_with_finite_differences() {

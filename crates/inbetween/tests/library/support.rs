@@ -2,9 +2,10 @@
 //! sink that collects baked frames, and baking a track as `interp` does. (The binary's tests
 //! have their own, in crates/inbetween-cli/tests/support.)
 
-use glam::{DQuat, DVec3};
+use glam::{DQuat, DVec3, EulerRot};
 use inbetween::{
-    BakeOptions, Curve, CurveOptions, EndConditions, Fps, FrameSink, PathMode, Scheme, Track, bake,
+    BakeOptions, Curve, CurveOptions, EndConditions, Ends, Fps, FrameSink, PathMode, Scheme, Track,
+    bake,
 };
 use std::io;
 use std::path::{Path, PathBuf};
@@ -142,4 +143,39 @@ pub fn interpolate(t: &Track, s: &Settings) -> (Vec<(i64, f64, DQuat)>, Vec<Stri
         .map(|(k, t, q, _)| (k, t, q))
         .collect();
     (frames, warnings)
+}
+
+/// The API tests' keys (the library's and the binary's api.rs): five keys, unevenly spaced,
+/// turning about every axis (one step over 90°).
+pub fn api_keys() -> (Vec<f64>, Vec<DQuat>) {
+    let times = vec![0.0, 0.37, 0.9, 1.55, 2.0];
+    let quats = [
+        (0.0, 0.0, 0.0),
+        (0.9, -0.3, 0.2),
+        (1.4, 0.5, -0.6),
+        (2.9, 0.1, 0.4),
+        (3.3, -0.2, 1.1),
+    ]
+    .iter()
+    .map(|&(a, b, c)| DQuat::from_euler(EulerRot::ZYX, a, b, c))
+    .collect();
+    (times, quats)
+}
+
+pub fn api_track() -> Track {
+    let (t, q) = api_keys();
+    Track::new(t, q).unwrap()
+}
+
+pub fn api_options(scheme: Scheme, fps: Fps) -> CurveOptions {
+    CurveOptions {
+        scheme,
+        ends: EndConditions {
+            ends: Ends::Chord,
+            start: Some(DVec3::new(0.0, 0.5, -1.0)),
+            end: None,
+        },
+        grid_rate: fps,
+        ..CurveOptions::default()
+    }
 }
