@@ -173,6 +173,22 @@ pub struct DocTrack {
 }
 
 impl DocTrack {
+    /// A track of `keys` from `origin`: unnamed, no velocities, TCB values, Euler angles or
+    /// translations (a reader fills in what its format has).
+    pub fn new(keys: Vec<Key>, origin: KeyOrigin) -> DocTrack {
+        DocTrack {
+            name: None,
+            keys,
+            start_velocity: None,
+            end_velocity: None,
+            origin,
+            euler: None,
+            velocities: Vec::new(),
+            tcb: Vec::new(),
+            translations: Vec::new(),
+        }
+    }
+
     /// Records the just-pushed key's own velocity and TCB values (the lists stay empty until a
     /// key has one, then are filled for every key).
     pub(crate) fn push_shape(&mut self, velocity: Option<DVec3>, tcb: [Option<f64>; 3]) {

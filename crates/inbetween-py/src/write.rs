@@ -315,14 +315,8 @@ fn document(
         }
         doc_tracks.push(DocTrack {
             name: Some(name.clone()),
-            keys,
-            start_velocity: None,
-            end_velocity: None,
-            origin: KeyOrigin::Frames,
-            euler: None,
-            velocities: Vec::new(),
-            tcb: Vec::new(),
             translations: positions,
+            ..DocTrack::new(keys, KeyOrigin::Frames)
         });
     }
     Ok(Document {

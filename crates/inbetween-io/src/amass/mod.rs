@@ -283,14 +283,8 @@ impl Amass {
             };
             tracks.push(DocTrack {
                 name: Some(name),
-                keys,
-                start_velocity: None,
-                end_velocity: None,
-                origin: KeyOrigin::Frames,
-                euler: None,
-                velocities: Vec::new(),
-                tcb: Vec::new(),
                 translations,
+                ..DocTrack::new(keys, KeyOrigin::Frames)
             });
         }
         Ok(Document {

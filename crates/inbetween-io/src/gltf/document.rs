@@ -434,20 +434,6 @@ fn anim_label(a: &Animation) -> String {
     }
 }
 
-pub(super) fn new_track(keys: Vec<Key>, origin: KeyOrigin) -> DocTrack {
-    DocTrack {
-        name: None,
-        keys,
-        start_velocity: None,
-        end_velocity: None,
-        origin,
-        euler: None,
-        velocities: Vec::new(),
-        tcb: Vec::new(),
-        translations: Vec::new(),
-    }
-}
-
 /// The first frame `f` with `fps.time_of(f) >= t` (exactly, as [`RotationChannel::sample`]
 /// compares times).
 fn first_frame_at_or_after(fps: Fps, t: f64) -> i64 {
@@ -482,7 +468,7 @@ fn held(
             when: KeyTime::Seconds(snapped.times[0]),
             rot: snapped.sample(snapped.times[0]),
         }];
-        return new_track(keys, origin(vec![(0, ch.times_f32()[0])]));
+        return DocTrack::new(keys, origin(vec![(0, ch.times_f32()[0])]));
     }
     let mut from = first;
     for k in 0..n {
@@ -524,7 +510,7 @@ fn at_frames(
             }
         })
         .collect();
-    let mut track = new_track(keys, origin);
+    let mut track = DocTrack::new(keys, origin);
     if let Some(tr) = translation.map(|tr| as_sampled(tr, fps)) {
         track.translations = frames
             .iter()
@@ -671,7 +657,7 @@ fn keyed(
         })
         .collect();
     let stored = ch.times_f32().iter().copied().enumerate().collect();
-    let mut track = new_track(keys, origin(stored));
+    let mut track = DocTrack::new(keys, origin(stored));
     if mode == Mode::Keys && ch.interpolation() == Interpolation::Step {
         warnings.add(
             label.to_string(),

@@ -3,8 +3,8 @@
 //! each time, so every track is played as glTF plays it (slerp, lerp for its translation) at
 //! the union of all tracks' key times (docs/spec.md §4.7, *glTF channels with their own times*).
 
-use super::{GltfClip, MAX_BAKED_FRAMES, new_track, snapped_times};
-use crate::document::{Document, Key, KeyOrigin, KeyTime};
+use super::{GltfClip, MAX_BAKED_FRAMES, snapped_times};
+use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use inbetween::clock::Fps;
 use inbetween::error::InputResult;
 
@@ -72,7 +72,7 @@ impl GltfClip {
                 })
                 .collect();
             let (animation, channel) = (self.animations[self.tracks[i].0].index(), ch.index());
-            let mut shared = new_track(
+            let mut shared = DocTrack::new(
                 union
                     .iter()
                     .map(|&t| Key {

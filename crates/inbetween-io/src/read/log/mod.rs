@@ -131,17 +131,7 @@ pub fn read(
     let needed = idx.iter().flatten().max().map_or(0, |m| m + 1);
     let translation = idx[5].is_some();
     let unit = map.unit();
-    let mut track = DocTrack {
-        name: None,
-        keys: Vec::new(),
-        start_velocity: None,
-        end_velocity: None,
-        origin: KeyOrigin::Lines(Vec::new()),
-        euler: None,
-        velocities: Vec::new(),
-        tcb: Vec::new(),
-        translations: Vec::new(),
-    };
+    let mut track = DocTrack::new(Vec::new(), KeyOrigin::Lines(Vec::new()));
     let mut warnings = Vec::new();
     let mut stamps: Vec<i128> = Vec::new();
     let mut previous: Option<(i128, u64, &str)> = None;
