@@ -151,6 +151,32 @@ def quat_to_matrix(q):
     return Rotation.from_quat(q[:, [1, 2, 3, 0]]).as_matrix()
 
 
+def add_default_ends(clip):
+    """docs/spec.md §4.7, "Every bone is bounded": a joint with rotation channels whose rotation
+    would move no point (no End Site away from its origin, no descendant at a non-zero OFFSET)
+    gets three End Sites at d along its own x, y and z axes, d its OFFSET's length, else the
+    median (the upper of an even count) of the skeleton's non-zero OFFSET lengths. What `diff`
+    and `reduce --position-tolerance` measure without `--shell`. Returns the joints given ends."""
+    moves = [any(np.linalg.norm(e) > 0 for e in j.end_sites) for j in clip.joints]
+    for i in reversed(range(len(clip.joints))):
+        j = clip.joints[i]
+        if j.parent >= 0:
+            moves[j.parent] = moves[j.parent] or moves[i] or bool(np.linalg.norm(j.offset) > 0)
+    lengths = sorted(float(np.linalg.norm(j.offset)) for j in clip.joints
+                     if np.linalg.norm(j.offset) > 0)
+    median = lengths[len(lengths) // 2] if lengths else None
+    given = []
+    for i, j in enumerate(clip.joints):
+        if not j.rot_cols or moves[i]:
+            continue
+        d = float(np.linalg.norm(j.offset)) or median
+        if d is None:
+            continue
+        j.end_sites = list(j.end_sites) + [np.array(v, dtype=float) * d for v in np.eye(3)]
+        given.append(j.name)
+    return given
+
+
 def world_points(clip, rotations, translations):
     """World positions of every joint origin and End Site at every frame: (frames, points, 3),
     points in file order (each joint's origin, then its End Sites). `rotations` {joint: (n, 4)}

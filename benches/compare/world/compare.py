@@ -3,9 +3,12 @@ per-joint `--tolerance θ` at the largest uniform θ that meets LEN in world spa
 ozz-animation's optimizer rule (its real world error measured). Called by run.sh (see there);
 the figures are written to results.md next to this file.
 
-Clips: the eight public BVH clips of benches/compare/reduce (fetch_clips.sh, never committed).
-The world points are every joint's origin and every End Site, composed from the root
-(docs/spec.md §4.8; bvh.py here for the independent measure).
+Clips: the eight public BVH clips of benches/compare/reduce (fetch_clips.sh, never committed),
+on which the rule's constants were chosen; with `--set held-out`, eighteen clips nobody tuned
+on (fetch_held_out.sh: MASS's eight, in cm, and ten of Xia et al.'s on the CMU skeleton, in the
+CMU unit below). The world points are every joint's origin and End Site and, where a joint's
+rotation moves neither, its default end points (docs/spec.md §4.7; bvh.add_default_ends),
+composed from the root (docs/spec.md §4.8; bvh.py here for the independent measure).
 
 Units. BVH has none; LEN is given in cm and converted per clip to its own units (UNITS below):
 
@@ -70,9 +73,15 @@ import bvh  # noqa: E402
 import ozz  # noqa: E402
 
 CLIPS = ["01_01", "01_03", "Boxing_Toes", "test", "test2", "test3", "test_mocapbank", "test_freebvh"]
+# Held out: clips nobody tuned the rule on (fetch_held_out.sh; `--set held-out`).
+HELD_OUT = ["mass_backflip", "mass_balance", "mass_cart", "mass_dance", "mass_kick",
+            "mass_pirouette", "mass_run", "mass_walk", "xia_angry_13_000", "xia_depressed_13_000",
+            "xia_depressed_18_000", "xia_example", "xia_neutral_01_000", "xia_neutral_16_000",
+            "xia_old_13_000", "xia_sexy_01_000", "xia_sexy_01_001", "xia_strutting_01_000"]
 UNITS = {  # cm per length unit of the clip (see the module docstring)
     "01_01": 2.54 / 0.45, "01_03": 2.54 / 0.45, "Boxing_Toes": 1.0, "test": 1.0, "test2": 1.0,
     "test3": 100.0, "test_mocapbank": 1.0, "test_freebvh": 1.0,
+    **{c: (1.0 if c.startswith("mass_") else 2.54 / 0.45) for c in HELD_OUT},
 }
 
 
@@ -126,6 +135,7 @@ class Inbetween:
         if p.returncode != 0:
             sys.exit(f"interp failed\n{p.stderr}")
         b = bvh.read_bvh(ob)
+        bvh.add_default_ends(b)
         assert b.frames == clip.frames, (b.frames, clip.frames)
         pb = bvh.world_points(b, bvh.local_rotations(b), bvh.local_translations(b))
         return float(np.linalg.norm(pb - ref, axis=-1).max())
@@ -222,12 +232,41 @@ def bisect_ozz(clip, rot, trans, ref, L, steps):
     return best, probes
 
 
+def rule_a(ib, path, clip, ref, s, L, lever, fracs, steps, LEN, cpu):
+    """Rule (a): the largest uniform θ (best of the τ fractions) meeting L."""
+    t0 = time.perf_counter()
+    cands = []
+    for f in fracs:
+        best, probes = bisect_theta(ib, path, s, L, f * L, lever, steps)
+        cands.append({"f": f, "best": best, "probes": probes})
+    ok = [c for c in cands if c["best"] is not None]
+    pick = min(ok, key=lambda c: c["best"]["keys"]) if ok else None
+    entry = {"candidates": cands, "seconds": time.perf_counter() - t0}
+    if pick:
+        b = pick["best"]
+        keys, _ = ib.reduce(path, ["--tolerance", repr(b["theta"]),
+                                   "--translation-tolerance", repr(pick["f"] * L)], s)
+        counts = count_keys(keys)
+        assert sum(counts) == b["keys"]
+        entry.update({"theta_deg": b["theta"], "tau_fraction": pick["f"],
+                      "keys": counts, "max_world": b["max_world"],
+                      "indep": ib.independent(path, clip, ref, keys, s)})
+        print(f"  {LEN:g} cm {s} (a): θ {b['theta']:.4g}°, τ {pick['f']:g}·L, "
+              f"{sum(counts)} keys, world {b['max_world'] * cpu:.4g} cm "
+              f"({entry['seconds']:.1f} s)", file=sys.stderr)
+    return entry
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--bin", required=True, help="the inbetween binary (release build)")
     ap.add_argument("--clip-dir", required=True, help="where fetch_clips.sh put the clips")
     ap.add_argument("--work", default=None, help="scratch directory (default: a temporary one)")
-    ap.add_argument("--clips", default=",".join(CLIPS), help="comma-separated clip names")
+    ap.add_argument("--set", choices=["tuned", "held-out"], default="tuned",
+                    help="the clips: the eight of fetch_clips.sh, or the eighteen held out")
+    ap.add_argument("--clips", default=None, help="comma-separated clip names (default: --set's)")
+    ap.add_argument("--units", default="",
+                    help="cm per length unit of clips not in UNITS: name=cm,name=cm")
     ap.add_argument("--lens", default="0.5,1,2", help="LEN values, cm")
     ap.add_argument("--schemes", default="bezier", help="schemes of the inbetween rows (bezier,slerp)")
     ap.add_argument("--tau-fractions", default="0.1,0.25,0.5",
@@ -238,17 +277,31 @@ def main():
                     help="1: also ozz (distance 0) at the largest tolerance meeting LEN (0: off)")
     ap.add_argument("--timeout", type=float, default=600, help="seconds per inbetween process")
     ap.add_argument("--json", default=None, help="write every figure here")
-    ap.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
-                                                  "results.md"), help="markdown report")
+    ap.add_argument("--reuse-a", default=None,
+                    help="take rule (a)'s results from this --json of an earlier run (same clips, "
+                         "LENs and schemes; (a) does not depend on --position-tolerance's rule)")
+    ap.add_argument("--out", default=None,
+                    help="markdown report (default: results.md, or results-held-out.md)")
     ap.add_argument("--command", default=None, help="the command line to print in the report")
     args = ap.parse_args()
+    if args.out is None:
+        name = "results.md" if args.set == "tuned" else "results-held-out.md"
+        args.out = os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
 
+    if args.clips is None:
+        args.clips = ",".join(CLIPS if args.set == "tuned" else HELD_OUT)
     lens = [float(x) for x in args.lens.split(",")]
     schemes = args.schemes.split(",")
     fracs = [float(x) for x in args.tau_fractions.split(",")]
-    odists = [float(x) for x in args.ozz_distances.split(",")]
+    odists = [float(x) for x in args.ozz_distances.split(",") if x]
+    units = dict(UNITS)
+    units.update({k: float(v) for k, v in (kv.split("=") for kv in args.units.split(",") if kv)})
     work = args.work or tempfile.mkdtemp(prefix="world-compare-")
     os.makedirs(work, exist_ok=True)
+    reused = None
+    if args.reuse_a:
+        with open(args.reuse_a) as f:
+            reused = json.load(f)
     ib = Inbetween(args.bin, work, args.timeout)
     if not ib.has_position_tolerance:
         print("NOTE: this inbetween has no `reduce --position-tolerance` yet: its rows are "
@@ -261,7 +314,8 @@ def main():
     for name in args.clips.split(","):
         path = os.path.join(args.clip_dir, name + ".bvh")
         clip = bvh.read_bvh(path)
-        cpu = UNITS[name]
+        bvh.add_default_ends(clip)
+        cpu = units[name]
         R_, T_ = bvh.local_rotations(clip), bvh.local_translations(clip)
         ref = bvh.world_points(clip, R_, T_)
         lever = lever_sum(clip, ref)
@@ -274,27 +328,11 @@ def main():
             r = {}
             for s in schemes:
                 # (a)
-                t0 = time.perf_counter()
-                cands = []
-                for f in fracs:
-                    best, probes = bisect_theta(ib, path, s, L, f * L, lever, args.steps)
-                    cands.append({"f": f, "best": best, "probes": probes})
-                ok = [c for c in cands if c["best"] is not None]
-                pick = min(ok, key=lambda c: c["best"]["keys"]) if ok else None
-                entry = {"candidates": cands, "seconds": time.perf_counter() - t0}
-                if pick:
-                    b = pick["best"]
-                    keys, _ = ib.reduce(path, ["--tolerance", repr(b["theta"]),
-                                               "--translation-tolerance", repr(pick["f"] * L)], s)
-                    counts = count_keys(keys)
-                    assert sum(counts) == b["keys"]
-                    entry.update({"theta_deg": b["theta"], "tau_fraction": pick["f"],
-                                  "keys": counts, "max_world": b["max_world"],
-                                  "indep": ib.independent(path, clip, ref, keys, s)})
-                    print(f"  {LEN:g} cm {s} (a): θ {b['theta']:.4g}°, τ {pick['f']:g}·L, "
-                          f"{sum(counts)} keys, world {b['max_world'] * cpu:.4g} cm "
-                          f"({entry['seconds']:.1f} s)", file=sys.stderr)
-                r[f"a:{s}"] = entry
+                if reused is not None:
+                    r[f"a:{s}"] = reused["clips"][name]["len"][str(LEN)][f"a:{s}"]
+                else:
+                    r[f"a:{s}"] = rule_a(ib, path, clip, ref, s, L, lever, fracs, args.steps, LEN,
+                                         cpu)
                 # position tolerance
                 if ib.has_position_tolerance:
                     keys, dt = ib.reduce(path, ["--position-tolerance", repr(L)], s)
@@ -303,7 +341,8 @@ def main():
                     r[f"pt:{s}"] = {"keys": counts, "max_world": world, "max_translation": trans,
                                     "within": okp, "seconds": dt,
                                     "indep": ib.independent(path, clip, ref, keys, s)}
-                    a_keys = sum(entry["keys"]) if pick else float("nan")
+                    a = r[f"a:{s}"]
+                    a_keys = sum(a["keys"]) if "keys" in a else float("nan")
                     print(f"  {LEN:g} cm {s} position-tolerance: {sum(counts)} keys "
                           f"({sum(counts) / a_keys:.3f} of (a)), world {world * cpu:.4g} cm, "
                           f"{dt:.2f} s", file=sys.stderr)

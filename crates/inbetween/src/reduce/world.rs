@@ -14,21 +14,23 @@
 //! `σ·(2·U·sin(θ/2) + τ) = e` bounds that track's share at every point below it.
 //!
 //! ## Budgets, rounds and the guarantee
-//! The *rigorous* split gives each track the smallest `L(p)/k(p)` over the points `p` below it
-//! (`L` the point's limit, `k` the number of animated joints on its chain): the shares on any
-//! chain then add up to at most its limit, whatever the curves do within their tolerances. It is
-//! loose — errors of different joints rarely line up — so reduce starts from `L(p)·k(p)^START/k(p)` (both
-//! split in proportion to weights rather than equally, [`Setup::weights`]),
-//! reduces every track under its budget (a quarter of a budget to a track's translation, when
-//! it has translations to reduce), poses the kept keys' curves at every frame and measures every
-//! point; where a point misses its limit by a ratio `r`, every budget on its chain is scaled by
-//! `0.95/r`, never below the rigorous split, and those tracks are reduced again. Once every
-//! point is within, the budgets grow once by their chains' slack; where that misses, the tracks
-//! on the chains that missed take back their keys within and the mix is measured (then
-//! tightened as before if it still misses). The split's weights come from a probe of each
-//! track's keys ([`Setup::weights`]). At the rigorous split no point can miss, so the rounds
-//! end; the result returned is the measured round within with the fewest keys. Guaranteed:
-//! every point within its limit at every frame (measured, not just bound).
+//! The *rigorous* split gives each track a share of every chain it is on such that the shares
+//! on any chain add up to at most its point's limit `L(p)`, whatever the curves do within their
+//! tolerances. It is loose — errors of different joints rarely line up — so reduce starts from
+//! each chain's limit times `k(p)^START` (`k` the number of animated joints on the chain: as if
+//! their errors added up to `k^START` of one). Both are split in proportion to weights ([`Setup::weights`]) from the root down
+//! ([`Setup::fill`]: what an ancestor does not take, its share set by a tighter chain elsewhere,
+//! goes to the tracks below it; no share past the least limit of the points below its track).
+//! A track with translations to reduce gives them the part of its share that the weights'
+//! probe chooses. Reduce then reduces every track under its budget, poses the kept keys' curves
+//! at every frame and measures every point; where a point misses its limit by a ratio `r`,
+//! every budget on its chain is scaled by `0.95/r`, never below the rigorous split, and those
+//! tracks are reduced again. Once every point is within, the budgets grow once by their chains'
+//! slack; where that misses, the tracks on the chains that missed take back their keys within
+//! and the mix is measured (then tightened as before if it still misses). At the rigorous split
+//! no point can miss, so the rounds end; the result returned is the measured round within with
+//! the fewest keys. Guaranteed: every point within its limit at every frame (measured, not just
+//! bound).
 //! Not optimal: the budgets are a heuristic split, and the keys of each track are those of the
 //! per-track method (greedy or optimal) under its budget.
 
@@ -40,13 +42,20 @@ use glam::DAffine3;
 
 /// The budgets start from each chain's limit split as if its tracks' errors added up to
 /// `k^START` of one (`k` tracks on the chain): ½ would be errors adding like independent random
-/// ones; a little less starts within the limits on most clips, and saves a round.
-pub(crate) const START: f64 = 0.4;
+/// ones. 0.7 starts beyond the limits on many chains, so a round tightens them, and ends nearer
+/// the limits than a start within them (measured: docs/reduce.md, "World space").
+pub(crate) const START: f64 = 0.7;
+
+/// The probe of the weights splits each chain's limit equally, as if its tracks' errors added up
+/// to `k^PROBE_START` of one: looser than the start, so that the probe is quick (only the tracks'
+/// relative needs matter).
+pub(crate) const PROBE_START: f64 = 0.4;
 
 /// A loosening reduces again only the tracks whose budget it grows by more than this factor.
 pub(crate) const MIN_GROWTH: f64 = 1.05;
 
-/// The share of a track's budget given to its translation, when it has translations to reduce.
+/// The share of a track's budget given to its translation, when it has translations to reduce,
+/// in the weights' probe (the split then takes the probe's measure of each track's).
 pub(crate) const TRANSLATION_SHARE: f64 = 0.25;
 
 /// Each round scales the budgets on a chain that missed by this much more than the miss.
@@ -127,8 +136,9 @@ pub fn reduce_world(
     opts: &ReduceOptions,
     world: &WorldTolerance,
 ) -> Result<WorldReduced, Error> {
-    let setup = Setup::new(skeleton, tracks, opts, world)?;
-    let weights = setup.weights()?;
+    let mut setup = Setup::new(skeleton, tracks, opts, world)?;
+    let (weights, translation_share) = setup.weights()?;
+    setup.translation_share = translation_share;
     let rigorous = setup.budgets(&weights, |_| 1.0);
     let mut budgets = setup.budgets(&weights, |k| k.powf(START));
     let frames = tracks.first().map_or(0, |t| t.times.len());
@@ -216,7 +226,11 @@ pub fn reduce_world(
         for t in 0..tracks.len() {
             let floor = rigorous[t].0;
             let e = if within {
-                let growth = slack[t].min(MAX_LOOSENING).powf(LOOSENING);
+                // Never past the least limit of the points below it: alone, it could use all of it.
+                let growth = slack[t]
+                    .min(MAX_LOOSENING)
+                    .powf(LOOSENING)
+                    .min(setup.cap(t) / budgets[t].0);
                 if growth > MIN_GROWTH {
                     budgets[t].0 * growth
                 } else {
@@ -281,6 +295,12 @@ struct Setup<'a> {
     stretch: Vec<f64>,
     /// Per track, its reach U.
     reach: Vec<f64>,
+    /// Per track with translations to reduce, the part of its share given to them.
+    translation_share: Vec<f64>,
+    /// The tracks, each after every track above it.
+    order: Vec<usize>,
+    /// Per track, the points at and below its joint.
+    below: Vec<Vec<usize>>,
 }
 
 impl<'a> Setup<'a> {
@@ -348,6 +368,17 @@ impl<'a> Setup<'a> {
             })
             .collect();
         let limits: Vec<f64> = point_joints.iter().map(|&j| world.limits[j]).collect();
+        // Chains run from the point's joint up: a track's depth is how many tracks are above it.
+        let mut depth_of = vec![0usize; tracks.len()];
+        let mut below = vec![Vec::new(); tracks.len()];
+        for (p, chain) in chains.iter().enumerate() {
+            for (i, &t) in chain.iter().enumerate() {
+                depth_of[t] = chain.len() - 1 - i;
+                below[t].push(p);
+            }
+        }
+        let mut order: Vec<usize> = (0..tracks.len()).collect();
+        order.sort_by_key(|&t| depth_of[t]);
         let mut stretch = vec![1.0; tracks.len()];
         for (t, j) in track_joints.iter().take(tracks.len()).enumerate() {
             let mut at = j.and_then(|j| joints[j].parent);
@@ -383,6 +414,9 @@ impl<'a> Setup<'a> {
             chains,
             stretch,
             reach,
+            translation_share: vec![TRANSLATION_SHARE; tracks.len()],
+            order,
+            below,
         })
     }
 
@@ -390,30 +424,68 @@ impl<'a> Setup<'a> {
     /// part of `L(p)·slack(k)`, `k` the number of tracks on the point's chain. With `slack` 1
     /// the shares on any chain add up to at most its limit (the rigorous split).
     fn budgets(&self, weights: &[f64], slack: impl Fn(f64) -> f64) -> Vec<Share> {
-        let mut share = vec![f64::INFINITY; self.tracks.len()];
-        for (chain, &limit) in self.chains.iter().zip(&self.limits) {
-            let total: f64 = chain.iter().map(|&t| weights[t]).sum();
-            for &t in chain {
-                let e = limit * slack(chain.len() as f64) * weights[t] / total;
-                share[t] = share[t].min(e);
-            }
-        }
-        share
+        let allowance: Vec<f64> = (self.chains.iter().zip(&self.limits))
+            .map(|(chain, &limit)| limit * slack(chain.len() as f64))
+            .collect();
+        self.fill(&allowance, weights)
             .into_iter()
             .map(|e| (e, self.opts.translation_tolerance))
             .collect()
     }
 
-    /// Each track's weight in the split: what keys it needs for its share, from a probe. A
-    /// track keeping `k` keys at angle `θ` is taken to keep about `c·θ^(−½)` (`c = k·√θ`) at
-    /// others, and its share `e` of a chain to buy `θ ≈ e/U`; the fewest keys on one chain under
-    /// `Σ e ≤ L` then give each track a share in proportion to `c^(2/3)·U^(1/3)` (Lagrange).
-    /// The probe: every track reduced on its own under the equal split with the starting
-    /// slack, `L(p)·k^START/k`, on at most [`PROBE_FRAMES`] of its frames (evenly taken, the last
-    /// among them: only the tracks' relative needs matter).
-    fn weights(&self) -> Result<Vec<f64>, Error> {
+    /// The least limit of the points below track `t` (infinite for none).
+    fn cap(&self, t: usize) -> f64 {
+        self.below[t]
+            .iter()
+            .map(|&p| self.limits[p])
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// Splits each point's `allowance` among the tracks on its chain in proportion to
+    /// `weights`, from the root down: each track takes the least, over the points below it, of
+    /// its weight's part of what its ancestors left of the point's allowance, and never more
+    /// than the least limit of those points. The shares on any chain add up to at most its
+    /// allowance; what an ancestor leaves (its share set by another chain) goes to the tracks
+    /// below it.
+    fn fill(&self, allowance: &[f64], weights: &[f64]) -> Vec<f64> {
+        let mut left = allowance.to_vec();
+        let mut rest: Vec<f64> = self
+            .chains
+            .iter()
+            .map(|c| c.iter().map(|&t| weights[t]).sum())
+            .collect();
+        let mut share = vec![f64::INFINITY; self.tracks.len()];
+        for &t in &self.order {
+            let w = weights[t];
+            // A limit that is not a number (a reach too large to compose: the rounds then refuse
+            // the input, naming the point) constrains nothing here.
+            let e = self.below[t]
+                .iter()
+                .filter(|&&p| !left[p].is_nan())
+                .map(|&p| (left[p].max(0.0) * w / rest[p]).min(left[p].max(0.0)))
+                .fold(self.cap(t), f64::min);
+            share[t] = e;
+            for &p in &self.below[t] {
+                left[p] -= e;
+                rest[p] -= w;
+            }
+        }
+        share
+    }
+
+    /// Each track's weight in the split, and the part of its share its translations take:
+    /// what keys it needs for its share, from a probe. A track keeping `k` keys at angle `θ` is
+    /// taken to keep about `c·θ^(−½)` (`c = k·√θ`) at others, and its share `e` of a chain to
+    /// buy `θ ≈ e/(σU)`; the fewest keys on one chain under `Σ e ≤ L` then give each track a
+    /// share in proportion to `c^(2/3)·(σU)^(1/3)` (Lagrange). Translations are a term of their
+    /// own (`c = k·√τ` from their keys at `τ`, lever `σ`), added to the track's weight, their
+    /// part of its share that term's (between 5 % and 95 %). The probe: every track reduced on
+    /// its own under the equal split, `L(p)·k^PROBE_START/k`, its rotations and translations
+    /// apart, on at most [`PROBE_FRAMES`] of its frames (evenly taken, the last among them: only
+    /// the tracks' relative needs matter).
+    fn weights(&self) -> Result<(Vec<f64>, Vec<f64>), Error> {
         let equal = vec![1.0; self.tracks.len()];
-        let shares = self.budgets(&equal, |k| k.powf(START));
+        let shares = self.budgets(&equal, |k| k.powf(PROBE_START));
         let opts = self.options(&shares)?;
         let all: Vec<usize> = (0..self.tracks.len()).collect();
         // Built once: one track's probe must not rebuild every track's frames (quadratic in
@@ -421,17 +493,47 @@ impl<'a> Setup<'a> {
         let frames = self.frames();
         let probe = crate::parallel::map(&all, |&t| {
             let thinned = Thinned::of(&frames[t]);
-            reduce_frames(&thinned.frames(), &opts[t])
+            let f = thinned.frames();
+            let Some(tau) = opts[t]
+                .translation_tolerance
+                .filter(|_| f.positions.is_some())
+            else {
+                return reduce_frames(&f, &opts[t]).map(|r| (r.keys.len(), None));
+            };
+            let rotation = TrackFrames {
+                positions: None,
+                ..f
+            };
+            let translation = ReduceOptions {
+                tolerance: std::f64::consts::PI,
+                ..opts[t]
+            };
+            let r = reduce_frames(&rotation, &opts[t])?;
+            let p = reduce_frames(&f, &translation)?;
+            Ok((r.keys.len(), Some((p.keys.len(), tau))))
         });
         let mut weights = Vec::with_capacity(all.len());
+        let mut translation_share = Vec::with_capacity(all.len());
         for (t, r) in probe.into_iter().enumerate() {
-            let keys = r?.keys.len() as f64;
-            let c = keys * opts[t].tolerance.min(std::f64::consts::PI).sqrt();
+            let (keys, translation) = r?;
+            let c = keys as f64 * opts[t].tolerance.min(std::f64::consts::PI).sqrt();
             let u = self.stretch[t] * self.reach[t];
             // A track that moves no point still takes part, with a small weight.
-            weights.push((c.powf(2.0 / 3.0) * u.powf(1.0 / 3.0)).max(1e-12));
+            let w = (c.powf(2.0 / 3.0) * u.powf(1.0 / 3.0)).max(1e-12);
+            match translation {
+                Some((keys, tau)) => {
+                    let c = keys as f64 * tau.sqrt();
+                    let wt = c.powf(2.0 / 3.0) * self.stretch[t].powf(1.0 / 3.0);
+                    weights.push(w + wt);
+                    translation_share.push((wt / (w + wt)).clamp(0.05, 0.95));
+                }
+                _ => {
+                    weights.push(w);
+                    translation_share.push(TRANSLATION_SHARE);
+                }
+            }
         }
-        Ok(weights)
+        Ok((weights, translation_share))
     }
 
     /// The rotation and translation tolerances of track `t` for its share `e`.
@@ -439,7 +541,7 @@ impl<'a> Setup<'a> {
         let sigma = self.stretch[t];
         let translation =
             (self.world.translations && self.tracks[t].positions.is_some()).then(|| {
-                let tau = TRANSLATION_SHARE * e / sigma;
+                let tau = self.translation_share[t] * e / sigma;
                 cap.map_or(tau, |c| c.min(tau))
             });
         let rotation = e - sigma * translation.unwrap_or(0.0);
