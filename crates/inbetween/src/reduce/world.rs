@@ -793,6 +793,42 @@ mod tests {
     /// bone error θ moves it by exactly 2·2·sin(θ/2): the bone's local error can be no more than
     /// 2·asin(L/4), whatever the split. And every point is within L, the root's tighter one too.
     #[test]
+    fn the_split_passes_what_an_ancestor_leaves_to_the_joints_below_it() {
+        // A root with two children: A's points have a tight limit, B's a loose one.
+        let skeleton = Skeleton::new(vec![
+            Joint::new("root", None, DVec3::ZERO).with_track(0),
+            Joint::new("a", Some(0), DVec3::new(1.0, 0.0, 0.0))
+                .with_track(1)
+                .with_ends(vec![DVec3::new(2.0, 0.0, 0.0)]),
+            Joint::new("b", Some(0), DVec3::new(0.0, 1.0, 0.0))
+                .with_track(2)
+                .with_ends(vec![DVec3::new(0.0, 3.0, 0.0)]),
+        ])
+        .unwrap();
+        let times = [0.0, 1.0];
+        let q = [DQuat::IDENTITY, DQuat::from_rotation_z(0.5)];
+        let tracks = [frames(&times, &q), frames(&times, &q), frames(&times, &q)];
+        let opts = no_local_bound();
+        let world = world(vec![0.1, 0.01, 0.1], false);
+        let setup = Setup::new(&skeleton, &tracks, &opts, &world).unwrap();
+        let share = setup.fill(&setup.limits, &[1.0; 3]);
+        // The root takes half of A's chain (0.005); A the rest of it; B what the root left of
+        // its own chain (0.095), where a split of each chain on its own gave it 0.05.
+        assert!((share[0] - 0.005).abs() < 1e-15, "{share:?}");
+        assert!((share[1] - 0.005).abs() < 1e-15, "{share:?}");
+        assert!((share[2] - 0.095).abs() < 1e-15, "{share:?}");
+        for (chain, &limit) in setup.chains.iter().zip(&setup.limits) {
+            let sum: f64 = chain.iter().map(|&t| share[t]).sum();
+            assert!(sum <= limit * (1.0 + 1e-12), "{chain:?}: {sum} > {limit}");
+        }
+        // Never past the least limit below a track, whatever the allowance.
+        let loose: Vec<f64> = setup.limits.iter().map(|l| l * 100.0).collect();
+        let share = setup.fill(&loose, &[1.0; 3]);
+        assert_eq!(share[1], 0.01, "{share:?}");
+        assert!(share.iter().all(|&e| e <= 0.1), "{share:?}");
+    }
+
+    #[test]
     fn the_points_stay_within_their_limits_and_the_leaf_within_its_chord() {
         let (skeleton, t, root, bone) = arm();
         let tracks = [frames(&t, &root), frames(&t, &bone)];
