@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Downloads the held-out clips of the world-space comparison into DIR (default
 # $CARGO_TARGET_DIR/world-compare/held-out, else target/world-compare/held-out). Never committed.
-# Real motion capture nobody here tuned on (docs/reduce.md, "World space"):
+# Real motion capture held out from the world rule's design (docs/reduce.md, "World space"; the
+# k^0.7 start of f4f3a67 was compared on it too, so a fresh set is needed for a clean test):
 #
 # - mass_*.bvh: the eight clips of lsw9021/MASS, data/motion/ (commit e44c2ef, Apache-2.0;
 #   CMU-derived capture, 120 fps, 37 joints, centimetres).
