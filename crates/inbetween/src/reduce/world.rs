@@ -18,9 +18,10 @@
 //! on any chain add up to at most its point's limit `L(p)`, whatever the curves do within their
 //! tolerances. It is loose — errors of different joints rarely line up — so reduce starts from
 //! each chain's limit times `k(p)^START` (`k` the number of animated joints on the chain: as if
-//! their errors added up to `k^START` of one). Both are split in proportion to weights ([`Setup::weights`]) from the root down
-//! ([`Setup::fill`]: what an ancestor does not take, its share set by a tighter chain elsewhere,
-//! goes to the tracks below it; no share past the least limit of the points below its track).
+//! their errors added up to `k^START` of one). Both are split in proportion to weights
+//! ([`Setup::weights`]) from the root down ([`Setup::fill`]: what an ancestor does not take,
+//! its share set by a tighter chain elsewhere, goes to the tracks below it; no share past the
+//! least limit of the points below its track).
 //! A track with translations to reduce gives them the part of its share that the weights'
 //! probe chooses. Reduce then reduces every track under its budget, poses the kept keys' curves
 //! at every frame and measures every point; where a point misses its limit by a ratio `r`,
@@ -420,9 +421,10 @@ impl<'a> Setup<'a> {
         })
     }
 
-    /// Each track's share for `weights`: the least over the points `p` below it of its weight's
-    /// part of `L(p)·slack(k)`, `k` the number of tracks on the point's chain. With `slack` 1
-    /// the shares on any chain add up to at most its limit (the rigorous split).
+    /// Each track's share for `weights`: every point's allowance `L(p)·slack(k)` (`k` the
+    /// number of tracks on the point's chain) split among its chain from the root down
+    /// ([`Setup::fill`]). With `slack` 1 the shares on any chain add up to at most its limit
+    /// (the rigorous split).
     fn budgets(&self, weights: &[f64], slack: impl Fn(f64) -> f64) -> Vec<Share> {
         let allowance: Vec<f64> = (self.chains.iter().zip(&self.limits))
             .map(|(chain, &limit)| limit * slack(chain.len() as f64))
