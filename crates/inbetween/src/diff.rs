@@ -103,7 +103,7 @@ pub fn world_diff(
         .collect();
     let track_joints = skeleton.track_joints();
     let tracks = skeleton.track_count();
-    let scan = scan(skeleton, frames, a, b, shell);
+    let scan = scan(skeleton, frames, a, b, shell, None);
     let mut best = vec![(0.0f64, 0usize); tracks];
     for (&(d, f), o) in scan.points.iter().zip(&point_owner) {
         if let Some(t) = *o
@@ -130,17 +130,29 @@ pub fn world_diff(
     }
 }
 
+/// A point's displacement past its limit at one frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Miss {
+    pub(crate) frame: usize,
+    pub(crate) point: usize,
+    /// The displacement (length units; infinite for a NaN).
+    pub(crate) displacement: f64,
+}
+
 /// Per point of [`Skeleton::points`] (in its order, with the shell's points when `shell` is
 /// given), its largest world displacement between `a` and `b` over `frames` frames and the first
-/// frame where it occurs (a NaN counts as infinite).
-pub(crate) fn point_displacements(
+/// frame where it occurs (a NaN counts as infinite); and every point and frame where the
+/// displacement exceeds the point's entry of `limits`, in frame order.
+pub(crate) fn point_misses(
     skeleton: &Skeleton,
     frames: usize,
     a: &Poses<'_>,
     b: &Poses<'_>,
     shell: Option<f64>,
-) -> Vec<(f64, usize)> {
-    scan(skeleton, frames, a, b, shell).points
+    limits: &[f64],
+) -> (Vec<(f64, usize)>, Vec<Miss>) {
+    let scan = scan(skeleton, frames, a, b, shell, Some(limits));
+    (scan.points, scan.misses)
 }
 
 /// What one pass over the frames measures.
@@ -149,6 +161,8 @@ struct Scan {
     points: Vec<(f64, usize)>,
     /// Per joint, the sum over the frames of its origin's displacement.
     origin_sums: Vec<f64>,
+    /// The points past their limits, when limits are given.
+    misses: Vec<Miss>,
 }
 
 /// The frames posed and compared, in chunks on the cores; the chunks merged in frame order.
@@ -158,6 +172,7 @@ fn scan(
     a: &Poses<'_>,
     b: &Poses<'_>,
     shell: Option<f64>,
+    limits: Option<&[f64]>,
 ) -> Scan {
     let n_points = skeleton.point_joints(shell.is_some()).len();
     let n_joints = skeleton.joints().len();
@@ -168,6 +183,7 @@ fn scan(
     let parts = crate::parallel::map(&starts, |&s| {
         let mut best = vec![(0.0f64, s); n_points];
         let mut origin_sums = vec![0.0; n_joints];
+        let mut misses = Vec::new();
         let (mut wa, mut wb) = (Vec::new(), Vec::new());
         let (mut pa, mut pb) = (Vec::new(), Vec::new());
         for f in s..(s + chunk).min(frames) {
@@ -175,10 +191,17 @@ fn scan(
             skeleton.world(|t| b(f, t), &mut wb);
             points(skeleton, &wa, shell, &mut pa);
             points(skeleton, &wb, shell, &mut pb);
-            for ((x, y), best) in pa.iter().zip(&pb).zip(&mut best) {
+            for (point, ((x, y), best)) in pa.iter().zip(&pb).zip(&mut best).enumerate() {
                 let d = nan_max((*x - *y).length());
                 if d > best.0 {
                     *best = (d, f);
+                }
+                if limits.is_some_and(|l| d > l[point]) {
+                    misses.push(Miss {
+                        frame: f,
+                        point,
+                        displacement: d,
+                    });
                 }
             }
             for ((x, y), sum) in wa.iter().zip(&wb).zip(&mut origin_sums) {
@@ -188,11 +211,13 @@ fn scan(
         Scan {
             points: best,
             origin_sums,
+            misses,
         }
     });
     let mut out = Scan {
         points: vec![(0.0, 0); n_points],
         origin_sums: vec![0.0; n_joints],
+        misses: Vec::new(),
     };
     for part in parts {
         for (o, p) in out.points.iter_mut().zip(&part.points) {
@@ -203,6 +228,7 @@ fn scan(
         for (o, p) in out.origin_sums.iter_mut().zip(&part.origin_sums) {
             *o += p;
         }
+        out.misses.extend(part.misses);
     }
     out
 }

@@ -71,7 +71,7 @@ use optimal::{Edge, SlerpSpeeds, optimal_keys, shortest_path};
 pub use shared::reduce_shared;
 pub(crate) use shared::reduce_shared_each;
 pub use verify::curve_errors;
-use verify::{Errors, shared_verified};
+use verify::{Errors, shared_verified, verified};
 pub use world::{Budget, WorldReduced, WorldTolerance, reduce_world};
 
 /// A minaccel segment test solves at most this many times the grid steps its frames span (one
@@ -191,6 +191,35 @@ pub fn reduce_frames(track: &TrackFrames<'_>, opts: &ReduceOptions) -> Result<Re
         |window| optimal_keys(&frames[0], window, opts),
     )?;
     reduced(&frames[0], keys, errors[0], opts)
+}
+
+/// `r`'s keys with the frames `added` made keys too (each carrying its centred velocity
+/// estimate; `r`'s keys keep theirs), completed by verification under `opts` (docs/spec.md
+/// §4.7: the worst frame of each segment that misses becomes a key). `r` must be a result of
+/// [`reduce_frames`] on `track` with options differing from `opts` in their tolerances only.
+pub(crate) fn with_keys(
+    track: &TrackFrames<'_>,
+    r: &Reduced,
+    added: &[usize],
+    opts: &ReduceOptions,
+) -> Result<Reduced, Error> {
+    let frames = Frames::new(track, opts);
+    if let (Some(estimates), Some(velocities)) = (&frames.estimates, &r.velocities) {
+        for (&k, v) in r.keys.iter().zip(velocities) {
+            let c = estimates[k].iter().position(|e| e == v).ok_or_else(|| {
+                Error::Internal(format!(
+                    "internal error: key {k}'s velocity is none of its frame's estimates"
+                ))
+            })?;
+            frames.choose(k, c);
+        }
+    }
+    let mut keys = r.keys.clone();
+    keys.extend(added.iter().filter(|&&k| k < frames.quats.len()));
+    keys.sort_unstable();
+    keys.dedup();
+    let (keys, errors) = verified(&frames, keys, opts)?;
+    reduced(&frames, keys, errors, opts)
 }
 
 /// The keys `opts.method` gives tracks reduced together (one track, or shared keys): `greedy`'s
@@ -342,6 +371,16 @@ mod tests {
     use super::frames::even_spacing;
     use super::*;
 
+    fn rotations_only<'a>(times: &'a [f64], rotations: &'a [DQuat]) -> TrackFrames<'a> {
+        TrackFrames {
+            times,
+            rotations,
+            positions: None,
+            euler: None,
+            key_times: None,
+        }
+    }
+
     fn smooth(n: usize, fps: f64) -> (Vec<f64>, Vec<DQuat>) {
         let t: Vec<f64> = (0..n).map(|i| i as f64 / fps).collect();
         let q = t
@@ -356,6 +395,47 @@ mod tests {
             })
             .collect();
         (t, q)
+    }
+
+    /// Frames added to a reduced track's keys become keys carrying their centred estimates
+    /// (their velocity the curve's through the neighbouring frames), the old keys keep their
+    /// velocities, and the result meets the tolerance.
+    #[test]
+    fn added_keys_carry_the_centred_estimate_and_the_rest_keep_theirs() {
+        let (t, q) = smooth(240, 60.0);
+        let frames = rotations_only(&t, &q);
+        let opts = ReduceOptions {
+            tolerance: 0.3f64.to_radians(),
+            ..ReduceOptions::default()
+        };
+        let r = reduce_frames(&frames, &opts).unwrap();
+        let added: Vec<usize> = r
+            .keys
+            .windows(2)
+            .filter(|w| w[1] - w[0] > 2)
+            .map(|w| (w[0] + w[1]) / 2)
+            .collect();
+        assert!(added.len() > 3, "{:?}", r.keys);
+        let more = with_keys(&frames, &r, &added, &opts).unwrap();
+        let velocity = |x: &Reduced, k: usize| {
+            let i = x.keys.binary_search(&k).unwrap();
+            x.velocities.as_ref().unwrap()[i]
+        };
+        assert_eq!(more.keys.len(), r.keys.len() + added.len());
+        for &k in &r.keys {
+            assert_eq!(velocity(&more, k), velocity(&r, k));
+        }
+        let centred = Frames::new(&frames, &opts).estimates.unwrap();
+        for &k in &added {
+            assert_eq!(velocity(&more, k), centred[k][0]);
+        }
+        assert!(more.max_error <= opts.tolerance);
+        let curve = Curve::new(
+            &kept_track(&frames, &more, &opts.curve).unwrap(),
+            &opts.curve,
+        );
+        let (worst, _) = curve_errors(&frames, &curve.unwrap(), &opts);
+        assert!(worst <= opts.tolerance, "{worst}");
     }
 
     /// The probe (one segment evaluated on reused knots, the curve then built from them) and
@@ -489,13 +569,7 @@ mod tests {
                     velocities: true,
                     method: Method::Greedy,
                 };
-                let frames = TrackFrames {
-                    times: &t,
-                    rotations: &q,
-                    positions: None,
-                    euler: None,
-                    key_times: None,
-                };
+                let frames = rotations_only(&t, &q);
                 let even = Frames::new(&frames, &opts);
                 assert!(even.spacing.is_some());
                 let direct = Frames {

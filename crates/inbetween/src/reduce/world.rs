@@ -24,28 +24,39 @@
 //! least limit of the points below its track).
 //! A track with translations to reduce gives them the part of its share that the weights'
 //! probe chooses. Reduce then reduces every track under its budget, poses the kept keys' curves
-//! at every frame and measures every point; where a point misses its limit by a ratio `r`,
-//! every budget on its chain is scaled by `0.95/r`, never below the rigorous split, and those
-//! tracks are reduced again. Once every point is within, the budgets grow once by their chains'
-//! slack; where that misses, the tracks on the chains that missed take back their keys within
-//! and the mix is measured (then tightened as before if it still misses). At the rigorous split
-//! no point can miss, so the rounds end; the result returned is the measured round within with
-//! the fewest keys. Guaranteed: every point within its limit at every frame (measured, not just
+//! at every frame and measures every point. Where points miss, keys are added where they miss
+//! ([`insert`]: the track that moves a missing point most at that frame takes it as a key) and
+//! the points are measured again, until every point is within. Shared keys (one key set for
+//! all tracks) tighten budgets instead: where a point misses its limit by a ratio `r`, every
+//! budget on its chain is scaled by `0.95/r`, never below the rigorous split, and those tracks
+//! are reduced again; once every point is within, the budgets grow once by their chains'
+//! slack, and where that misses the round within stands. Keys added in vain for
+//! [`insert::MAX_INSERTIONS`] rounds fall back to tightening. At the rigorous split no point
+//! can miss, so the rounds end; the result returned is the measured round within with the
+//! fewest keys. Guaranteed: every point within its limit at every frame (measured, not just
 //! bound).
-//! Not optimal: the budgets are a heuristic split, and the keys of each track are those of the
-//! per-track method (greedy or optimal) under its budget.
+//! Not optimal: the budgets are a heuristic split, the track that takes a key where a point
+//! misses is chosen by a rule of thumb, and the keys of each track are those of the per-track
+//! method (greedy or optimal) under its budget, completed where points missed.
 
 use super::*;
-use crate::diff::point_displacements;
+use crate::diff::point_misses;
 use crate::error::input_err;
 use crate::skeleton::Skeleton;
 use glam::DAffine3;
 
+mod insert;
+
 /// The budgets start from each chain's limit split as if its tracks' errors added up to
 /// `k^START` of one (`k` tracks on the chain): ½ would be errors adding like independent random
-/// ones. 0.7 starts beyond the limits on many chains, so a round tightens them, and ends nearer
-/// the limits than a start within them (measured: docs/reduce.md, "World space").
-pub(crate) const START: f64 = 0.7;
+/// ones. 0.9 starts beyond the limits on many chains; the points that miss take keys where they
+/// miss ([`insert`]), which keeps fewer keys than a start within the limits (measured on the
+/// eight tuning clips only: docs/reduce.md, "World space").
+pub(crate) const START: f64 = 0.9;
+
+/// The start for shared keys, which tighten budgets instead of adding keys (one key set for
+/// every track: a key added to one is added to all).
+pub(crate) const SHARED_START: f64 = 0.7;
 
 /// The probe of the weights splits each chain's limit equally, as if its tracks' errors added up
 /// to `k^PROBE_START` of one: looser than the start, so that the probe is quick (only the tracks'
@@ -62,7 +73,8 @@ pub(crate) const TRANSLATION_SHARE: f64 = 0.25;
 /// Each round scales the budgets on a chain that missed by this much more than the miss.
 pub(crate) const TIGHTENING: f64 = 0.95;
 
-/// How many times the budgets grow by their slack once every point is within its limit.
+/// How many times the budgets of shared keys grow by their slack once every point is within
+/// its limit.
 pub(crate) const LOOSENINGS: usize = 1;
 
 /// The most joints along the points' chains to the root (the points times their depth) a
@@ -141,7 +153,6 @@ pub fn reduce_world(
     let (weights, translation_share) = setup.weights()?;
     setup.translation_share = translation_share;
     let rigorous = setup.budgets(&weights, |_| 1.0);
-    let mut budgets = setup.budgets(&weights, |k| k.powf(START));
     let frames = tracks.first().map_or(0, |t| t.times.len());
     let original = |f: usize, t: usize| (tracks[t].rotations[f], tracks[t].positions.map(|p| p[f]));
     let mut reduced: Vec<Option<Reduced>> = vec![None; tracks.len()];
@@ -150,16 +161,26 @@ pub fn reduce_world(
     // The result with the fewest keys so far that met every limit, and its key count.
     let mut best: Option<(usize, WorldReduced)> = None;
     let mut loosenings = 0;
-    // The budgets, keys and poses of the last round within, while a loosening is being tried.
-    let mut good: Option<Within> = None;
     let mut measure_only = false;
+    let mut insertions = 0;
+    // A point is within when its displacement is at most this (its limit less round-off).
+    let strict: Vec<f64> = setup.limits.iter().map(|l| l * (1.0 - 1e-9)).collect();
+    // Keys are added where points miss, except to shared keys (one key set for all tracks),
+    // whose budgets tighten and then grow by their slack.
+    let (start, loosen, max_insertions) = if world.shared_keys {
+        (SHARED_START, LOOSENINGS, 0)
+    } else {
+        (START, 0, insert::MAX_INSERTIONS)
+    };
+    let mut budgets = setup.budgets(&weights, |k| k.powf(start));
     for round in 1.. {
         if !measure_only {
             setup.reduce(&budgets, &redo, &mut reduced, &mut poses)?;
         }
         measure_only = false;
         let posed = |f: usize, t: usize| poses[t][f];
-        let points = point_displacements(skeleton, frames, &original, &posed, world.shell);
+        let (points, misses) =
+            point_misses(skeleton, frames, &original, &posed, world.shell, &strict);
         // World positions too large to compose (offsets, translations or the shell near the
         // largest float) measure nothing: an input error, never keys written on a NaN.
         if let Some((p, &(_, f))) = points.iter().enumerate().find(|(_, (d, _))| !d.is_finite()) {
@@ -173,12 +194,21 @@ pub fn reduce_world(
         // Per track, the least ratio of limit to displacement over the points below it.
         let mut slack = vec![f64::INFINITY; tracks.len()];
         for (p, &(d, _)) in points.iter().enumerate() {
-            let ratio = setup.limits[p] * (1.0 - 1e-9) / d;
+            let ratio = strict[p] / d;
             for &t in &setup.chains[p] {
                 slack[t] = slack[t].min(ratio);
             }
         }
         let within = slack.iter().all(|&s| s >= 1.0);
+        if !within && insertions < max_insertions {
+            let added = setup.insertions(skeleton, &misses, &reduced, &poses);
+            if added.iter().any(|a| !a.is_empty()) {
+                insertions += 1;
+                setup.add_keys(&budgets, &added, &mut reduced, &mut poses)?;
+                measure_only = true;
+                continue;
+            }
+        }
         if within {
             let keys = reduced.iter().flatten().map(|r| r.keys.len()).sum();
             if best.as_ref().is_none_or(|b| keys < b.0) {
@@ -192,29 +222,17 @@ pub fn reduce_world(
                 };
                 best = Some((keys, result));
             }
-            if loosenings == LOOSENINGS || round >= MAX_ROUNDS {
+            if loosenings == loosen || round >= MAX_ROUNDS {
                 let (_, mut result) = best.expect("a result within the limits");
                 result.rounds = round;
                 return Ok(result);
             }
             loosenings += 1;
-            good = Some((budgets.clone(), reduced.clone(), poses.clone()));
-        } else if let Some((budgets_within, mut reduced_within, mut poses_within)) = good.take() {
-            // The loosening missed: the tracks on the chains that missed go back to their
-            // keys within, the others keep theirs, and the mix is measured (shared keys cannot
-            // mix: the result within stands).
-            if world.shared_keys {
-                let (_, mut result) = best.expect("a result within the limits");
-                result.rounds = round;
-                return Ok(result);
-            }
-            for t in (0..tracks.len()).filter(|&t| slack[t] < 1.0) {
-                budgets[t] = budgets_within[t];
-                reduced[t] = reduced_within[t].take();
-                poses[t] = std::mem::take(&mut poses_within[t]);
-            }
-            measure_only = true;
-            continue;
+        } else if loosenings > 0 {
+            // The loosening (of shared keys) missed: the round within stands.
+            let (_, mut result) = best.expect("a result within the limits");
+            result.rounds = round;
+            return Ok(result);
         } else if round >= MAX_ROUNDS
             && let Some((_, mut result)) = best.take()
         {
@@ -277,9 +295,6 @@ type Share = (f64, Option<f64>);
 
 /// A track's rotation and translation at one frame.
 type Pose = (DQuat, Option<DVec3>);
-
-/// The tracks' budgets, keys and poses of a round within the limits.
-type Within = (Vec<Share>, Vec<Option<Reduced>>, Vec<Vec<Pose>>);
 
 /// What the rounds share: the skeleton's geometry and each point's limit and chain.
 struct Setup<'a> {
@@ -744,7 +759,7 @@ mod tests {
 
     /// A root track turning about z, and a bone with an end point 2 from it, turned by a second
     /// track about x.
-    fn arm() -> (Skeleton, Vec<f64>, Vec<DQuat>, Vec<DQuat>) {
+    pub(super) fn arm() -> (Skeleton, Vec<f64>, Vec<DQuat>, Vec<DQuat>) {
         let skeleton = Skeleton::new(vec![
             Joint::new("root", None, DVec3::ZERO).with_track(0),
             Joint::new("bone", Some(0), DVec3::new(1.0, 0.0, 0.0))
@@ -764,7 +779,7 @@ mod tests {
         (skeleton, times, root, bone)
     }
 
-    fn frames<'a>(t: &'a [f64], q: &'a [DQuat]) -> TrackFrames<'a> {
+    pub(super) fn frames<'a>(t: &'a [f64], q: &'a [DQuat]) -> TrackFrames<'a> {
         TrackFrames {
             times: t,
             rotations: q,
@@ -774,7 +789,7 @@ mod tests {
         }
     }
 
-    fn world(limits: Vec<f64>, shared_keys: bool) -> WorldTolerance {
+    pub(super) fn world(limits: Vec<f64>, shared_keys: bool) -> WorldTolerance {
         WorldTolerance {
             limits,
             shell: None,
@@ -784,7 +799,7 @@ mod tests {
         }
     }
 
-    fn no_local_bound() -> ReduceOptions {
+    pub(super) fn no_local_bound() -> ReduceOptions {
         ReduceOptions {
             tolerance: std::f64::consts::PI,
             ..ReduceOptions::default()
