@@ -3,12 +3,17 @@
     python benches/python/bench.py [--repeat 5]
 
 Each case runs both sides alternately in this one process, `--repeat` times, and prints the
-medians and their ratio. Needs numpy, scipy and the installed `inbetween` package.
+medians and their ratio. Needs numpy, scipy and the installed `inbetween` package. Runs
+without `OPENBLAS_CORETYPE`/`OPENBLAS_L2_SIZE` (peer.py) and prints the versions and BLAS.
 """
 
 import argparse
 import statistics
 import time
+
+from peer import describe, normal_speed
+
+normal_speed()  # before numpy is imported (peer.py says why)
 
 import numpy as np
 from scipy.spatial.transform import Rotation, RotationSpline
@@ -36,6 +41,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=5)
     repeat = ap.parse_args().repeat
+    print(describe())
     rng = np.random.default_rng(1)
 
     # 1. A curve through 1001 keys, built and evaluated at 10^6 sorted times.

@@ -11,6 +11,10 @@ import argparse
 import statistics
 import time
 
+from peer import describe, normal_speed
+
+normal_speed()  # before numpy is imported (peer.py says why)
+
 import bvhio
 import numpy as np
 
@@ -35,6 +39,7 @@ def main():
     ap.add_argument("clip")
     ap.add_argument("--repeat", type=int, default=3)
     a = ap.parse_args()
+    print(describe())
     ours, theirs = [], []
     for _ in range(a.repeat):
         t = time.perf_counter()
