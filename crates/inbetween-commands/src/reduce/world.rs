@@ -145,7 +145,8 @@ pub(super) fn reduce(
     let skeleton = &bounded;
     if !unbounded.is_empty() {
         told.warning(&format!(
-            "{source}: --position-tolerance does not bound the rotation of {}: it moves no              point and the skeleton has no bone length to give it end points (--shell D does)",
+            "{source}: --position-tolerance does not bound the rotation of {}: it moves no \
+             point and the skeleton has no bone length to give it end points (--shell D does)",
             joint_list(skeleton, &unbounded)
         ));
     }

@@ -317,6 +317,8 @@ struct Setup<'a> {
     order: Vec<usize>,
     /// Per track, the points at and below its joint.
     below: Vec<Vec<usize>>,
+    /// Per track, its joint's name (for messages).
+    names: Vec<String>,
 }
 
 impl<'a> Setup<'a> {
@@ -433,6 +435,9 @@ impl<'a> Setup<'a> {
             translation_share: vec![TRANSLATION_SHARE; tracks.len()],
             order,
             below,
+            names: (track_joints.iter().take(tracks.len()))
+                .map(|j| j.map_or_else(String::new, |j| joints[j].name.clone()))
+                .collect(),
         })
     }
 
@@ -613,9 +618,10 @@ impl<'a> Setup<'a> {
             let b = self.budget_of(t, share);
             if b.angle < MIN_ANGLE {
                 return Err(input_err!(
-                    "the position tolerance leaves track {t} a rotation tolerance of {:.3e} rad \
-                     (its points reach {:.6e} from its joint), below what reduce can verify \
-                     ({MIN_ANGLE:e} rad); give a larger position tolerance",
+                    "the position tolerance leaves track {t} (joint \"{}\") a rotation \
+                     tolerance of {:.3e} rad (its points reach {:.6e} from its joint), below what \
+                     reduce can verify ({MIN_ANGLE:e} rad); give a larger position tolerance",
+                    crate::error::shorten(&self.names[t]),
                     b.angle,
                     self.reach[t]
                 )
@@ -905,5 +911,9 @@ mod tests {
         };
         let e = reduce_world(&skeleton, &tracks, &local, &rounded).unwrap_err();
         assert!(e.to_string().contains("float32 rounding"), "{e}");
+        // A limit that leaves a track less than reduce can verify names the track's joint.
+        let tiny = world(vec![1e-12, 1e-12], false);
+        let e = reduce_world(&skeleton, &tracks, &local, &tiny).unwrap_err();
+        assert!(e.to_string().contains("track 0 (joint \"root\")"), "{e}");
     }
 }
