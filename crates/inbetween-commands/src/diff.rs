@@ -2,7 +2,7 @@
 //! world space (the library's [`inbetween::diff`]; docs/spec.md §5b).
 
 use super::settings::read_curves;
-use crate::args::{DiffArgs, ReportFormat};
+use crate::args::{DiffArgs, InputArgs, ReportFormat};
 use crate::events::Events;
 use crate::played::{self, TrackCurve};
 use crate::table::{aligned, format_sig};
@@ -10,6 +10,7 @@ use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
 use inbetween::{Error, InputError, Track};
+use inbetween_io::Format;
 use inbetween_io::gltf::document::{Mode, Sampler};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::collections::HashMap;
@@ -43,9 +44,28 @@ pub fn run(
     if a_stdin && args.other.as_os_str() == "-" {
         return Err(InputError::new("diff: A and B cannot both be standard input").into());
     }
-    let a = read_curves(&args.input, &args.curve, &scheme, stdin, warn)?;
+    // --animation chooses in each side that is a glTF asset or FBX scene; a side whose name says
+    // it is another format (the keys a reduce of one animation wrote) is read as it is. With
+    // neither side such, A is read with it and says so.
+    let mut a_input = args.input.clone();
     let mut b_input = args.input.clone();
     b_input.input = Some(args.other.clone());
+    if args.input.animation.is_some() {
+        let other_format = |i: &InputArgs| {
+            i.input_format.is_none()
+                && i.input
+                    .as_deref()
+                    .and_then(inbetween_io::Format::from_path)
+                    .is_some_and(|f| !matches!(f, Format::Gltf | Format::Fbx))
+        };
+        let (a_other, b_other) = (other_format(&a_input), other_format(&b_input));
+        if b_other && !a_other {
+            b_input.animation = None;
+        } else if a_other && !b_other {
+            a_input.animation = None;
+        }
+    }
+    let a = read_curves(&a_input, &args.curve, &scheme, stdin, warn)?;
     let b = read_curves(&b_input, &args.curve, &scheme, stdin, warn)?;
     let names = |tracks: &[Track]| -> Vec<String> {
         tracks

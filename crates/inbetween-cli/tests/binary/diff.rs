@@ -390,6 +390,55 @@ fn a_reduced_gltf_asset_is_within_its_tolerance_as_played() {
     assert!(bezier > 0.05 && bezier > played, "{figures}");
 }
 
+/// The keys `reduce --animation N -o keys.json` writes for one animation of an asset with
+/// several are checked against that animation: `--animation` chooses in the side that has
+/// animations (either side), and is refused when neither has.
+#[test]
+fn animation_chooses_in_the_side_that_has_animations() {
+    let dir = tempfile::tempdir().unwrap();
+    let asset = "fixtures/gltf/real/RiggedSimple.gltf";
+    let keys = dir.path().join("keys.json");
+    bin()
+        .args([
+            "reduce",
+            asset,
+            "--animation",
+            "0",
+            "--position-tolerance",
+            "0.01",
+            "-o",
+        ])
+        .arg(&keys)
+        .assert()
+        .success();
+    let (world, status) = max_world(asset, &keys, "0.01", &["--animation", "0"]);
+    assert_eq!(status, Some(0), "{world}");
+    assert!(world <= 0.01, "{world}");
+    let reversed = bin()
+        .arg("diff")
+        .arg(&keys)
+        .arg(asset)
+        .args(["--animation", "0", "--max-angle", "180"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        reversed.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&reversed.stderr)
+    );
+    let neither = bin()
+        .arg("diff")
+        .arg(&keys)
+        .arg(&keys)
+        .args(["--animation", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(neither.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&neither.stderr);
+    assert!(err.contains("is neither glTF nor FBX"), "{err}");
+}
+
 /// The rotation channels of a `.glb` asset's first animation as stored, read by the test's own
 /// small reader (the JSON chunk, the BIN chunk, float accessors): per channel, its node's name,
 /// its `LINEAR` key times (float32 widened) and its rotations (x, y, z, w), normalised.
