@@ -55,7 +55,7 @@ pub fn run(
             i.input_format.is_none()
                 && i.input
                     .as_deref()
-                    .and_then(inbetween_io::Format::from_path)
+                    .and_then(Format::from_path)
                     .is_some_and(|f| !matches!(f, Format::Gltf | Format::Fbx))
         };
         let (a_other, b_other) = (other_format(&a_input), other_format(&b_input));
