@@ -419,7 +419,7 @@ pub struct InterpArgs {
     #[cfg_attr(feature = "clap", command(flatten))]
     pub batch: BatchArgs,
 
-    /// Interpolation scheme (bezier: third order, C¹, local; nlerp: how Blender plays LINEAR
+    /// Interpolation scheme (bezier: fourth order, C¹, local; nlerp: how Blender plays LINEAR
     /// quaternion keys, and ozz-animation and many engines theirs; see docs/schemes.md).
     /// Default bezier; for glTF input, each sampler as glTF plays it (LINEAR by slerp), and a
     /// scheme given re-interpolates the LINEAR keys.
@@ -480,6 +480,13 @@ pub struct CurveArgs {
     /// is given.
     #[cfg_attr(feature = "clap", arg(long, value_enum, default_value = "chord"))]
     pub ends: EndsArg,
+
+    /// Tangent of an interior key without its own velocity or TCB values: spline (the slope of
+    /// the not-a-knot cubic spline through the seven keys around it, limited against overshoot;
+    /// fourth order) or nam-kim (log(q₊ q₋⁻¹) over the two intervals; second order). Default:
+    /// nam-kim for hermite, spline for the others.
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
+    pub tangent: Option<TangentArg>,
 
     /// Kochanek–Bartels tension T in [-1, 1] at every interior key without its own (a `tension`
     /// column or field): 1 stops at the key, -1 doubles the tangent.
@@ -616,6 +623,7 @@ named! { SchemeArg { Hermite = "hermite", Squad = "squad", Bezier = "bezier", Sl
 named! { BlendArg { Cubic = "cubic", Quadratic = "quadratic" } }
 
 named! { EndsArg { Chord = "chord", Rest = "rest", Cyclic = "cyclic" } }
+named! { TangentArg { Spline = "spline", NamKim = "nam-kim" } }
 
 named! { PathArg { Shortest = "shortest", AsGiven = "as-given", Euler = "euler" } }
 

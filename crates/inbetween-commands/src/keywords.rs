@@ -5,7 +5,7 @@
 
 use crate::args::{
     BlendArg, ConvertArgs, CurveArgs, EndsArg, EulerArg, InputArgs, InterpArgs, MethodArg,
-    OutputArgs, PathArg, ReduceArgs, SchemeArg, SpanArg, parse_angles, parse_columns,
+    OutputArgs, PathArg, ReduceArgs, SchemeArg, SpanArg, TangentArg, parse_angles, parse_columns,
     parse_delimiter, parse_format, parse_fps, parse_non_negative, parse_output_format,
     parse_positive, parse_precision, parse_quat_order, parse_repr, parse_snap, parse_time_unit,
     parse_times, parse_unit_interval, parse_vec3,
@@ -139,6 +139,7 @@ impl Default for CurveArgs {
             fps: None,
             blend: BlendArg::Cubic,
             ends: EndsArg::Chord,
+            tangent: None,
             tension: 0.0,
             continuity: 0.0,
             bias: 0.0,
@@ -156,6 +157,7 @@ impl Keywords for CurveArgs {
             "fps",
             "blend",
             "ends",
+            "tangent",
             "tension",
             "continuity",
             "bias",
@@ -171,6 +173,7 @@ impl Keywords for CurveArgs {
             "fps" => self.fps = Some(parse_fps(text)?),
             "blend" => self.blend = BlendArg::parse(text)?,
             "ends" => self.ends = EndsArg::parse(text)?,
+            "tangent" => self.tangent = Some(TangentArg::parse(text)?),
             "tension" => self.tension = parse_unit_interval(text)?,
             "continuity" => self.continuity = parse_unit_interval(text)?,
             "bias" => self.bias = parse_unit_interval(text)?,

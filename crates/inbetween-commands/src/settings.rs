@@ -4,14 +4,17 @@
 //! `--key-fps` standing in for it, numbers its `frame` values; `--fps` sets the output rate,
 //! else the document's, else 30), and the curve options from the command line.
 
-use crate::args::{BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg};
+use crate::args::{
+    BlendArg, CurveArgs, EndsArg, InputArgs, OutputArgs, PathArg, SchemeArg, TangentArg,
+};
 use crate::events::Events;
 use glam::DVec3;
 use inbetween::curve::piecewise::MAX_SPEED;
 use inbetween::error::num;
 use inbetween::rotation::{AngleUnit, Repr};
 use inbetween::{
-    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, Tcb, Track,
+    Blend, CurveOptions, EndConditions, Ends, Fps, InputError, PathMode, Scheme, TangentRule, Tcb,
+    Track,
 };
 use inbetween_io::document::{Document, KeyTime};
 use inbetween_io::gltf::document::{GltfClip, Mode};
@@ -561,5 +564,9 @@ pub fn curve_options(args: &CurveArgs, scheme: Scheme, fps: Fps, unit: AngleUnit
         },
         grid_rate: fps,
         tcb: tcb_flags(args),
+        tangent: args.tangent.map(|t| match t {
+            TangentArg::Spline => TangentRule::Spline,
+            TangentArg::NamKim => TangentRule::NamKim,
+        }),
     }
 }

@@ -31,7 +31,7 @@ impl Curve {
     #[pyo3(signature = (
         times, rotations, scheme = "bezier", *, velocities = None, tcb = None, ends = "chord",
         start_velocity = None, end_velocity = None, path = "shortest", scalar_first = true,
-        grid_rate = None
+        grid_rate = None, tangent = None
     ))]
     #[allow(clippy::too_many_arguments)]
     fn new(
@@ -47,6 +47,7 @@ impl Curve {
         path: &str,
         scalar_first: bool,
         grid_rate: Option<Bound<'_, PyAny>>,
+        tangent: Option<&str>,
     ) -> PyResult<Curve> {
         let times = arrays::times(&times, "times")?;
         let (layout, quats) = arrays::quats(&rotations, "rotations", scalar_first)?;
@@ -73,7 +74,7 @@ impl Curve {
             Some(r) => options::rate("grid_rate", r)?,
             None => inbetween::Fps::DEFAULT,
         };
-        let opts = options::curve(scheme, ends, path, grid_rate)?;
+        let opts = options::with_tangent(options::curve(scheme, ends, path, grid_rate)?, tangent)?;
         let curves = build(py, &tracks, &opts, layout)?;
         Ok(Curve {
             curves,

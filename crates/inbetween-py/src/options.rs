@@ -6,7 +6,8 @@ use inbetween::{CurveOptions, EndConditions, Ends, Fps, PathMode, Scheme};
 use pyo3::prelude::*;
 use pyo3::types::{PyFloat, PyInt, PyString};
 
-/// The curve options of a scheme, end rule and path by name, on minaccel's grid `grid_rate`.
+/// The curve options of a scheme, end rule and path by name, on minaccel's grid `grid_rate`,
+/// with the default tangent rule ([`with_tangent`] sets another).
 pub fn curve(scheme: &str, ends: &str, path: &str, grid_rate: Fps) -> PyResult<CurveOptions> {
     Ok(CurveOptions {
         scheme: self::scheme(scheme)?,
@@ -15,6 +16,17 @@ pub fn curve(scheme: &str, ends: &str, path: &str, grid_rate: Fps) -> PyResult<C
         grid_rate,
         ..CurveOptions::default()
     })
+}
+
+/// `opts` with the tangent rule named `name` (spline, nam-kim), or the scheme's own.
+pub fn with_tangent(opts: CurveOptions, name: Option<&str>) -> PyResult<CurveOptions> {
+    let tangent = match name {
+        Some(name) => Some(name.parse().map_err(|e: inbetween::InputError| {
+            input_error(format!("tangent: {}", crate::message(&e)))
+        })?),
+        None => None,
+    };
+    Ok(CurveOptions { tangent, ..opts })
 }
 
 /// A scheme by name: hermite, squad, bezier, slerp, nlerp, minaccel.

@@ -124,7 +124,7 @@ impl FrameSink for Frames {
 #[pyfunction]
 #[pyo3(signature = (
     rotations, fps_in, fps_out, *, scheme = "bezier", ends = "chord", path = "shortest",
-    scalar_first = true, velocity = false, frame = None, translations = None
+    scalar_first = true, velocity = false, frame = None, translations = None, tangent = None
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn resample<'py>(
@@ -139,6 +139,7 @@ pub fn resample<'py>(
     velocity: bool,
     frame: Option<&str>,
     translations: Option<PyReadonlyArrayDyn<'py, f64>>,
+    tangent: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let body = options::body_frame(frame)?;
     let (fps_in, fps_out) = (
@@ -160,7 +161,7 @@ pub fn resample<'py>(
     fits(last - first + 1, joints * width)?;
     let frames = usize::try_from(last - first + 1).unwrap_or(0);
     let times: Vec<f64> = (0..layout.rows as i64).map(|k| fps_in.time_of(k)).collect();
-    let opts = options::curve(scheme, ends, path, fps_out)?;
+    let opts = options::with_tangent(options::curve(scheme, ends, path, fps_out)?, tangent)?;
     // Each joint's track and curve built on the cores without the GIL; errors as before: the
     // first joint whose keys are refused, else the first whose curve is.
     let per_joint: Vec<(usize, &[DQuat])> = quats.iter().map(Vec::as_slice).enumerate().collect();

@@ -61,5 +61,5 @@ pub use clock::Fps;
 pub use curve::{Blend, Curve, CurveOptions, Scheme};
 pub use error::{Error, InputError};
 pub use rotation::{AngleUnit, EulerSeq, Repr};
-pub use tangent::{EndConditions, Ends, PathMode};
+pub use tangent::{EndConditions, Ends, PathMode, TangentRule};
 pub use track::{Tcb, Track, TrackError};

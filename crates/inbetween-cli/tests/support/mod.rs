@@ -150,6 +150,7 @@ impl Settings {
             ends: self.ends,
             grid_rate: self.fps,
             tcb: Default::default(),
+            tangent: None,
         }
     }
 }

@@ -23,6 +23,7 @@ class Curve:
         path: str = ...,
         scalar_first: bool = ...,
         grid_rate: Any = ...,
+        tangent: Optional[str] = ...,
     ) -> None: ...
     def __call__(self, t: np.ndarray, order: int = ..., frame: Optional[str] = ...) -> np.ndarray: ...
     @property
@@ -43,6 +44,8 @@ def resample(
     scalar_first: bool = ...,
     velocity: bool = ...,
     frame: Optional[str] = ...,
+    translations: Optional[np.ndarray] = ...,
+    tangent: Optional[str] = ...,
 ) -> Union[np.ndarray, Tuple[np.ndarray, np.ndarray]]: ...
 def frame_times(n: int, fps_in: Any, fps_out: Any) -> np.ndarray: ...
 def reduce(

@@ -26,7 +26,7 @@ pub(crate) mod squad;
 pub use piecewise::Curve;
 
 use crate::clock::Fps;
-use crate::tangent::{EndConditions, Knots, PathMode};
+use crate::tangent::{EndConditions, Knots, PathMode, TangentRule};
 use crate::track::Tcb;
 use glam::{DQuat, DVec3};
 use std::fmt;
@@ -84,8 +84,8 @@ pub enum Scheme {
     /// Shoemake's squad (`curve/squad.rs`); C¹.
     Squad,
     /// Spherical cubic Bézier by de Casteljau's construction (`curve/bezier.rs`); C¹. The default:
-    /// third order in the key spacing (hermite is second), local, and the spherical counterpart
-    /// of the cubic Hermite of the same tangents (docs/schemes.md).
+    /// fourth order in the key spacing with the spline tangent (hermite is second), local, and the
+    /// spherical counterpart of the cubic Hermite of the same tangents (docs/schemes.md).
     #[default]
     Bezier,
     /// Piecewise great arcs (`curve/slerp.rs`); C⁰.
@@ -117,6 +117,16 @@ impl Scheme {
             Scheme::Slerp => "slerp",
             Scheme::Nlerp => "nlerp",
             Scheme::MinAccel => "minaccel",
+        }
+    }
+
+    /// The tangent rule the scheme takes unless told otherwise: Nam & Kim's for `hermite`,
+    /// whose construction (and error, second order) is theirs, the fourth-order `spline` for
+    /// the others (docs/schemes.md).
+    pub fn tangent(self) -> TangentRule {
+        match self {
+            Scheme::Hermite => TangentRule::NamKim,
+            _ => TangentRule::Spline,
         }
     }
 
@@ -177,10 +187,14 @@ pub struct CurveOptions {
     /// ([`crate::Track::with_key_tcb`]); zero gives the ordinary tangents. minaccel refuses
     /// non-zero values.
     pub tcb: Tcb,
+    /// The tangent of an interior key without its own velocity or TCB values; `None`: the
+    /// scheme's own ([`Scheme::tangent`]).
+    pub tangent: Option<TangentRule>,
 }
 
 impl Default for CurveOptions {
-    /// bezier, cubic blend (for hermite), shortest path, chord ends, 30 fps grid, zero TCB.
+    /// bezier, cubic blend (for hermite), shortest path, chord ends, 30 fps grid, zero TCB,
+    /// each scheme's own tangent rule.
     fn default() -> CurveOptions {
         CurveOptions {
             scheme: Scheme::Bezier,
@@ -189,6 +203,7 @@ impl Default for CurveOptions {
             ends: EndConditions::default(),
             grid_rate: Fps::DEFAULT,
             tcb: Tcb::ZERO,
+            tangent: None,
         }
     }
 }

@@ -360,7 +360,13 @@ impl Curve {
                 )));
             }
         }
-        let keys = Knots::shaped(track, opts.path, opts.ends, opts.tcb);
+        let keys = Knots::shaped(
+            track,
+            opts.path,
+            opts.ends,
+            opts.tcb,
+            opts.tangent.unwrap_or(opts.scheme.tangent()),
+        );
         let (pieces, report) = match opts.scheme {
             // One key: a constant, whatever the scheme.
             _ if track.len() == 1 => (
@@ -849,7 +855,13 @@ mod tests {
 
     #[test]
     fn hermite_velocity_at_keys_is_the_tangent() {
-        let k = sample_keys();
+        let k = crate::tangent::Knots::shaped(
+            &sample_track(),
+            PathMode::Shortest,
+            Default::default(),
+            crate::Tcb::ZERO,
+            Scheme::Hermite.tangent(),
+        );
         let c = curve(Scheme::Hermite);
         for i in 0..k.times.len() {
             let want = k.w[i] * 2.0;

@@ -177,17 +177,20 @@ fn a_loop() -> Track {
 }
 
 #[test]
-fn a_cyclic_track_is_the_middle_of_the_loop_played_twice() {
+fn a_cyclic_track_is_the_middle_of_the_loop_played_three_times() {
     let track = a_loop();
     let (times, q) = (track.times(), track.rotations());
-    // Twice end to end: the second copy's keys 1..3 after the first's.
-    let mut t2 = times.to_vec();
-    let mut q2 = q.to_vec();
-    for i in 1..4 {
-        t2.push(times[i] + 2.0);
-        q2.push(q[i]);
+    // Three times end to end: the spline tangent's window reaches three keys each side, so the
+    // middle copy's keys see the loop's neighbours on both sides.
+    let mut t3 = times.to_vec();
+    let mut q3 = q.to_vec();
+    for c in 1..3 {
+        for i in 1..4 {
+            t3.push(times[i] + 2.0 * c as f64);
+            q3.push(q[i]);
+        }
     }
-    let twice = Track::new(t2, q2).unwrap();
+    let thrice = Track::new(t3, q3).unwrap();
     for scheme in SMOOTH {
         let cyclic = CurveOptions {
             ends: Ends::Cyclic.into(),
@@ -200,11 +203,11 @@ fn a_cyclic_track_is_the_middle_of_the_loop_played_twice() {
             (l - r).length() < 1e-5 * r.length(),
             "{scheme} seam: {l} vs {r}"
         );
-        // Its first and last segments are the doubled track's segments beside the seam.
-        let doubled = Curve::new(&twice, &opts(scheme)).unwrap();
+        // Its first and last segments are the middle copy's segments beside its seams.
+        let doubled = Curve::new(&thrice, &opts(scheme)).unwrap();
         for j in 0..=20 {
             let u = j as f64 / 20.0;
-            for (t, t_twice) in [(0.5 * u, 2.0 + 0.5 * u), (1.25 + 0.75 * u, 1.25 + 0.75 * u)] {
+            for (t, t_twice) in [(0.5 * u, 2.0 + 0.5 * u), (1.25 + 0.75 * u, 3.25 + 0.75 * u)] {
                 let d = angle(curve.rotation(t), doubled.rotation(t_twice));
                 assert!(d < 1e-12, "{scheme} at {t}: {d}");
             }

@@ -5,16 +5,83 @@
 //! velocity is `ω_i = 2·w_i`. In segment `s` (from key `s` to `s+1`, length `Δ_s`) the
 //! segment-scaled tangents are `V = (w·Δ_s)·q`.
 //!
-//! - Interior keys: `w_i = log(q_{i+1} q_{i−1}⁻¹) / (t_{i+1} − t_{i−1})` (Nam & Kim's estimate for
-//!   unit spacing), or `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` with `L⁻ = log(q_i q_{i−1}⁻¹)`,
-//!   `L⁺ = log(q_{i+1} q_i⁻¹)` when `‖L⁻‖ + ‖L⁺‖ > π`, where the direct log would alias to the
-//!   other way round (possible only with `--path as-given`).
+//! - Interior keys, [`TangentRule::Spline`] (the default): the derivative at the key of the
+//!   not-a-knot cubic spline through the logs of up to seven keys in the key's chart
+//!   ([`spline`]); [`TangentRule::NamKim`]: `w_i = log(q_{i+1} q_{i−1}⁻¹) / (t_{i+1} − t_{i−1})`
+//!   (Nam & Kim's estimate for unit spacing), or `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` with
+//!   `L⁻ = log(q_i q_{i−1}⁻¹)`, `L⁺ = log(q_{i+1} q_i⁻¹)` when `‖L⁻‖ + ‖L⁺‖ > π`, where the
+//!   direct log would alias to the other way round (possible only with `--path as-given`).
 //! - Ends: `chord` `w_1 = log(q_2 q_1⁻¹)/Δ_1`, `w_n = log(q_n q_{n−1}⁻¹)/Δ_{n−1}`; `rest` `w = 0`;
 //!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
+
+mod spline;
 
 use crate::rotation::quat::log;
 use crate::track::{Tcb, Track};
 use glam::{DQuat, DVec3};
+
+/// The tangent of an interior key without its own velocity or TCB values (`--tangent`,
+/// docs/spec.md §4.1).
+///
+/// ```
+/// use inbetween::{Curve, CurveOptions, TangentRule, Track};
+/// use glam::DQuat;
+///
+/// // Keys of a steady turn about z, uneven in time: both rules give its speed, 1 rad/s.
+/// let times = vec![0.0, 0.4, 1.0, 1.3, 2.0];
+/// let keys = times.iter().map(|&t| DQuat::from_rotation_z(t)).collect();
+/// let track = Track::new(times, keys)?;
+/// for tangent in [TangentRule::Spline, TangentRule::NamKim] {
+///     let opts = CurveOptions { tangent: Some(tangent), ..CurveOptions::default() };
+///     let curve = Curve::new(&track, &opts)?;
+///     assert!((curve.angular_velocity(1.0).z - 1.0).abs() < 1e-12);
+/// }
+/// assert_eq!("nam-kim".parse::<TangentRule>()?, TangentRule::NamKim);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+pub enum TangentRule {
+    /// The derivative at the key of the not-a-knot cubic spline through the logarithms of the
+    /// keys within three of it, in the key's chart: fourth order (`spline`).
+    #[default]
+    Spline,
+    /// Nam & Kim's `log(q_{i+1} q_{i−1}⁻¹)/(t_{i+1} − t_{i−1})`: second order (`nam-kim`).
+    NamKim,
+}
+
+impl TangentRule {
+    /// Every rule, in the order of the command line's help.
+    pub const ALL: [TangentRule; 2] = [TangentRule::Spline, TangentRule::NamKim];
+
+    /// The rule's name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentRule::Spline => "spline",
+            TangentRule::NamKim => "nam-kim",
+        }
+    }
+}
+
+impl std::fmt::Display for TangentRule {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.pad(self.name())
+    }
+}
+
+impl std::str::FromStr for TangentRule {
+    type Err = crate::InputError;
+
+    fn from_str(s: &str) -> Result<TangentRule, crate::InputError> {
+        TangentRule::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| {
+                crate::error::input_err!(
+                    "expected a tangent rule from spline, nam-kim, found \"{s}\""
+                )
+            })
+    }
+}
 
 /// How signs of consecutive keys are treated (docs/spec.md §4.3).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -168,7 +235,7 @@ impl Knots {
     /// `PathMode::Euler` on a track without Euler angles is `AsGiven` (a curve refuses it
     /// before: [`crate::Curve::new`]). The same as [`Knots::shaped`] with [`Tcb::ZERO`].
     pub fn new(track: &Track, path: PathMode, ends: EndConditions) -> Knots {
-        Knots::shaped(track, path, ends, Tcb::ZERO)
+        Knots::shaped(track, path, ends, Tcb::ZERO, TangentRule::default())
     }
 
     /// [`Knots::new`] with `tcb` for the keys without their own Kochanek–Bartels values
@@ -176,8 +243,9 @@ impl Knots {
     ///
     /// - A key's own angular velocity ω ([`Track::with_key_velocities`]) gives both its tangents,
     ///   `w = ω/2`, over any estimate and TCB values.
-    /// - An interior key with zero TCB: `w = log(q_{i+1} q_{i−1}⁻¹)/(t_{i+1} − t_{i−1})`, or
-    ///   `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` when `‖L⁻‖ + ‖L⁺‖ > π` (the alias rule).
+    /// - An interior key with zero TCB: `rule`'s tangent ([`TangentRule`]); for `NamKim`
+    ///   `w = log(q_{i+1} q_{i−1}⁻¹)/(t_{i+1} − t_{i−1})`, or `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` when
+    ///   `‖L⁻‖ + ‖L⁺‖ > π` (the alias rule).
     /// - Otherwise, with Kochanek & Bartels' weights ([`Tcb::weights`]):
     ///   `w_out = log(exp(2b_out·L⁺)·exp(2a_out·L⁻))/(t_{i+1} − t_{i−1})` and `w_in` likewise —
     ///   their tangent `a·L⁻ + b·L⁺` per unit spacing, adjusted for unequal spacing as in their
@@ -185,8 +253,15 @@ impl Knots {
     ///   past the alias bound of the terms composed, `‖2a·L⁻‖ + ‖2b·L⁺‖ > π`,
     ///   `(2a·L⁻ + 2b·L⁺)/(t_{i+1} − t_{i−1})`.
     /// - Ends: the rule of `ends` ([`Ends`]); `Cyclic` computes the first key as an interior key
-    ///   whose previous key is the one before the last, and gives the last key the same tangents.
-    pub fn shaped(track: &Track, path: PathMode, ends: EndConditions, tcb: Tcb) -> Knots {
+    ///   whose previous key is the one before the last (`Spline`'s window wraps around the seam),
+    ///   and gives the last key the same tangents.
+    pub fn shaped(
+        track: &Track,
+        path: PathMode,
+        ends: EndConditions,
+        tcb: Tcb,
+        rule: TangentRule,
+    ) -> Knots {
         let mut quats = track.rotations().to_vec();
         apply_path(&mut quats, path);
         let chords = match (path, track.euler_angles()) {
@@ -195,12 +270,12 @@ impl Knots {
             }
             _ => None,
         };
-        let chord = |s: usize, quats: &[DQuat]| match &chords {
-            Some(c) => c[s],
-            None => step(quats[s], quats[s + 1]),
-        };
         let t = track.times();
         let n = quats.len();
+        let all: Vec<DVec3> = match &chords {
+            Some(c) => c.clone(),
+            None => quats.windows(2).map(|q| step(q[0], q[1])).collect(),
+        };
         if n == 1 {
             // A constant: no motion, whatever the ends say.
             return Knots {
@@ -220,11 +295,22 @@ impl Knots {
         let mut w = vec![DVec3::ZERO; n];
         let mut w_in = vec![DVec3::ZERO; n];
         let mut shaped = vec![false; n];
+        let cyclic = ends.ends == Ends::Cyclic;
+        let lengths: Vec<f64> = all.iter().map(|c| c.length()).collect();
+        // The windows, where a key will take its tangent from one.
+        let estimated = |i: usize| velocity(i).is_none() && key_tcb(i).is_zero();
+        let needed = (1..n - 1).any(estimated) || (cyclic && estimated(0) && estimated(n - 1));
+        let windows = (rule == TangentRule::Spline && needed)
+            .then(|| spline::Windows::new(t, &quats, &all, &lengths, cyclic));
         for i in 1..n - 1 {
-            let (lm, lp) = (chord(i - 1, &quats), chord(i, &quats));
+            let (lm, lp) = (all[i - 1], all[i]);
             let span = t[i + 1] - t[i - 1];
             let (wi, wo) = match (velocity(i), key_tcb(i)) {
                 (Some(omega), _) => (omega * 0.5, omega * 0.5),
+                (None, k) if k.is_zero() && windows.is_some() => {
+                    let x = windows.as_ref().map_or(DVec3::ZERO, |w| w.tangent(i));
+                    (x, x)
+                }
                 (None, k) if k.is_zero() => {
                     let x = if lm.length() + lp.length() > std::f64::consts::PI {
                         (lm + lp) / span
@@ -238,13 +324,16 @@ impl Knots {
             (w_in[i], w[i]) = (wi, wo);
             shaped[i] = velocity(i).is_some() || !key_tcb(i).is_zero();
         }
-        let cyclic = ends.ends == Ends::Cyclic;
         let (start, end) = if cyclic {
-            let (lm, lp) = (chord(n - 2, &quats), chord(0, &quats));
+            let (lm, lp) = (all[n - 2], all[0]);
             let span = (t[n - 1] - t[n - 2]) + (t[1] - t[0]);
             let given = velocity(0).or(velocity(n - 1));
             let (wi, wo) = match given {
                 Some(omega) => (omega * 0.5, omega * 0.5),
+                None if key_tcb(0).is_zero() && windows.is_some() => {
+                    let x = windows.as_ref().map_or(DVec3::ZERO, |w| w.tangent(0));
+                    (x, x)
+                }
                 None => kb_tangents(lm, lp, span, key_tcb(0)),
             };
             (w_in[0], w[0], w_in[n - 1], w[n - 1]) = (wi, wo, wi, wo);
@@ -257,12 +346,12 @@ impl Knots {
             w[0] = match (start, ends.ends) {
                 (Some(omega), _) => omega * 0.5,
                 (None, Ends::Rest) => DVec3::ZERO,
-                (None, _) => chord(0, &quats) / (t[1] - t[0]),
+                (None, _) => all[0] / (t[1] - t[0]),
             };
             w[n - 1] = match (end, ends.ends) {
                 (Some(omega), _) => omega * 0.5,
                 (None, Ends::Rest) => DVec3::ZERO,
-                (None, _) => chord(n - 2, &quats) / (t[n - 1] - t[n - 2]),
+                (None, _) => all[n - 2] / (t[n - 1] - t[n - 2]),
             };
             (w_in[0], w_in[n - 1]) = (w[0], w[n - 1]);
             (start, end)
@@ -463,12 +552,12 @@ mod tests {
                     tension: 0.5,
                     ..Tcb::ZERO
                 };
-                let want = Knots::shaped(&t, path, ends, tcb);
+                let want = Knots::shaped(&t, path, ends, tcb, TangentRule::Spline);
                 scratch.set_pair(times, q, path, omega, None);
                 assert_eq!(scratch, want, "{path:?} {ends:?}");
                 assert_eq!(Knots::pair(times, q, path, omega, None), want);
                 // With Euler angles: their chords under `euler`, none otherwise.
-                let want = Knots::shaped(&spun, path, ends, tcb);
+                let want = Knots::shaped(&spun, path, ends, tcb, TangentRule::Spline);
                 scratch.set_pair(times, spun_q, path, omega, Some((seq, angles)));
                 assert_eq!(scratch, want, "{path:?} {ends:?} with Euler angles");
                 assert_eq!(want.spins(), path == PathMode::Euler);
@@ -490,7 +579,13 @@ mod tests {
             tension: -1.0,
             ..Tcb::ZERO
         };
-        let k = Knots::shaped(&t, PathMode::Shortest, EndConditions::default(), tcb);
+        let k = Knots::shaped(
+            &t,
+            PathMode::Shortest,
+            EndConditions::default(),
+            tcb,
+            TangentRule::Spline,
+        );
         let want = DVec3::Z * (2.0 * step) / 2.0; // (2·L⁻ + 2·L⁺)/2 s, L = step/2
         assert!((k.w[1] - want).length() < 1e-12, "{:?} vs {want:?}", k.w[1]);
         assert!(
