@@ -178,6 +178,32 @@ def test_agrees_with_interp(cli, tmp_path, scheme):
     assert np.max(np.linalg.norm(got_w - want_w, axis=1) / scale) < 1e-9
 
 
+@pytest.mark.parametrize("scheme, tangent", [("bezier", "nam-kim"), ("hermite", "spline"), ("bezier", None)])
+def test_tangent_rule_agrees_with_interp(cli, tmp_path, scheme, tangent):
+    # 12 keys at uneven times (the spline tangent's window is seven keys): Curve(tangent=...)
+    # and resample(tangent=...) are interp --tangent's curves; the two rules differ.
+    times, q = keys(12, seed=3)
+    src = tmp_path / "keys.csv"
+    with open(src, "w", newline="") as f:
+        f.write("time,w,x,y,z\n")
+        for t, r in zip(times, q):
+            f.write(",".join(repr(float(x)) for x in [t, *r]) + "\n")
+    out = tmp_path / "frames.csv"
+    flag = [] if tangent is None else ["--tangent", tangent]
+    subprocess.run(
+        [cli, "interp", str(src), "--fps", "30", "--scheme", scheme, "--velocity",
+         "--angles", "rad", "-o", str(out), *flag],
+        check=True,
+    )
+    t, want_q, _ = read_frames(out)
+    c = inbetween.Curve(times, q, scheme, tangent=tangent)
+    assert np.max(angle(c(t), want_q)) < 1e-12
+    other = {"spline": "nam-kim", "nam-kim": "spline", None: "nam-kim"}[tangent]
+    assert np.max(angle(inbetween.Curve(times, q, scheme, tangent=other)(t), want_q)) > 1e-4
+    with pytest.raises(inbetween.InputError, match="tangent: expected a tangent rule"):
+        inbetween.Curve(times, q, scheme, tangent="catmull")
+
+
 def test_velocities_tcb_and_end_velocities():
     times, q = keys(5)
     v = np.full((5, 3), np.nan)

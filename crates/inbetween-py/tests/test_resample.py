@@ -61,18 +61,19 @@ def test_resample_agrees_with_interp(cli, tmp_path):
     # Three joints at 120 fps written as a CSV of frame numbers, interp at 100 fps.
     q = motion(241, 3, 120)
     src = frames_csv(tmp_path / "frames.csv", q)
-    for scheme in ["bezier", "squad", "slerp"]:
+    for scheme, tangent in [("bezier", None), ("bezier", "nam-kim"), ("squad", None), ("slerp", None)]:
         out = tmp_path / f"{scheme}.csv"
+        flag = [] if tangent is None else ["--tangent", tangent]
         subprocess.run(
             [cli, "interp", str(src), "--key-fps", "120", "--fps", "100", "--scheme", scheme,
-             "--velocity", "--angles", "rad", "-o", str(out)],
+             "--velocity", "--angles", "rad", "-o", str(out), *flag],
             check=True,
         )
         with open(out, newline="") as f:
             rows = list(csv.DictReader(f))
         want = np.array([[float(r[c]) for c in "wxyz"] for r in rows]).reshape(3, -1, 4)
         want_w = np.array([[float(r[c]) for c in ("wx", "wy", "wz")] for r in rows]).reshape(3, -1, 3)
-        got, got_w = inbetween.resample(q, 120, 100, scheme=scheme, velocity=True)
+        got, got_w = inbetween.resample(q, 120, 100, scheme=scheme, velocity=True, tangent=tangent)
         assert got.shape == (201, 3, 4)
         assert np.max(angle(got.transpose(1, 0, 2), want)) < 1e-12, scheme
         scale = np.maximum(np.linalg.norm(want_w, axis=-1), 1e-300)

@@ -93,7 +93,8 @@ class Curve:
     of NaN: none at that key); ``tcb`` the same shape, each key's tension, continuity, bias;
     ``start_velocity`` / ``end_velocity`` (3,) or (J, 3); ``ends`` ``"chord"``, ``"rest"`` or
     ``"cyclic"``; ``path`` ``"shortest"`` or ``"as-given"``; ``grid_rate`` minaccel's grid
-    (points per second, default 30). Keys given as a scipy ``Rotation`` give ``Rotation``
+    (points per second, default 30); ``tangent`` ``"spline"`` (fourth order) or ``"nam-kim"``,
+    as ``--tangent`` (default: ``"nam-kim"`` for hermite, ``"spline"`` otherwise). Keys given as a scipy ``Rotation`` give ``Rotation``
     objects back (``order=0``); arrays give arrays in their own quaternion order.
     """
 
@@ -113,6 +114,7 @@ class Curve:
         path: str = "shortest",
         scalar_first: bool = True,
         grid_rate: Optional[Rate] = None,
+        tangent: Optional[str] = None,
     ) -> None:
         self._scalar_first = bool(scalar_first)
         self._rotation_type = type(rotations) if _is_rotation(rotations) else None
@@ -128,6 +130,7 @@ class Curve:
             path=path,
             scalar_first=scalar_first,
             grid_rate=grid_rate,
+            tangent=tangent,
         )
 
     def __call__(self, t: Any, order: int = 0, *, frame: str = "world",
@@ -253,6 +256,7 @@ def resample(
     translations: Any = None,
     to: str = "quat",
     dtype: Any = None,
+    tangent: Optional[str] = None,
 ) -> Any:
     """Frames ``rotations`` (T, 4) or (T, J, 4) at ``fps_in`` onto the exact grid of
     ``fps_out``: (M, 4) or (M, J, 4) with M = ⌊(T − 1)/fps_in · fps_out⌋ + 1, at the times
@@ -263,7 +267,7 @@ def resample(
     ``translations`` (T, 3) or (T, J, 3), the positions at the new frames come last in the
     tuple, (M, 3) or (M, J, 3), as ``interp`` writes a track's translations. ``to`` and
     ``dtype`` as for :class:`Curve`: ``"rot6d:rows"`` / ``"rot6d:columns"`` rotations,
-    float32 results."""
+    float32 results; ``tangent`` as for :class:`Curve`."""
     frame = _check_frame(frame)
     convention = _rot6d_convention(to)
     out = _inbetween.resample(
@@ -277,6 +281,7 @@ def resample(
         velocity=velocity,
         frame=frame,
         translations=_optional(translations, "translations"),
+        tangent=tangent,
     )
     if convention is not None:
         six = lambda r: _inbetween.rot6d(r, convention, False, scalar_first=scalar_first)
