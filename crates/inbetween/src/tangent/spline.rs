@@ -114,12 +114,12 @@ impl<'a> Windows<'a> {
                     if !self.cyclic && i + k >= n {
                         break;
                     }
-                    (i + k - 1) % segments
+                    wrap(i + k - 1, segments)
                 } else {
                     if !self.cyclic && k > i {
                         break;
                     }
-                    (i + segments * REACH - k) % segments
+                    wrap(i + segments * REACH - k, segments)
                 };
                 let chord = if forward {
                     self.chords[s]
@@ -149,7 +149,7 @@ impl<'a> Windows<'a> {
             left,
         );
         // The limit: three times the slower neighbouring chord's speed, or Nam & Kim's.
-        let segments = [(i + segments - 1) % segments, i];
+        let segments = [wrap(i + segments - 1, segments), i];
         let limit = segments
             .map(|s| 3.0 * self.lengths[s] / (self.times[s + 1] - self.times[s]))
             .into_iter()
@@ -199,6 +199,16 @@ impl<'a> Windows<'a> {
         }
         self.quats[u as usize] * sign
     }
+}
+
+/// `s` modulo `segments` for `s < (REACH + 1)·segments`, by subtraction (a division per window
+/// key cost more than the rest of the tangent).
+#[inline]
+fn wrap(mut s: usize, segments: usize) -> usize {
+    while s >= segments {
+        s -= segments;
+    }
+    s
 }
 
 /// The derivative at point `c` (neither end) of the not-a-knot cubic spline through `y` with
