@@ -32,6 +32,10 @@ use glam::{DQuat, DVec3};
 /// Keys each side of the key whose tangent is estimated.
 const REACH: usize = 3;
 
+/// How near π chords may sum before their sum replaces the log between their keys (a 360°
+/// step of `--path euler` is π exactly, and the log of `−1` has no axis).
+const TIE: f64 = 1e-9;
+
 /// What the windows are cut from: a track's times, its quaternions after the path rule, and
 /// its chords (with their lengths).
 pub(super) struct Windows<'a> {
@@ -128,10 +132,12 @@ impl<'a> Windows<'a> {
                 };
                 sum += chord;
                 len += self.lengths[s];
-                let point = if len > std::f64::consts::PI {
-                    sum
-                } else if k == 1 {
+                // A neighbour is its chord; further keys their log unless the chords between sum
+                // to π or more (within 1e-9: at π the log is log(−1), which has no axis).
+                let point = if k == 1 {
                     chord
+                } else if len > std::f64::consts::PI - TIE {
+                    sum
                 } else {
                     self.log_to(i, k, forward)
                 };
