@@ -107,3 +107,50 @@ fn a_bvh_clip_is_reduced_in_bounded_memory() {
     );
     assert!(std::fs::metadata(&out).unwrap().len() > 0);
 }
+
+/// Issue 48: `interp` of a BVH file to npz peaks below twice the archive plus 8 MiB (the
+/// issue's 64 MiB scaled to a small clip): the arrays (the archive's size) and the clip's
+/// values, nothing else. The general path held the text, a document of every key, the tracks
+/// and their curves, and the writer copied the largest array whole: about 45 MiB here.
+/// `--tracks` never raises the peak (it sent CSV output to the general path: 4× the peak).
+#[test]
+fn a_bvh_clip_is_interpolated_to_npz_in_memory_of_the_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("clip.bvh");
+    std::fs::write(&src, chain_clip(60, 3000)).unwrap();
+    let out = |name: &str| dir.path().join(name);
+    let interp = |extra: &[&str], name: &str| {
+        let mut args = vec!["interp".as_ref(), src.as_os_str()];
+        args.extend(extra.iter().map(std::ffi::OsStr::new));
+        let path = out(name);
+        args.extend(["-o".as_ref(), path.as_os_str()]);
+        let peak = peak_rss(&args);
+        (peak, std::fs::metadata(&path).unwrap().len())
+    };
+    let mib = |b: u64| b as f64 / 1048576.0;
+    let (peak, size) = interp(&[], "all.npz");
+    let budget = 2 * size + (8 << 20);
+    assert!(
+        peak <= budget,
+        "npz: peak {:.1} MiB, archive {:.1} MiB, budget {:.1} MiB",
+        mib(peak),
+        mib(size),
+        mib(budget)
+    );
+    let (few, few_size) = interp(&["--tracks", "j0,j1*"], "few.npz");
+    assert!(few_size < size / 4);
+    assert!(
+        few <= peak,
+        "--tracks: {:.1} MiB > {:.1} MiB",
+        mib(few),
+        mib(peak)
+    );
+    let (csv, _) = interp(&[], "all.csv");
+    let (few_csv, _) = interp(&["--tracks", "j0,j1*"], "few.csv");
+    assert!(
+        few_csv <= csv,
+        "csv --tracks: {:.1} MiB > {:.1} MiB",
+        mib(few_csv),
+        mib(csv)
+    );
+}

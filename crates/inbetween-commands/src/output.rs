@@ -571,10 +571,15 @@ impl Write for WriteBehind {
         Ok(data.len())
     }
 
-    fn write_all(&mut self, data: &[u8]) -> io::Result<()> {
-        self.buf.extend_from_slice(data);
-        if self.buf.len() >= CHUNK {
-            self.send()?;
+    /// Large `data` (a whole npz array) goes on in pieces of at most a chunk, never copied whole.
+    fn write_all(&mut self, mut data: &[u8]) -> io::Result<()> {
+        while !data.is_empty() {
+            let n = data.len().min(CHUNK.saturating_sub(self.buf.len()).max(1));
+            self.buf.extend_from_slice(&data[..n]);
+            data = &data[n..];
+            if self.buf.len() >= CHUNK {
+                self.send()?;
+            }
         }
         Ok(())
     }

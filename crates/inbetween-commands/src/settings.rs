@@ -199,19 +199,38 @@ fn column_map(args: &InputArgs) -> Result<Option<inbetween_io::read::log::Column
 /// `--tracks`: the document's tracks whose names match one of the comma-separated patterns, in
 /// document order. A pattern that matches nothing is an error listing the names there are.
 fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputError> {
-    let patterns: Vec<&str> = patterns
-        .split(',')
-        .map(str::trim)
-        .filter(|p| !p.is_empty())
-        .collect();
-    let name_of = |i: usize, t: &inbetween_io::document::DocTrack| {
-        t.name.clone().unwrap_or_else(|| format!("track{i}"))
-    };
     let names: Vec<String> = doc
         .tracks
         .iter()
         .enumerate()
-        .map(|(i, t)| name_of(i, t))
+        .map(|(i, t)| t.name.clone().unwrap_or_else(|| format!("track{i}")))
+        .collect();
+    let keep = chosen_tracks(&names, patterns, &doc.source)?;
+    if let Some(h) = &doc.hierarchy {
+        doc.hierarchy = Some(Arc::new(h.retracked(&kept_indices(&keep))));
+    }
+    let mut i = 0;
+    doc.tracks.retain(|_| {
+        i += 1;
+        keep[i - 1]
+    });
+    doc.named_tracks = true;
+    Ok(doc)
+}
+
+/// Which of the tracks `names` (in document order; an unnamed track is `track<i>`) `--tracks
+/// PATTERNS` chooses: a pattern that matches none, or no pattern, is an input error naming
+/// `source`'s tracks. The rule of [`select_tracks`], for a reader that chooses before it
+/// builds tracks (interp's lean BVH path).
+pub(super) fn chosen_tracks(
+    names: &[String],
+    patterns: &str,
+    source: &str,
+) -> Result<Vec<bool>, InputError> {
+    let patterns: Vec<&str> = patterns
+        .split(',')
+        .map(str::trim)
+        .filter(|p| !p.is_empty())
         .collect();
     for p in &patterns {
         if !names.iter().any(|n| glob(p, n)) {
@@ -222,9 +241,8 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
                 .collect();
             let more = if names.len() > 20 { ", …" } else { "" };
             return Err(InputError::new(format!(
-                "--tracks: \"{}\" matches no track of {}; its tracks are {}{more}",
+                "--tracks: \"{}\" matches no track of {source}; its tracks are {}{more}",
                 inbetween::error::shorten(p),
-                doc.source,
                 shown.join(", ")
             )));
         }
@@ -232,28 +250,22 @@ fn select_tracks(mut doc: Document, patterns: &str) -> Result<Document, InputErr
     if patterns.is_empty() {
         return Err(InputError::new("--tracks: expected at least one name"));
     }
-    let keep: Vec<bool> = names
+    Ok(names
         .iter()
         .map(|n| patterns.iter().any(|p| glob(p, n)))
-        .collect();
-    if let Some(h) = &doc.hierarchy {
-        let mut next = 0;
-        let map: Vec<Option<usize>> = keep
-            .iter()
-            .map(|&k| {
-                next += usize::from(k);
-                k.then(|| next - 1)
-            })
-            .collect();
-        doc.hierarchy = Some(Arc::new(h.retracked(&map)));
-    }
-    let mut i = 0;
-    doc.tracks.retain(|_| {
-        i += 1;
-        keep[i - 1]
-    });
-    doc.named_tracks = true;
-    Ok(doc)
+        .collect())
+}
+
+/// Each track's index among the kept ones (`keep` from [`chosen_tracks`]), `None` for a track
+/// left out: the map [`Skeleton::retracked`](inbetween::skeleton::Skeleton::retracked) takes.
+fn kept_indices(keep: &[bool]) -> Vec<Option<usize>> {
+    let mut next = 0;
+    keep.iter()
+        .map(|&k| {
+            next += usize::from(k);
+            k.then(|| next - 1)
+        })
+        .collect()
 }
 
 pub(super) use crate::pattern::glob;
@@ -287,13 +299,12 @@ pub(super) fn check_carries(
 
 /// The rule both lean BVH paths (`interp`'s and `reduce`'s) start from: the input is a named
 /// BVH file, read with none of the options only the general path applies (`--animation`,
-/// `--tracks`, `--from`, `--snap-keys`, `--path euler`, end velocities). Its path, else `None`
-/// (the general path).
+/// `--from`, `--snap-keys`, `--path euler`, end velocities). Its path, else `None` (the general
+/// path). `--tracks` is each path's own to handle (interp's chooses joints; reduce's refuses it).
 pub(super) fn lean_bvh_path<'a>(input: &'a InputArgs, curve: &CurveArgs) -> Option<&'a Path> {
     let path = input.input.as_deref().filter(|p| p.as_os_str() != "-")?;
     let plain = input.input_format.or_else(|| Format::from_path(path)) == Some(Format::Bvh)
         && input.animation.is_none()
-        && input.tracks.is_none()
         && input.from.is_none()
         && curve.snap_keys.is_none()
         && curve.path != PathArg::Euler
@@ -303,11 +314,13 @@ pub(super) fn lean_bvh_path<'a>(input: &'a InputArgs, curve: &CurveArgs) -> Opti
 }
 
 /// A lean path's BVH file parsed as it is read, when it is a regular file within
-/// `--max-input-bytes`: its name in messages, the clip and the reader's warnings; else `None`
-/// (the general path reads it, and says what is wrong).
+/// `--max-input-bytes`: its name in messages, the clip (only the joints `choose` chooses, when
+/// given) and the reader's warnings; else `None` (the general path reads it, and says what is
+/// wrong).
 pub(super) fn lean_bvh_clip(
     path: &Path,
     input: &InputArgs,
+    choose: Option<inbetween_io::bvh::chosen::Choose>,
 ) -> Option<(String, inbetween_io::clip::Clip, Vec<String>)> {
     let file = std::fs::File::open(path).ok()?;
     let size = file.metadata().ok().filter(|m| m.is_file())?.len();
@@ -315,7 +328,11 @@ pub(super) fn lean_bvh_clip(
         return None;
     }
     let source = path.display().to_string();
-    let (clip, warnings) = inbetween_io::bvh::parse_reader(file, &source, Some(size)).ok()?;
+    let (clip, warnings) = match choose {
+        Some(choose) => inbetween_io::bvh::parse_reader_chosen(file, &source, Some(size), choose),
+        None => inbetween_io::bvh::parse_reader(file, &source, Some(size)),
+    }
+    .ok()?;
     Some((source, clip, warnings))
 }
 

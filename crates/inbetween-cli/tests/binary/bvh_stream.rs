@@ -90,6 +90,79 @@ fn the_lean_path_writes_what_the_general_path_writes() {
     }
 }
 
+/// Issue 48: npy and npz output, `--tracks`, `--velocity` and `--euler wrapped` take the lean
+/// path too (a few tracks must never cost more memory than all of them), with the general
+/// path's bytes: the npz arrays (frame-major, filled one joint at a time) and its tree of the
+/// chosen tracks (`parents.npy`: Leg's parent is Hips, the nearest chosen ancestor).
+#[test]
+fn arrays_and_chosen_tracks_are_the_general_paths() {
+    let text = clip(300);
+    for (args, name) in [
+        (&[][..], "out.npz"),
+        (
+            &["--fps", "50", "--velocity", "--to", "euler:ZYX"],
+            "out.npz",
+        ),
+        (&["--tracks", "Leg,Hips", "--scheme", "slerp"], "out.npz"),
+        (
+            &["--tracks", "Leg", "--to", "matrix", "--angles", "rad"],
+            "out.npz",
+        ),
+        (&["--tracks", "Ch*", "--velocity"], "out.npy"),
+        (&["--fps", "30"], "out.npy"),
+        (&["--tracks", "Leg,Hips", "--velocity"], "out.csv"),
+        (&["--to", "euler:XYZ", "--euler", "wrapped"], "out.json"),
+        (
+            &["--tracks", "Chest", "--fps", "24", "--scheme", "minaccel"],
+            "out.json",
+        ),
+    ] {
+        let [lean, general] = both(&text, args, name);
+        assert_eq!(lean.0, Some(0), "{args:?}: {}", lean.1);
+        assert!(lean.2.as_ref().is_some_and(|b| !b.is_empty()), "{args:?}");
+        assert_eq!(lean, general, "{args:?}");
+    }
+    // The tree of the chosen tracks: Hips (-1) and Leg (0), in file order.
+    let [lean, _] = both(&text, &["--tracks", "Leg,Hips"], "out.npz");
+    let bytes = lean.2.unwrap();
+    let at = bytes
+        .windows(11)
+        .position(|w| w == b"parents.npy")
+        .expect("parents.npy");
+    let data = &bytes[at + 11 + 128..at + 11 + 128 + 16];
+    let parents: Vec<i64> = data
+        .chunks(8)
+        .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(parents, [-1, 0]);
+}
+
+/// `--tracks` errors are the general path's, with nothing written; BVH output refuses it.
+#[test]
+fn track_choice_errors_are_the_general_paths() {
+    let text = clip(20);
+    for (args, name, want) in [
+        (
+            &["--tracks", "Arm"][..],
+            "out.npz",
+            "\"Arm\" matches no track of SRC",
+        ),
+        (
+            &["--tracks", " , "],
+            "out.csv",
+            "--tracks: expected at least one name",
+        ),
+        (&["--tracks", "Leg"], "out.bvh", "--tracks:"),
+        (&["--velocity"], "out.bvh", "--velocity:"),
+    ] {
+        let [lean, general] = both(&text, args, name);
+        assert_eq!(lean.0, Some(2), "{args:?}: {}", lean.1);
+        assert!(lean.1.contains(want), "{args:?}: {}", lean.1);
+        assert_eq!(lean.2, None, "nothing written");
+        assert_eq!(lean, general, "{args:?}");
+    }
+}
+
 #[test]
 fn errors_are_the_general_paths_and_nothing_is_written() {
     let good = clip(50);

@@ -29,7 +29,8 @@ type JointDone = Result<(DocTrack, Reduced, Option<String>, usize), Error>;
 pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
     let curve = &args.curve;
     let path = lean_bvh_path(&args.input, curve)?;
-    if args.shared_keys
+    if args.input.tracks.is_some()
+        || args.shared_keys
         || args.scale_tolerance.is_some()
         || args.output.precision.is_some()
         || args.position_tolerance.is_some()
@@ -39,7 +40,7 @@ pub fn lean(args: &ReduceArgs, warn: &mut dyn Events) -> Option<Result<(), Error
     let OutputFormat::Doc(format) = keys_format(args, Format::Bvh).ok()? else {
         return None;
     };
-    let (source, clip, warnings) = lean_bvh_clip(path, &args.input)?;
+    let (source, clip, warnings) = lean_bvh_clip(path, &args.input, None)?;
     let joints = resample::track_joints(&clip);
     let positions = joints
         .iter()

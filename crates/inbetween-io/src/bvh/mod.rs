@@ -31,7 +31,8 @@
 //! `Frame Time` by `rate_from_frame_time`.
 //!
 //! - [`read`]: the parser, [`parse`]: text → [`Clip`] and located warnings; [`parse_reader`]:
-//!   the same from a reader in pieces, never holding the text.
+//!   the same from a reader in pieces, never holding the text; [`parse_reader_chosen`]: only
+//!   some joints' values kept ([`chosen`], `interp --tracks`).
 //! - [`resample`]: a clip resampled one joint at a time (`interp`'s lean path).
 //! - [`rate`]: `Frame Time` ↔ an exact [`Fps`](inbetween::Fps).
 //! - [`mod@write`]: [`write()`](write::write) and the streaming `BvhWriter`.
@@ -57,6 +58,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod chosen;
 pub mod document;
 pub mod frames;
 mod hierarchy;
@@ -66,7 +68,7 @@ pub mod read;
 pub mod resample;
 pub mod write;
 
-pub use read::{parse, parse_reader};
+pub use read::{parse, parse_reader, parse_reader_chosen};
 pub use write::write;
 
 pub use crate::clip::{Channel, Clip, Joint};

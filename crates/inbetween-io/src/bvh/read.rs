@@ -11,6 +11,7 @@
 //! `inf`, `1e999`) is an error, never a value. Nesting is handled without recursion, so no
 //! input can exhaust the stack.
 
+use super::chosen::Choose;
 use super::hierarchy::{Parser, Tokens, column_name, found};
 use super::rate::rate_from_frame_time;
 use super::{Clip, Joint};
@@ -198,6 +199,8 @@ struct Rows<'a> {
     source: &'a str,
     joints: &'a [Joint],
     channels: usize,
+    /// The columns whose values are kept ([`super::chosen`]); `None`: all.
+    keep: Option<&'a [bool]>,
     /// The number of the last line read.
     line_no: usize,
     values: Vec<f64>,
@@ -208,17 +211,22 @@ impl Rows<'_> {
     fn line(&mut self, line: &str) -> InputResult<()> {
         self.line_no += 1;
         let (source, line_no, channels) = (self.source, self.line_no, self.channels);
-        let mut n = 0;
+        let (mut n, mut pushed) = (0, 0);
         for cell in line.split_ascii_whitespace() {
             if n == channels {
                 let found = n + 1 + line.split_ascii_whitespace().skip(n + 1).count();
-                self.values.truncate(self.values.len() - n);
+                self.values.truncate(self.values.len() - pushed);
                 return Err(input_err!(
                     "{source}:{line_no}: expected {channels} values (one per channel), found {found}"
                 ));
             }
             match motion_value(cell) {
-                Ok(x) => self.values.push(x),
+                Ok(x) => {
+                    if self.keep.is_none_or(|k| k[n]) {
+                        self.values.push(x);
+                        pushed += 1;
+                    }
+                }
                 Err(parsed) => {
                     let what = if parsed {
                         "a finite number"
@@ -281,10 +289,11 @@ fn finish(head: Head, values: Vec<f64>, source: &str) -> (Clip, Vec<String>) {
 }
 
 /// Room for the rows: `Frames:` as declared, but never more than `body_len` bytes can hold.
-fn values_for(head: &Head, body_len: u64) -> Vec<f64> {
+/// `width` values a row are kept (the chosen joints' columns, or every one).
+fn values_for(head: &Head, body_len: u64, width: usize) -> Vec<f64> {
     let most = body_len / (2 * head.channels as u64) + 1;
     let hint = usize::try_from(head.declared.min(most)).unwrap_or(usize::MAX);
-    Vec::with_capacity(hint.saturating_mul(head.channels))
+    Vec::with_capacity(hint.saturating_mul(width))
 }
 
 /// Parses a BVH file. `source` names it in messages (`clip.bvh`). Returns the clip and the
@@ -314,7 +323,8 @@ pub fn parse(text: &str, source: &str) -> InputResult<(Clip, Vec<String>)> {
         joints: &head.joints,
         channels: head.channels,
         line_no: head.time_line - 1,
-        values: values_for(&head, body.len() as u64),
+        keep: None,
+        values: values_for(&head, body.len() as u64, head.channels),
     };
     for line in body.split('\n') {
         rows.line(line)?;
@@ -334,9 +344,31 @@ const CHUNK: usize = 1 << 20;
 /// forward, which is not always the one [`parse`] reports: [`parse`] needs the whole text as
 /// UTF-8 first, while this reads rows as they come).
 pub fn parse_reader<R: Read>(
+    reader: R,
+    source: &str,
+    len: Option<u64>,
+) -> InputResult<(Clip, Vec<String>)> {
+    read_clip(reader, source, len, None)
+}
+
+/// [`parse_reader`] keeping the motion values of the joints `choose` chooses only
+/// ([`super::chosen`]): every row is read and checked as there (the same errors and
+/// warnings), and `choose`'s error, given the track names once the hierarchy is read, is the
+/// read's.
+pub fn parse_reader_chosen<R: Read>(
+    reader: R,
+    source: &str,
+    len: Option<u64>,
+    choose: Choose,
+) -> InputResult<(Clip, Vec<String>)> {
+    read_clip(reader, source, len, Some(choose))
+}
+
+fn read_clip<R: Read>(
     mut reader: R,
     source: &str,
     len: Option<u64>,
+    choose: Option<Choose>,
 ) -> InputResult<(Clip, Vec<String>)> {
     let cannot = |e: std::io::Error| input_err!("{source}: cannot read: {e}");
     let not_utf8 = |at: usize| {
@@ -380,7 +412,11 @@ pub fn parse_reader<R: Read>(
     let whole = |mut buf: Vec<u8>, more: &mut dyn FnMut(&mut Vec<u8>) -> InputResult<bool>| {
         while more(&mut buf)? {}
         let text = String::from_utf8(buf).map_err(|e| not_utf8(e.utf8_error().valid_up_to()))?;
-        parse(&text, source)
+        let (clip, warnings) = parse(&text, source)?;
+        match choose {
+            Some(choose) => Ok((super::chosen::of_clip(clip, choose)?, warnings)),
+            None => Ok((clip, warnings)),
+        }
     };
     let Some(head_end) = head_end else {
         return whole(buf, &mut more);
@@ -390,12 +426,23 @@ pub fn parse_reader<R: Read>(
         // Whatever is wrong, it is reported as parse reports it.
         _ => return whole(buf, &mut more),
     };
+    let (keep, keep_joint) = match choose {
+        Some(choose) => {
+            let (columns, joints) = super::chosen::columns(&head.joints, choose)?;
+            (Some(columns), Some(joints))
+        }
+        None => (None, None),
+    };
+    let width = keep
+        .as_ref()
+        .map_or(head.channels, |k| k.iter().filter(|&&k| k).count());
     let body_len = len.map_or(CHUNK as u64, |n| n.saturating_sub(head_end as u64));
-    let values = values_for(&head, body_len);
+    let values = values_for(&head, body_len, width);
     let mut rows = Rows {
         source,
         joints: &head.joints,
         channels: head.channels,
+        keep: keep.as_deref(),
         line_no: head.time_line - 1,
         values,
     };
@@ -425,6 +472,10 @@ pub fn parse_reader<R: Read>(
         }
     }
     let values = rows.values;
+    let mut head = head;
+    if let Some(keep_joint) = keep_joint {
+        head.channels = super::chosen::narrow(&mut head.joints, &keep_joint);
+    }
     Ok(finish(head, values, source))
 }
 

@@ -26,6 +26,7 @@
 //!     curve: CurveOptions { scheme: Scheme::Hermite, ..CurveOptions::default() },
 //!     tcb: Tcb::ZERO,
 //!     threads: 2,
+//!     bake: Default::default(),
 //! };
 //! let (frames, warnings) = resample::resample(&clip, "clip.bvh", &opts)?;
 //! assert!(warnings.is_empty());
@@ -63,6 +64,9 @@ pub struct Options {
     pub tcb: Tcb,
     /// Threads sharing the joints; 0 for the machine's available parallelism.
     pub threads: usize,
+    /// How [`bake_tracks`] bakes each joint: angular velocities with the frames, two generating
+    /// threads. [`resample`] ignores it (BVH rows have no velocities; it shares out joints).
+    pub bake: BakeOptions,
 }
 
 /// The indices (in [`Clip::joints`]) of the joints that are tracks: those with rotation or
@@ -308,25 +312,27 @@ pub fn resample(
     Ok((out, warnings))
 }
 
-/// Every joint of `clip` that is a track, in file order, baked at `opts.fps` over `span` into
-/// `sink` (between its `begin_track` and `end_track`; `finish` is the caller's), one joint's
-/// track and curve at a time. Warnings go to `warn`. Errors as [`resample`]'s, or the sink's;
-/// an input error can come after earlier joints were written.
+/// The joints `joints` of `clip` (indices in [`Clip::joints`], each a track: all of
+/// [`track_joints`], or the tracks `--tracks` chose, in file order), baked at `opts.fps` over
+/// `span` into `sink` as `opts.bake` says (between its `begin_track` and `end_track`; `finish`
+/// is the caller's), one joint's track and curve at a time. Warnings go to `warn`. Errors as
+/// [`resample`]'s, or the sink's; an input error can come after earlier joints were written.
 pub fn bake_tracks(
     clip: &Clip,
+    joints: &[usize],
     source: &str,
     opts: &Options,
     span: (f64, f64),
     sink: &mut dyn FrameSink,
     warn: &mut dyn FnMut(&Message),
 ) -> Result<(), Error> {
-    let bake = BakeOptions {
-        velocity: false,
-        parallel: false,
-    };
-    for j in track_joints(clip) {
-        let curve = curve(clip, j, source, opts)?.expect("a track joint");
-        bake_over(&curve, opts.fps, span, bake, sink, warn)?;
+    for &j in joints {
+        let Some(curve) = curve(clip, j, source, opts)? else {
+            return Err(Error::Io(io::Error::other(format!(
+                "internal error: joint {j} is not a track"
+            ))));
+        };
+        bake_over(&curve, opts.fps, span, opts.bake, sink, warn)?;
     }
     Ok(())
 }

@@ -1,8 +1,11 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
+//!
+//! - [`bvh`]: the lean path of a BVH file, read into its motion values and baked one joint at
+//!   a time.
 
-use super::settings::{
-    curve_options, output_format, read_curves_in, tcb_flags, tracks_take_translations,
-};
+mod bvh;
+
+use super::settings::{output_format, read_curves_in, tracks_take_translations};
 use crate::args::{CurveArgs, InterpArgs, SpanArg};
 use crate::events::Events;
 use crate::output::{Output, WriteBehind};
@@ -11,10 +14,8 @@ use glam::{DQuat, DVec3};
 use inbetween::bake::{Sampled, bake_sampled};
 use inbetween::error::num;
 use inbetween::{BakeOptions, Error, Fps, FrameSink, InputError, bake_over};
-use inbetween_io::Format;
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
-use inbetween_io::bvh::resample;
 use inbetween_io::gltf::document::Mode;
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::usd::frames::UsdFrames;
@@ -28,7 +29,7 @@ use std::io::Read;
 /// the frame count (`--max-frames`), and every curve (minaccel's grid cap), so that only I/O can
 /// fail once output has started.
 pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
-    if let Some(done) = lean_bvh(args, warn) {
+    if let Some(done) = bvh::lean(args, warn) {
         return done;
     }
     if crate::amass::writes_amass(args) {
@@ -358,6 +359,16 @@ fn npz_shape(
         .map(|t| t.name().map_or(0, |n| n.chars().count()))
         .max()
         .unwrap_or(0);
+    npz_fits(shape, longest, style.repr.width(), source)?;
+    Ok(shape)
+}
+
+/// Whether an archive of `shape` (the longest track name `longest` characters, `width` rotation
+/// values a frame) can be written: its names within [`MAX_NAMES_BYTES`], the whole within what
+/// a zip without ZIP64 holds; an input error naming `source` otherwise.
+///
+/// [`MAX_NAMES_BYTES`]: inbetween_io::write::npz::MAX_NAMES_BYTES
+fn npz_fits(shape: NpzShape, longest: usize, width: usize, source: &str) -> Result<(), Error> {
     let names = inbetween_io::write::npz::names_size(shape.tracks, longest);
     if names > inbetween_io::write::npz::MAX_NAMES_BYTES {
         return Err(InputError::new(format!(
@@ -369,7 +380,7 @@ fn npz_shape(
         ))
         .into());
     }
-    let size = inbetween_io::write::npz::npz_size(style.repr.width(), shape, longest);
+    let size = inbetween_io::write::npz::npz_size(width, shape, longest);
     if size > inbetween_io::write::zip::MAX_BYTES {
         return Err(InputError::new(format!(
             "{source}: npz output of {} frames × {} tracks would take {size} bytes, more than a \
@@ -380,7 +391,7 @@ fn npz_shape(
         ))
         .into());
     }
-    Ok(shape)
+    Ok(())
 }
 
 /// Warns when an end of the written span `(lo, hi)` is a key (of the track `name` spanning
@@ -408,126 +419,6 @@ fn near_misses(
                 num(fps.time_of(k))
             ));
         }
-    }
-}
-
-/// The lean path for a BVH file resampled as BVH (or CSV/JSON into a file): the file read in
-/// pieces into its motion values only ([`bvh::parse_reader`]), then one joint's track and curve
-/// at a time ([`bvh::resample`]); see docs/performance.md. `None` when it does not apply — an
-/// option it does not handle, or anything wrong with the input, which the general path then
-/// reads again and reports exactly as always (nothing has been written: BVH output is written
-/// after every joint is done, CSV/JSON only into a temporary `-o` file). Its warnings are held
-/// until it is done, so they are given once, in the general path's order.
-fn lean_bvh(args: &InterpArgs, warn: &mut dyn Events) -> Option<Result<(), Error>> {
-    let curve = &args.curve;
-    let path = super::settings::lean_bvh_path(&args.input, curve)?;
-    if args.skeleton.is_some()
-        || args.output.euler_mode() == EulerMode::Wrapped
-        || args.velocity
-        || args.verbose
-        || args.span != SpanArg::Clip
-    {
-        return None;
-    }
-    let format = output_format(&args.output, Format::Bvh);
-    let to_file =
-        args.output.output.as_deref().is_some_and(|p| {
-            p.as_os_str() != "-" && !p.starts_with("/dev") && !p.starts_with("/proc")
-        });
-    match format {
-        OutputFormat::Bvh => {}
-        OutputFormat::Doc(Format::Csv | Format::Json) if to_file => {}
-        _ => return None,
-    }
-    let (source, clip, mut warnings) = super::settings::lean_bvh_clip(path, &args.input)?;
-    let joints = resample::track_joints(&clip);
-    let names: std::collections::HashSet<&str> =
-        joints.iter().map(|&j| clip.joints()[j].name()).collect();
-    if names.len() != joints.len() {
-        return None;
-    }
-    let fps = curve.fps.unwrap_or(clip.fps());
-    let span = resample::span(&clip).filter(|(a, b)| fps.in_range(*a) && fps.in_range(*b))?;
-    let rows = fps
-        .frame_count(span.0, span.1)
-        .saturating_mul(joints.len() as u64);
-    if joints.is_empty() || rows > args.max_frames {
-        return None;
-    }
-    crate::record::note(|s| {
-        s.frames = Some(rows);
-        s.tracks = Some(joints.len());
-    });
-    let mut missed = crate::events::Collected::default();
-    for &j in &joints {
-        near_misses(
-            &source,
-            Some(clip.joints()[j].name()),
-            span,
-            span,
-            fps,
-            &mut missed,
-        );
-    }
-    warnings.extend(missed.warnings);
-    let opts = resample::Options {
-        fps,
-        curve: curve_options(
-            curve,
-            played::scheme(args.scheme, Format::Bvh, None),
-            fps,
-            args.input.angles,
-        ),
-        tcb: tcb_flags(curve),
-        threads: 0,
-    };
-    let reads = super::settings::files_read(&args.input, &[args.skeleton.as_deref()], None);
-    let done = (|| -> Result<Option<()>, Error> {
-        match format {
-            OutputFormat::Bvh => {
-                let (frames, baked) = match resample::resample(&clip, &source, &opts) {
-                    Err(Error::Input(_)) => return Ok(None),
-                    r => r?,
-                };
-                warnings.extend(baked.iter().map(crate::flags::say));
-                let out = WriteBehind::new(crate::output::open_output(
-                    args.output.output.as_deref(),
-                    &reads,
-                )?);
-                frames.write(out, &clip)?.finish()?.commit()?;
-            }
-            OutputFormat::Doc(doc_format) => {
-                let out = WriteBehind::new(crate::output::open_output(
-                    args.output.output.as_deref(),
-                    &reads,
-                )?);
-                let style = super::settings::style(&args.input, &args.output);
-                let w = FrameWriter::new(out, doc_format, style, fps, true, false);
-                let positions = joints
-                    .iter()
-                    .any(|&j| clip.joints()[j].position().is_some());
-                let mut w = if positions { w.with_positions() } else { w };
-                let mut add = |m: &inbetween::error::Message| warnings.push(crate::flags::say(m));
-                match resample::bake_tracks(&clip, &source, &opts, span, &mut w, &mut add) {
-                    Err(Error::Input(_)) => return Ok(None),
-                    r => r?,
-                }
-                w.finish()?;
-                w.into_inner().finish()?.commit()?;
-            }
-            _ => unreachable!("checked above"),
-        }
-        Ok(Some(()))
-    })();
-    match done {
-        Ok(None) => None,
-        Ok(Some(())) => {
-            for w in &warnings {
-                warn.warning(w);
-            }
-            Some(Ok(()))
-        }
-        Err(e) => Some(Err(e)),
     }
 }
 
