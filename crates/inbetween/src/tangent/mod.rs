@@ -7,7 +7,7 @@
 //!
 //! - Interior keys, [`TangentRule::Spline`] (the default): the derivative at the key of the
 //!   not-a-knot cubic spline through the logs of up to seven keys in the key's chart
-//!   ([`spline`]); [`TangentRule::NamKim`]: `w_i = log(q_{i+1} q_{i−1}⁻¹) / (t_{i+1} − t_{i−1})`
+//!   (`tangent/spline.rs`); [`TangentRule::NamKim`]: `w_i = log(q_{i+1} q_{i−1}⁻¹) / (t_{i+1} − t_{i−1})`
 //!   (Nam & Kim's estimate for unit spacing), or `(L⁻ + L⁺)/(t_{i+1} − t_{i−1})` with
 //!   `L⁻ = log(q_i q_{i−1}⁻¹)`, `L⁺ = log(q_{i+1} q_i⁻¹)` when `‖L⁻‖ + ‖L⁺‖ > π`, where the
 //!   direct log would alias to the other way round (possible only with `--path as-given`).
