@@ -1,6 +1,6 @@
 //! `inbetween interp`: keyframes in, every in-between frame out.
 //!
-//! - [`bvh`]: the lean path of a BVH file, read into its motion values and baked one joint at
+//! - `interp/bvh.rs`: the lean path of a BVH file, read into its motion values and baked one joint at
 //!   a time.
 
 mod bvh;
