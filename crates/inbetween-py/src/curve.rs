@@ -120,7 +120,8 @@ impl Curve {
                 ))
             })?,
         };
-        let t = arrays::times(&t, "t")?;
+        let t_view = t.as_array();
+        let t = arrays::times_in_place(&t_view, "t")?;
         if let Some(bad) = t.iter().find(|x| !x.is_finite()) {
             return Err(input_error(format!(
                 "t: expected finite times, found {bad}"
