@@ -18,14 +18,10 @@ pub struct Layout {
     pub joints: Option<usize>,
 }
 
-/// The rows of `a` (named `name`), of shape (K, C) or (K, J, C) with `C = width`.
-fn rows_of<'a>(
-    a: &'a ArrayViewD<'a, f64>,
-    name: &str,
-    width: usize,
-) -> PyResult<(Layout, Vec<ArrayViewD<'a, f64>>)> {
+/// The layout of `a` (named `name`), of shape (K, C) or (K, J, C) with `C = width`.
+pub fn layout_of(a: &ArrayViewD<'_, f64>, name: &str, width: usize) -> PyResult<Layout> {
     let shape = a.shape();
-    let layout = match *shape {
+    Ok(match *shape {
         [k, c] if c == width => Layout {
             rows: k,
             joints: None,
@@ -39,7 +35,16 @@ fn rows_of<'a>(
                 "{name}: expected shape (K, {width}) or (K, J, {width}), found {shape:?}"
             )));
         }
-    };
+    })
+}
+
+/// The rows of `a` (named `name`), of shape (K, C) or (K, J, C) with `C = width`.
+fn rows_of<'a>(
+    a: &'a ArrayViewD<'a, f64>,
+    name: &str,
+    width: usize,
+) -> PyResult<(Layout, Vec<ArrayViewD<'a, f64>>)> {
+    let layout = layout_of(a, name, width)?;
     let joints = match layout.joints {
         None => vec![a.view()],
         Some(_) => a.axis_iter(Axis(1)).collect(),
@@ -68,20 +73,9 @@ pub fn quats(
     for (j, rows) in joints.iter().enumerate() {
         let mut out = Vec::with_capacity(layout.rows);
         for (k, r) in rows.axis_iter(Axis(0)).enumerate() {
-            let wxyz = match scalar_first {
-                true => [r[0], r[1], r[2], r[3]],
-                false => [r[3], r[0], r[1], r[2]],
-            };
-            let given = DQuat::from_xyzw(wxyz[1], wxyz[2], wxyz[3], wxyz[0]);
-            // Unit to f64's working precision (a clip `read` gave): taken as it is, so that it
-            // is written back to the bit; anything else normalised by the readers' rule.
-            if (given.length() - 1.0).abs() <= 1e-12 {
-                out.push(given);
-                continue;
-            }
-            let (q, warning) = Repr::Quat
-                .to_quat(&wxyz, AngleUnit::Rad)
-                .map_err(|e| input_error(format!("{}: {}", place(k, j), e.message())))?;
+            let r = [r[0], r[1], r[2], r[3]];
+            let (q, warning) = read_quat(&r, scalar_first)
+                .map_err(|e| input_error(format!("{}: {e}", place(k, j))))?;
             if let Some(w) = warning {
                 match &mut warned {
                     None => warned = Some((format!("{}: {w}", place(k, j)), 0)),
@@ -93,19 +87,7 @@ pub fn quats(
         per_joint.push(out);
     }
     if let Some((first, others)) = warned {
-        let text = match others {
-            0 => first,
-            n => format!("{first} (and {n} other rows)"),
-        };
-        Python::attach(|py| {
-            let message = std::ffi::CString::new(text).unwrap_or_default();
-            PyErr::warn(
-                py,
-                &py.get_type::<pyo3::exceptions::PyUserWarning>(),
-                &message,
-                2,
-            )
-        })?;
+        warn_rows(first, others)?;
     }
     Ok((layout, per_joint))
 }
@@ -148,25 +130,6 @@ pub fn vectors(
         .collect())
 }
 
-/// The first non-finite value of per-joint vectors from [`vectors`], as an error naming its
-/// row (`name[k]`, or `name[k, j]` for (K, J, 3)).
-pub fn finite(v: &[Vec<DVec3>], name: &str, layout: Layout) -> PyResult<()> {
-    for (j, rows) in v.iter().enumerate() {
-        for (k, r) in rows.iter().enumerate() {
-            if let Some(bad) = r.to_array().into_iter().find(|x| !x.is_finite()) {
-                let place = match layout.joints {
-                    None => format!("{name}[{k}]"),
-                    Some(_) => format!("{name}[{k}, {j}]"),
-                };
-                return Err(input_error(format!(
-                    "{place}: expected a finite number, found {bad}"
-                )));
-            }
-        }
-    }
-    Ok(())
-}
-
 /// One vector (3,) for every joint, or one per joint (J, 3).
 pub fn end_vectors(
     a: &PyReadonlyArrayDyn<'_, f64>,
@@ -202,30 +165,6 @@ pub fn times(a: &PyReadonlyArrayDyn<'_, f64>, name: &str) -> PyResult<Vec<f64>> 
     }
 }
 
-/// A C-contiguous float64 array of shape (N, C) or (N, J, C) from per-joint rows of `C`
-/// numbers each (`per_joint[j][n]`), written once in its final layout.
-pub fn output<'py, const C: usize>(
-    py: Python<'py>,
-    per_joint: &[Vec<[f64; C]>],
-    joints: Option<usize>,
-) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
-    let n = per_joint.first().map_or(0, Vec::len);
-    let j = per_joint.len();
-    let mut data = Vec::with_capacity(n * j * C);
-    for row in 0..n {
-        for joint in per_joint {
-            data.extend_from_slice(&joint[row]);
-        }
-    }
-    let shape: Vec<usize> = match joints {
-        None => vec![n, C],
-        Some(_) => vec![n, j, C],
-    };
-    let array = numpy::ndarray::ArrayD::from_shape_vec(IxDyn(&shape), data)
-        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    Ok(array.into_pyarray(py))
-}
-
 /// A C-contiguous float64 array of shape (N, C) or (N, J, C) from its data, already in that
 /// layout (`data.len() = N·J·C`, J = 1 for `joints = None`), without a copy.
 pub fn output_flat<'py>(
@@ -250,5 +189,193 @@ pub fn quat_row(q: DQuat, scalar_first: bool) -> [f64; 4] {
     match scalar_first {
         true => [q.w, q.x, q.y, q.z],
         false => [q.x, q.y, q.z, q.w],
+    }
+}
+
+/// One quaternion row (4 numbers in the caller's order) as [`quats`] takes it: unit to f64's
+/// working precision as it is, anything else by the readers' rule (the rotation and its
+/// warning, or the error's message).
+#[inline]
+fn read_quat(r: &[f64], scalar_first: bool) -> Result<(DQuat, Option<String>), String> {
+    let wxyz = match scalar_first {
+        true => [r[0], r[1], r[2], r[3]],
+        false => [r[3], r[0], r[1], r[2]],
+    };
+    let given = DQuat::from_xyzw(wxyz[1], wxyz[2], wxyz[3], wxyz[0]);
+    if (given.length() - 1.0).abs() <= 1e-12 {
+        return Ok((given, None));
+    }
+    Repr::Quat
+        .to_quat(&wxyz, AngleUnit::Rad)
+        .map_err(|e| e.message().to_string())
+}
+
+/// Rows of `width` numbers (K, C) or (K, J, C) read in place: C-contiguous `data`, row `(k, j)`
+/// at `(k·J + j)·C` (J = 1 for (K, C)).
+#[derive(Clone, Copy)]
+pub struct Flat<'a> {
+    pub data: &'a [f64],
+    pub layout: Layout,
+    pub width: usize,
+}
+
+impl Flat<'_> {
+    /// The number of joints (1 for (K, C)).
+    pub fn joints(&self) -> usize {
+        self.layout.joints.unwrap_or(1)
+    }
+
+    /// Row `k` of joint `j`.
+    #[inline]
+    pub fn row(&self, k: usize, j: usize) -> &[f64] {
+        let at = (k * self.joints() + j) * self.width;
+        &self.data[at..at + self.width]
+    }
+
+    /// `name[k]` or `name[k, j]`, the place of a row in a message.
+    fn place(&self, name: &str, k: usize, j: usize) -> String {
+        match self.layout.joints {
+            None => format!("{name}[{k}]"),
+            Some(_) => format!("{name}[{k}, {j}]"),
+        }
+    }
+
+    /// The first (in joint order, then row order) row for which `bad` is true, as `(j, k)`,
+    /// scanning the rows in memory order on the cores.
+    fn first(&self, bad: impl Fn(&[f64]) -> bool + Sync) -> Option<(usize, usize)> {
+        let joints = self.joints();
+        let chunk = (1 << 16) * self.width;
+        let chunks: Vec<(usize, &[f64])> = self.data.chunks(chunk).enumerate().collect();
+        let found = inbetween::parallel::map(&chunks, |&(c, data)| {
+            let mut first: Option<(usize, usize)> = None;
+            for (i, r) in data.chunks_exact(self.width).enumerate() {
+                if bad(r) {
+                    let i = c * (chunk / self.width) + i;
+                    let at = (i % joints, i / joints);
+                    first = Some(first.map_or(at, |f| f.min(at)));
+                }
+            }
+            first
+        });
+        found.into_iter().flatten().min()
+    }
+}
+
+/// `a`'s numbers in C order: the array's own memory when it is C-contiguous, else a copy.
+pub fn standard<'a>(a: &'a ArrayViewD<'a, f64>) -> std::borrow::Cow<'a, [f64]> {
+    match a.as_slice() {
+        Some(s) => std::borrow::Cow::Borrowed(s),
+        None => std::borrow::Cow::Owned(a.iter().copied().collect()),
+    }
+}
+
+/// [`quats`]' checks on quaternions `q` read in place, without the GIL but for the warning:
+/// the first row refused (in joint order) is the error, else the first row normalised is the
+/// warning, with the count of the others.
+pub fn check_quats(py: Python<'_>, q: Flat<'_>, name: &str, scalar_first: bool) -> PyResult<()> {
+    let (refused, normalised) = py.detach(|| {
+        let refused = q.first(|r| read_quat(r, scalar_first).is_err());
+        let normalised = match refused {
+            Some(_) => None,
+            None => {
+                let warned = |r: &[f64]| matches!(read_quat(r, scalar_first), Ok((_, Some(_))));
+                q.first(warned).map(|first| {
+                    let count = q.data.chunks_exact(q.width).filter(|r| warned(r)).count();
+                    (first, count)
+                })
+            }
+        };
+        (refused, normalised)
+    });
+    if let Some((j, k)) = refused {
+        let e = read_quat(q.row(k, j), scalar_first)
+            .err()
+            .unwrap_or_default();
+        return Err(input_error(format!("{}: {e}", q.place(name, k, j))));
+    }
+    if let Some(((j, k), count)) = normalised {
+        let w = match read_quat(q.row(k, j), scalar_first) {
+            Ok((_, Some(w))) => w,
+            _ => String::new(),
+        };
+        warn_rows(format!("{}: {w}", q.place(name, k, j)), count - 1)?;
+    }
+    Ok(())
+}
+
+/// Joint `j`'s quaternions of `q` (checked by [`check_quats`]), normalised as [`quats`] does.
+pub fn joint_quats(q: Flat<'_>, j: usize, scalar_first: bool) -> Result<Vec<DQuat>, String> {
+    (0..q.layout.rows)
+        .map(|k| read_quat(q.row(k, j), scalar_first).map(|(q, _)| q))
+        .collect()
+}
+
+/// [`vectors`]' shape check and [`finite`]'s check on vectors read in place.
+pub fn check_vectors(
+    a: &ArrayViewD<'_, f64>,
+    v: Flat<'_>,
+    name: &str,
+    like_name: &str,
+) -> PyResult<()> {
+    let layout = layout_of(a, name, 3)?;
+    let like = v.layout;
+    if layout != like {
+        return Err(input_error(format!(
+            "{name}: shape {:?} does not match {like_name}: expected {}",
+            a.shape(),
+            match like.joints {
+                None => format!("({}, 3)", like.rows),
+                Some(j) => format!("({}, {j}, 3)", like.rows),
+            }
+        )));
+    }
+    if let Some((j, k)) = v.first(|r| r.iter().any(|x| !x.is_finite())) {
+        let bad = v.row(k, j).iter().copied().find(|x| !x.is_finite());
+        return Err(input_error(format!(
+            "{}: expected a finite number, found {}",
+            v.place(name, k, j),
+            bad.unwrap_or(f64::NAN)
+        )));
+    }
+    Ok(())
+}
+
+/// Joint `j`'s vectors of `v`.
+pub fn joint_vectors(v: Flat<'_>, j: usize) -> Vec<DVec3> {
+    (0..v.layout.rows)
+        .map(|k| {
+            let r = v.row(k, j);
+            DVec3::new(r[0], r[1], r[2])
+        })
+        .collect()
+}
+
+/// One Python `UserWarning`: `first`, and the count of the other rows.
+fn warn_rows(first: String, others: usize) -> PyResult<()> {
+    let text = match others {
+        0 => first,
+        n => format!("{first} (and {n} other rows)"),
+    };
+    Python::attach(|py| {
+        let message = std::ffi::CString::new(text).unwrap_or_default();
+        PyErr::warn(
+            py,
+            &py.get_type::<pyo3::exceptions::PyUserWarning>(),
+            &message,
+            2,
+        )
+    })
+}
+
+/// Times (N,) from a 1-d array, read in place when it is contiguous.
+pub fn times_in_place<'a>(
+    view: &'a ArrayViewD<'a, f64>,
+    name: &str,
+) -> PyResult<std::borrow::Cow<'a, [f64]>> {
+    match view.shape() {
+        [_] => Ok(standard(view)),
+        shape => Err(input_error(format!(
+            "{name}: expected a 1-d array of seconds, found shape {shape:?}"
+        ))),
     }
 }

@@ -120,24 +120,29 @@ impl Curve {
                 ))
             })?,
         };
-        let t = arrays::times(&t, "t")?;
-        if let Some(bad) = t.iter().find(|x| !x.is_finite()) {
-            return Err(input_error(format!(
-                "t: expected finite times, found {bad}"
-            )));
-        }
-        if let (false, Some(c)) = (hold, self.curves.first()) {
-            let (lo, hi) = c.span();
-            if let Some((i, x)) = t
-                .iter()
+        let t_view = t.as_array();
+        let t = arrays::times_in_place(&t_view, "t")?;
+        // The checks without the GIL: a non-finite time, else one outside the span.
+        let span = (!hold)
+            .then(|| self.curves.first().map(inbetween::Curve::span))
+            .flatten();
+        let refused = py.detach(|| {
+            if let Some(bad) = t.iter().find(|x| !x.is_finite()) {
+                return Some(format!("t: expected finite times, found {bad}"));
+            }
+            let (lo, hi) = span?;
+            t.iter()
                 .enumerate()
                 .find(|&(_, &x)| x < lo - 1e-9 || x > hi + 1e-9)
-            {
-                return Err(input_error(format!(
-                    "t[{i}]: {x} s is outside the keys' span [{lo}, {hi}] s; outside=\"hold\" \
-                     holds the end keys there"
-                )));
-            }
+                .map(|(i, x)| {
+                    format!(
+                        "t[{i}]: {x} s is outside the keys' span [{lo}, {hi}] s; \
+                         outside=\"hold\" holds the end keys there"
+                    )
+                })
+        });
+        if let Some(message) = refused {
+            return Err(input_error(message));
         }
         let joints = self.layout.joints;
         let sf = self.scalar_first;
@@ -145,9 +150,7 @@ impl Curve {
         match order {
             0 => {
                 let data = py.detach(|| {
-                    evaluate::<4>(curves, &t, |c, t, out| {
-                        let mut q = [glam::DQuat::IDENTITY; SUB];
-                        let q = &mut q[..t.len()];
+                    evaluate::<4>(curves, &t, |c, t, q, out| {
                         c.rotations(t, q);
                         for (row, &q) in out.iter_mut().zip(q.iter()) {
                             *row = quat_row(q, sf);
@@ -158,7 +161,7 @@ impl Curve {
             }
             1 => {
                 let data = py.detach(|| {
-                    evaluate::<3>(curves, &t, |c, t, out| {
+                    evaluate::<3>(curves, &t, |c, t, _, out| {
                         for (row, &x) in out.iter_mut().zip(t) {
                             *row = in_frame(c, x, c.angular_velocity(x), body);
                         }
@@ -169,7 +172,7 @@ impl Curve {
             // 2, the last of the range `integer` let through.
             _ => {
                 let data = py.detach(|| {
-                    evaluate::<3>(curves, &t, |c, t, out| {
+                    evaluate::<3>(curves, &t, |c, t, _, out| {
                         for (row, &x) in out.iter_mut().zip(t) {
                             *row = in_frame(c, x, c.angular_acceleration(x), body);
                         }
@@ -322,13 +325,14 @@ const PIECE: usize = 16_384;
 /// Times handed to `f` at once (a buffer on the stack).
 const SUB: usize = 256;
 
-/// `f(curve, times, rows)` for every curve and run of at most [`SUB`] times, writing the rows
+/// `f(curve, times, scratch, rows)` for every curve and run of at most [`SUB`] times (`scratch`
+/// a buffer of as many quaternions), writing the rows
 /// of `C` numbers straight into the (N, J, C) layout: the pieces of consecutive times (each a
 /// contiguous stretch of the output, every joint of those times) shared among the cores.
 fn evaluate<const C: usize>(
     curves: &[inbetween::Curve],
     t: &[f64],
-    f: impl Fn(&inbetween::Curve, &[f64], &mut [[f64; C]]) + Sync,
+    f: impl Fn(&inbetween::Curve, &[f64], &mut [glam::DQuat], &mut [[f64; C]]) + Sync,
 ) -> Vec<f64> {
     let joints = curves.len();
     let mut data = vec![0.0; t.len() * joints * C];
@@ -344,11 +348,20 @@ fn evaluate<const C: usize>(
     inbetween::parallel::map(&pieces, |piece| {
         let mut piece = piece.lock().unwrap_or_else(|e| e.into_inner());
         let (times, out) = &mut *piece;
+        // Buffers filled once a piece, not once a run.
+        let mut scratch = [glam::DQuat::IDENTITY; SUB];
         let mut rows = [[0.0; C]; SUB];
         for (s, sub) in times.chunks(SUB).enumerate() {
+            if joints == 1 {
+                // One joint: the rows are contiguous in the output, written there.
+                let at = s * SUB * C;
+                let (rows, _) = out[at..at + sub.len() * C].as_chunks_mut::<C>();
+                f(&curves[0], sub, &mut scratch[..sub.len()], rows);
+                continue;
+            }
             for (j, c) in curves.iter().enumerate() {
                 let rows = &mut rows[..sub.len()];
-                f(c, sub, rows);
+                f(c, sub, &mut scratch[..sub.len()], rows);
                 for (r, row) in rows.iter().enumerate() {
                     let at = ((s * SUB + r) * joints + j) * C;
                     out[at..at + C].copy_from_slice(row);
