@@ -482,7 +482,7 @@ pub struct CurveArgs {
     pub ends: EndsArg,
 
     /// Tangent of an interior key without its own velocity or TCB values: spline (the slope of
-    /// the not-a-knot cubic spline through the seven keys around it, limited against overshoot;
+    /// the not-a-knot cubic spline through the seven keys around it, kept near nam-kim's;
     /// fourth order) or nam-kim (log(q₊ q₋⁻¹) over the two intervals; second order). Default:
     /// nam-kim for hermite, spline for the others.
     #[cfg_attr(feature = "clap", arg(long, value_enum))]
