@@ -162,11 +162,12 @@ impl<'a> Windows<'a> {
 
     /// Nam & Kim's tangent at key `i` between the segments `[before, after]`:
     /// `log(q_{i+1} q_{i−1}⁻¹)/(t_{i+1} − t_{i−1})`, or the sum of the two chords over that span
-    /// where they turn more than π together.
+    /// where they turn π − 10⁻⁹ or more together.
     fn nam_kim(&self, i: usize, [before, after]: [usize; 2]) -> DVec3 {
         let span = (self.times[before + 1] - self.times[before])
             + (self.times[after + 1] - self.times[after]);
-        if self.lengths[before] + self.lengths[after] > std::f64::consts::PI {
+        // The alias rule from π − TIE: at π the chords compose to a half-turn without an axis.
+        if self.lengths[before] + self.lengths[after] > std::f64::consts::PI - TIE {
             (self.chords[before] + self.chords[after]) / span
         } else if !self.far.is_empty() {
             // log(q_{i+1} q_{i−1}⁻¹), already taken for the window of key i − 1.
