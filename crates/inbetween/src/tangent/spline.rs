@@ -21,6 +21,11 @@
 //! middle key), and the limit keeps it pointing Nam & Kim's way, within ½ and 1½ of its length
 //! (128.6°/s there, Nam & Kim 85.7°/s).
 //!
+//! A key whose two neighbouring chords turn a half-turn or more together (`‖L_{i−1}‖ + ‖L_i‖ ≥
+//! π − 10⁻⁹`: spins of `--path euler`, long steps of `--path as-given`) takes Nam & Kim's tangent
+//! instead: after a 720° spin then a hold the spline's slope (2π/3 rad/s against π) pushed the
+//! Bézier's middle leg past a half-turn and the curve jumped 45° in a frame.
+//!
 //! Near an end the window is cut to the keys there are (one-sided: the second key's is keys
 //! 0‥4); with three keys the spline is the parabola through them, with four the cubic. A loop
 //! (`Ends::Cyclic`) wraps the window around its seam.
@@ -105,6 +110,12 @@ impl<'a> Windows<'a> {
     pub(super) fn tangent(&self, i: usize) -> DVec3 {
         let n = self.quats.len();
         let segments = n - 1;
+        // Neighbouring chords that turn a half-turn or more together (spins, as-given steps):
+        // Nam & Kim's tangent; the spline through wrapping logs does no better there.
+        let beside = [wrap(i + segments - 1, segments), i];
+        if self.lengths[beside[0]] + self.lengths[beside[1]] >= std::f64::consts::PI - TIE {
+            return self.nam_kim(i, beside);
+        }
         // The window at positions `REACH − left ..= REACH + right`, key i at `REACH`: `y` the
         // points, `h[p]` the spacing from position p to p + 1.
         let (mut h, mut y) = ([0.0; 2 * REACH], [DVec3::ZERO; 2 * REACH + 1]);
@@ -154,7 +165,7 @@ impl<'a> Windows<'a> {
             left,
         );
         // The limit: within half its length of Nam & Kim's tangent.
-        let nk = self.nam_kim(i, [wrap(i + segments - 1, segments), i]);
+        let nk = self.nam_kim(i, beside);
         let (c, room) = (w - nk, 0.5 * nk.length());
         let off = c.length();
         if off > room { nk + c * (room / off) } else { w }
@@ -167,7 +178,7 @@ impl<'a> Windows<'a> {
         let span = (self.times[before + 1] - self.times[before])
             + (self.times[after + 1] - self.times[after]);
         // The alias rule from π − TIE: at π the chords compose to a half-turn without an axis.
-        if self.lengths[before] + self.lengths[after] > std::f64::consts::PI - TIE {
+        if self.lengths[before] + self.lengths[after] >= std::f64::consts::PI - TIE {
             (self.chords[before] + self.chords[after]) / span
         } else if !self.far.is_empty() {
             // log(q_{i+1} q_{i−1}⁻¹), already taken for the window of key i − 1.
@@ -304,6 +315,33 @@ mod tests {
                 "{rule}: {deg_per_s}"
             );
         }
+    }
+
+    /// A 720° spin about z in one second, then held (found by an adversarial pass): the key at
+    /// the end of the spin takes Nam & Kim's tangent, (2π + 0)/2 s in half angles.
+    #[test]
+    fn a_spin_then_a_hold_keeps_nam_and_kims_tangent() {
+        let seq = crate::EulerSeq::parse("ZYX").expect("a sequence");
+        let angles: Vec<DVec3> = [0.0f64, 720.0, 720.0, 720.0]
+            .iter()
+            .map(|a| DVec3::new(a.to_radians(), 0.0, 0.0))
+            .collect();
+        let q = angles.iter().map(|e| seq.to_quat(e.to_array())).collect();
+        let track = Track::new(vec![0.0, 1.0, 2.0, 3.0], q)
+            .and_then(|t| t.with_euler_angles(seq, angles))
+            .expect("a valid track");
+        let k = Knots::shaped(
+            &track,
+            PathMode::Euler,
+            EndConditions::default(),
+            Tcb::ZERO,
+            TangentRule::Spline,
+        );
+        assert!(
+            (k.w[1] - DVec3::Z * std::f64::consts::PI).length() < 1e-12,
+            "{}",
+            k.w[1]
+        );
     }
 
     /// A steady 10°/s, then one key 10° on in 1/30 s (found by an adversarial pass): the
