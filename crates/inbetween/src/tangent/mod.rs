@@ -296,12 +296,11 @@ impl Knots {
         let mut w_in = vec![DVec3::ZERO; n];
         let mut shaped = vec![false; n];
         let cyclic = ends.ends == Ends::Cyclic;
-        let lengths: Vec<f64> = all.iter().map(|c| c.length()).collect();
         // The windows, where a key will take its tangent from one.
         let estimated = |i: usize| velocity(i).is_none() && key_tcb(i).is_zero();
         let needed = (1..n - 1).any(estimated) || (cyclic && estimated(0) && estimated(n - 1));
         let windows = (rule == TangentRule::Spline && needed)
-            .then(|| spline::Windows::new(t, &quats, &all, &lengths, cyclic));
+            .then(|| spline::Windows::new(t, &quats, &all, cyclic));
         for i in 1..n - 1 {
             let (lm, lp) = (all[i - 1], all[i]);
             let span = t[i + 1] - t[i - 1];

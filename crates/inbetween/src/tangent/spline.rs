@@ -43,26 +43,26 @@ const TIE: f64 = 1e-9;
 /// What the windows are cut from: a track's times, its quaternions after the path rule, and
 /// its chords (with their lengths).
 pub(super) struct Windows<'a> {
-    pub(super) times: &'a [f64],
-    pub(super) quats: &'a [DQuat],
-    pub(super) chords: &'a [DVec3],
-    pub(super) lengths: &'a [f64],
+    times: &'a [f64],
+    quats: &'a [DQuat],
+    chords: &'a [DVec3],
+    lengths: Vec<f64>,
     /// The last key is the first key's rotation and the window wraps around the seam.
-    pub(super) cyclic: bool,
+    cyclic: bool,
     /// `far[s] = [log(q_{s+2} q_s⁻¹), log(q_{s+3} q_s⁻¹)]` (where those keys exist), each log
     /// shared by the two keys it joins; empty for a loop, whose windows take their own.
     far: Vec<[DVec3; 2]>,
 }
 
 impl<'a> Windows<'a> {
-    /// The windows of a track (`chords[s]` and `lengths[s]` of segment `s`).
+    /// The windows of a track (`chords[s]` of segment `s`).
     pub(super) fn new(
         times: &'a [f64],
         quats: &'a [DQuat],
         chords: &'a [DVec3],
-        lengths: &'a [f64],
         cyclic: bool,
     ) -> Windows<'a> {
+        let lengths = chords.iter().map(|c| c.length()).collect();
         let n = quats.len();
         let far = if cyclic {
             Vec::new()
