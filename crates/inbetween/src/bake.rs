@@ -253,13 +253,73 @@ fn grid_frames(
 /// One generated frame: number, time, rotation, angular velocity.
 type Frame = (i64, f64, DQuat, Option<DVec3>);
 
-/// Generates the frames of one segment into `emit`; warnings about it go to `warn`.
+/// Where frames go on their way to `emit`: frames of segments holding fewer than four wait here
+/// until four of them fill a block of lanes ([`Segment::gather`]), and the frames after them
+/// wait behind them, so that `emit` sees every frame in order. [`Queue::flush`] at the end.
+struct Queue<S: Segment> {
+    /// Frames in order; a pending one's rotation is filled in when its block is done.
+    frames: Vec<Frame>,
+    /// The pending frames: their place in `frames` and their lanes.
+    pending: Vec<(usize, S::Pending)>,
+}
+
+impl<S: Segment> Queue<S> {
+    fn new() -> Self {
+        Queue {
+            frames: Vec::new(),
+            pending: Vec::with_capacity(4),
+        }
+    }
+
+    /// A finished frame: to `emit` now, or behind the pending frames before it.
+    fn ready(&mut self, f: Frame, emit: &mut dyn FnMut(Frame) -> io::Result<()>) -> io::Result<()> {
+        if self.pending.is_empty() {
+            emit(f)
+        } else {
+            self.frames.push(f);
+            Ok(())
+        }
+    }
+
+    /// A frame up to its last blends; the block is done when it holds four.
+    fn pending(
+        &mut self,
+        f: Frame,
+        lane: S::Pending,
+        emit: &mut dyn FnMut(Frame) -> io::Result<()>,
+    ) -> io::Result<()> {
+        self.pending.push((self.frames.len(), lane));
+        self.frames.push(f);
+        if self.pending.len() == 4 {
+            self.flush(emit)
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Every waiting frame to `emit` (a block not full is filled with copies of its first lane).
+    fn flush(&mut self, emit: &mut dyn FnMut(Frame) -> io::Result<()>) -> io::Result<()> {
+        if let Some(&(_, first)) = self.pending.first() {
+            let lanes = std::array::from_fn(|i| self.pending.get(i).map_or(first, |p| p.1));
+            let q = S::finish4(&lanes);
+            for (i, &(at, _)) in self.pending.iter().enumerate() {
+                self.frames[at].2 = q[i];
+            }
+            self.pending.clear();
+        }
+        self.frames.drain(..).try_for_each(emit)
+    }
+}
+
+/// Generates the frames of one segment into `emit` (through `queue`); warnings about it go to
+/// `warn`.
 fn segment_frames<S: Segment>(
     curve: &Curve,
     fps: Fps,
     velocity: bool,
     p: PieceFrames,
     warn: &mut dyn FnMut(&Message),
+    queue: &mut Queue<S>,
     emit: &mut dyn FnMut(Frame) -> io::Result<()>,
 ) -> io::Result<()> {
     let keys = curve.knots();
@@ -293,26 +353,39 @@ fn segment_frames<S: Segment>(
         ]);
     }
     let delta = t1 - t0;
-    let h = step_in(keys, s);
+    let h = if velocity { step_in(keys, s) } else { 0.0 };
     let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta, h));
     let mut k = p.from;
     if p.snap_start {
-        emit((k, fps.time_of(k), keys.quats[s], omega(0.0)))?;
+        queue.ready((k, fps.time_of(k), keys.quats[s], omega(0.0)), emit)?;
         k += 1;
     }
     let stop = if p.snap_end { p.to - 1 } else { p.to };
     if stop > k {
         let u0 = (fps.time_of(k) - t0) / delta;
         let du = period / delta;
-        for (j, q) in seg.frames(u0, du).take((stop - k) as usize).enumerate() {
-            let kj = k + j as i64;
-            let w = omega((fps.time_of(kj) - t0) / delta);
-            emit((kj, fps.time_of(kj), q, w))?;
+        let count = (stop - k) as usize;
+        match (count < 4).then(|| seg.gather(u0, du, count)).flatten() {
+            Some(lanes) => {
+                for (j, &lane) in lanes[..count].iter().enumerate() {
+                    let kj = k + j as i64;
+                    let w = omega((fps.time_of(kj) - t0) / delta);
+                    queue.pending((kj, fps.time_of(kj), DQuat::IDENTITY, w), lane, emit)?;
+                }
+            }
+            None => {
+                queue.flush(emit)?;
+                for (j, q) in seg.frames(u0, du).take(count).enumerate() {
+                    let kj = k + j as i64;
+                    let w = omega((fps.time_of(kj) - t0) / delta);
+                    emit((kj, fps.time_of(kj), q, w))?;
+                }
+            }
         }
         k = stop;
     }
     if p.snap_end {
-        emit((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)))?;
+        queue.ready((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)), emit)?;
     }
     Ok(())
 }
@@ -342,10 +415,11 @@ fn track_frames<S: Segment>(
         && plans.len() >= 2
         && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
     if !parallel {
+        let mut queue = Queue::<S>::new();
         for &p in &plans {
-            segment_frames::<S>(curve, fps, velocity, p, warn, &mut to_sink)?;
+            segment_frames::<S>(curve, fps, velocity, p, warn, &mut queue, &mut to_sink)?;
         }
-        return Ok(());
+        return queue.flush(&mut to_sink);
     }
     // Chunks of consecutive segments of about CHUNK_FRAMES frames.
     let mut chunks = Vec::new();
@@ -364,6 +438,11 @@ fn track_frames<S: Segment>(
             for c in chunks.iter().skip(1).step_by(2) {
                 let mut frames = Vec::with_capacity(CHUNK_FRAMES as usize + 4096);
                 let mut notes = Vec::new();
+                let mut queue = Queue::<S>::new();
+                let mut push = |f| {
+                    frames.push(f);
+                    Ok(())
+                };
                 for &p in &plans[c.clone()] {
                     let _ = segment_frames::<S>(
                         curve,
@@ -371,12 +450,11 @@ fn track_frames<S: Segment>(
                         velocity,
                         p,
                         &mut |m| notes.push(m.clone()),
-                        &mut |f| {
-                            frames.push(f);
-                            Ok(())
-                        },
+                        &mut queue,
+                        &mut push,
                     );
                 }
+                let _ = queue.flush(&mut push);
                 if tx.send((frames, notes)).is_err() {
                     return;
                 }
@@ -384,9 +462,11 @@ fn track_frames<S: Segment>(
         });
         for (i, c) in chunks.iter().enumerate() {
             if i % 2 == 0 {
+                let mut queue = Queue::<S>::new();
                 for &p in &plans[c.clone()] {
-                    segment_frames::<S>(curve, fps, velocity, p, warn, &mut to_sink)?;
+                    segment_frames::<S>(curve, fps, velocity, p, warn, &mut queue, &mut to_sink)?;
                 }
+                queue.flush(&mut to_sink)?;
             } else {
                 let (frames, notes) = rx
                     .recv()

@@ -4,9 +4,10 @@
 //! `geodesic(a, b, f) = cos(fΩ)·a + sin(fΩ)/sin Ω·(b − (a·b)·a)`, `Ω = atan2(|b − (a·b)a|, a·b)`
 //! ([`crate::rotation::quat::geodesic`]), and their `atan2` and `sin_cos` are most of a frame's
 //! cost. Here four blends run as SIMD lanes (`wide::f64x4`, whose `atan2` and `sin_cos` are Agner
-//! Fog's vector-class-library polynomials, about 1 ulp), in structure-of-arrays form. A block in
-//! which any pair is degenerate (`|b − (a·b)a| < 1e-300`: identical or antipodal points) is done
-//! by the scalar function, which handles those cases. The two agree to a few ulp (test below).
+//! Fog's vector-class-library polynomials, about 1 ulp), in structure-of-arrays form. A lane
+//! whose pair is degenerate (`|b − (a·b)a| < 1e-300`: identical or antipodal points) is done by
+//! the scalar function, which handles those cases; the two agree to a few ulp (test below). No
+//! lane's result depends on the other lanes of its block.
 
 use crate::rotation::arc::Arc;
 use crate::rotation::quat::geodesic;
@@ -103,20 +104,28 @@ pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
     let d = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
     let (pw, px, py, pz) = (b.w - d * a.w, b.x - d * a.x, b.y - d * a.y, b.z - d * a.z);
     let s = (pw * pw + px * px + py * py + pz * pz).sqrt();
-    if s.to_array().iter().any(|&v| v.is_nan() || v < 1e-300) {
-        let (qa, qb, fs) = (a.to_quats(), b.to_quats(), f.to_array());
-        let out: [DQuat; 4] = std::array::from_fn(|i| geodesic(qa[i], qb[i], fs[i]));
-        return Quat4::from_quats(&out);
-    }
     let omega = s.atan2(d);
     let (sn, cs) = (f * omega).sin_cos();
     let k = sn / s;
-    Quat4 {
+    let out = Quat4 {
         w: a.w * cs + pw * k,
         x: a.x * cs + px * k,
         y: a.y * cs + py * k,
         z: a.z * cs + pz * k,
+    };
+    let degenerate = s.to_array().map(|v| v.is_nan() || v < 1e-300);
+    if !degenerate.contains(&true) {
+        return out;
     }
+    // Each degenerate lane by the scalar blend; the others keep their own lane's result, so a
+    // lane never depends on what shares its block.
+    let (qa, qb, fs, mut q) = (a.to_quats(), b.to_quats(), f.to_array(), out.to_quats());
+    for i in 0..4 {
+        if degenerate[i] {
+            q[i] = geodesic(qa[i], qb[i], fs[i]);
+        }
+    }
+    Quat4::from_quats(&q)
 }
 
 /// A great arc `C(u) = cos(α + βu)·p + sin(α + βu)·e` ([`Arc`]) evaluated at four `u` at once,

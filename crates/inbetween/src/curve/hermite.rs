@@ -130,6 +130,11 @@ impl super::blend4::Lanes4 for HermiteLanes {
 
 impl Segment for Hermite {
     type Frames = HermiteFrames;
+    type Pending = std::convert::Infallible;
+
+    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4] {
+        match lanes[0] {}
+    }
 
     fn new(keys: &Knots, s: usize, blend: Blend) -> Self {
         Hermite {

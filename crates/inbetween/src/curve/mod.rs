@@ -45,6 +45,23 @@ pub(crate) trait Segment: Sized {
     /// The points at `u₀, u₀ + δ, u₀ + 2δ, …` by forward differences.
     fn frames(&self, u0: f64, du: f64) -> Self::Frames;
 
+    /// A frame up to its last blends, for a scheme whose frames end in blends done four at a
+    /// time as lanes (`blend4.rs`); [`std::convert::Infallible`] for the others.
+    type Pending: Copy;
+
+    /// The first `n` (1 ≤ `n` ≤ 3) frames of [`Segment::frames`]`(u0, du)` up to their last
+    /// blends (the slots from `n` on repeat the first), so that the frames of several short
+    /// segments share one block of lanes — a segment holding fewer than four frames, as in a
+    /// resample to a lower rate, would fill a block of its own for one frame.
+    /// [`Segment::finish4`] completes them to the bits `frames` gives: a lane's blends never
+    /// depend on the other lanes. `None` for a scheme without lanes.
+    fn gather(&self, _u0: f64, _du: f64, _n: usize) -> Option<[Self::Pending; 3]> {
+        None
+    }
+
+    /// The frames of four pending lanes ([`Segment::gather`]).
+    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4];
+
     /// An upper bound of the S³ angle between the two points of any blend of the segment; below
     /// π their geodesic is well defined everywhere. Zero for a scheme without blends.
     fn blend_bound(&self) -> f64;

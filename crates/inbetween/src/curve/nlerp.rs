@@ -100,6 +100,11 @@ impl Iterator for NlerpFrames {
 
 impl Segment for Nlerp {
     type Frames = NlerpFrames;
+    type Pending = std::convert::Infallible;
+
+    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4] {
+        match lanes[0] {}
+    }
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         Nlerp::between(keys.quats[s], keys.quats[s + 1])

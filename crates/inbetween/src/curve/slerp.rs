@@ -28,6 +28,11 @@ impl Slerp {
 
 impl Segment for Slerp {
     type Frames = ArcSteps;
+    type Pending = std::convert::Infallible;
+
+    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4] {
+        match lanes[0] {}
+    }
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
         Slerp {

@@ -301,13 +301,14 @@ impl Knots {
         let needed = (1..n - 1).any(estimated) || (cyclic && estimated(0) && estimated(n - 1));
         let windows = (rule == TangentRule::Spline && needed)
             .then(|| spline::Windows::new(t, &quats, &all, cyclic));
+        let mut in_order = windows.as_ref().map(spline::InOrder::new);
         for i in 1..n - 1 {
             let (lm, lp) = (all[i - 1], all[i]);
             let span = t[i + 1] - t[i - 1];
             let (wi, wo) = match (velocity(i), key_tcb(i)) {
                 (Some(omega), _) => (omega * 0.5, omega * 0.5),
-                (None, k) if k.is_zero() && windows.is_some() => {
-                    let x = windows.as_ref().map_or(DVec3::ZERO, |w| w.tangent(i));
+                (None, k) if k.is_zero() && in_order.is_some() => {
+                    let x = in_order.as_mut().map_or(DVec3::ZERO, |w| w.get(i));
                     (x, x)
                 }
                 (None, k) if k.is_zero() => {

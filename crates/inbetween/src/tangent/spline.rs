@@ -33,6 +33,10 @@
 use crate::rotation::quat::log;
 use glam::{DQuat, DVec3};
 
+mod lanes;
+
+pub(super) use lanes::InOrder;
+
 /// Keys each side of the key whose tangent is estimated.
 const REACH: usize = 3;
 
