@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# The Blender extension (blender/, docs/blender.md): headless Blender as the `bpy` module from
+# PyPI in target/bpy-venv (pinned by blender/requirements-test.txt; kept between local runs,
+# rebuilt when the requirements or the interpreter change, like .ci/run's venvs), the extension
+# built and validated by Blender's own extension builder (blender/build.sh; INBETWEEN_WHEEL=PATH
+# bundles a prebuilt wheel instead of building one), then blender/tests, which compare with the
+# command line (target/debug/inbetween, built here when .ci/run has not). Run from anywhere.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+
+venv=target/bpy-venv
+req=blender/requirements-test.txt
+if ! python3 -c 'import sys; sys.exit(sys.version_info[:2] != (3, 11))'; then
+  echo "bpy 5.0.1 needs CPython 3.11; python3 is $(python3 --version 2>&1)" >&2
+  exit 1
+fi
+stamp="$(python3 --version 2>&1; cat "$req")"
+if [ ! -x "$venv/bin/python" ] || [ "$(cat "$venv/.installed" 2>/dev/null)" != "$stamp" ]; then
+  echo "== bpy venv ($venv, $req)"
+  rm -rf "$venv"
+  python3 -m venv "$venv"
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check --only-binary=:all: -r "$req"
+  printf '%s\n' "$stamp" >"$venv/.installed"
+fi
+
+echo "== blender/build.sh ${INBETWEEN_WHEEL:-(wheel from crates/inbetween-py)}"
+zip="$(PYTHON="$venv/bin/python" blender/build.sh ${INBETWEEN_WHEEL:+"$INBETWEEN_WHEEL"} | tail -n 1)"
+
+echo "== cargo build --locked -p inbetween-cli (the command line the tests compare with)"
+cargo build --locked -q -p inbetween-cli
+
+echo "== blender/tests (headless bpy, $zip)"
+log=target/blender/tests.log
+if INBETWEEN_BLENDER_ZIP="$zip" INBETWEEN_REQUIRE_CLI=1 INBETWEEN_BIN="$PWD/target/debug/inbetween" \
+    "$venv/bin/python" -m pytest -q -s -p no:cacheprovider blender/tests >"$log" 2>&1; then
+  grep '^FIGURES' "$log" || true
+  tail -n 1 "$log"
+else
+  tail -n 60 "$log"
+  echo "blender/tests failed (whole log: $log)" >&2
+  exit 1
+fi
+echo "== .ci/blender.sh: $(($(date +%s) - start)) s"
