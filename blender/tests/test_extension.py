@@ -382,3 +382,15 @@ def test_reduce_keys_on_an_object_spinning_past_a_turn(extension):
     assert len(z.keyframe_points) < 60 and z.keyframe_points[-1].co[1] == pytest.approx(4 * math.pi, rel=1e-6)
     print(f"\nFIGURES reduce object (Euler XYZ, two turns): 120 frames -> "
           f"{len(z.keyframe_points)} keys, worst {math.degrees(err.max()):.4f}°")
+
+
+@pytest.mark.parametrize("fps,base,rate", [(30, 1.001, Fraction(30000, 1001)), (24, 1.0, Fraction(24)),
+                                           (120, 0.9999960064888, Fraction(120)),
+                                           (24, 1.001, Fraction(24000, 1001)), (25, 2.0, Fraction(25, 2)),
+                                           (1000, 1.0, Fraction(1000))])
+def test_scene_rate_is_exact(extension, fps, base, rate):
+    """29.97 is 30/1.001 in Blender; the BVH importer's 120/0.999996 is 120 (the standard rates
+    within 1e-4, as inbetween reads a BVH Frame Time); other rates are fps/fps_base."""
+    scene = bpy.context.scene
+    scene.render.fps, scene.render.fps_base = fps, base
+    assert module(extension, "rates").scene_rate(scene) == rate
