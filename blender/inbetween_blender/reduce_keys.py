@@ -13,8 +13,9 @@ normalised, Euler channels lerped each on its own — and compared with the orig
 location. Where a target misses (an Euler bone's per-channel lerp is not nlerp), its tolerance
 for ``inbetween.reduce`` is halved and it is reduced again; after ``MAX_ROUNDS`` every frame is
 kept. With a position tolerance, the heads and tails of every bone are then compared in the
-armature's space at every frame, evaluated by Blender (``scene.frame_set``), and every bone on the
-chain of a point that misses is tightened the same way, until every point is within.
+armature's space at every frame, evaluated by Blender (``scene.frame_set``), and the bone that
+moves a missing point most is tightened the same way (``world_pass``), until every point is
+within.
 """
 
 from __future__ import annotations
@@ -110,9 +111,11 @@ class TargetReduction:
         t = self.target
         played = playback.sample(t.rotation, t.rest_rotation, self.frames)
         q = playback.rotations(t.mode, played)
-        self.angle_error = float(playback.angles(self.reference, q).max())
+        self.angle_errors = playback.angles(self.reference, q)
+        self.angle_error = float(self.angle_errors.max())
         loc = playback.sample(t.location, t.rest_location, self.frames)
-        self.location_error = float(np.linalg.norm(loc - self.location_values, axis=1).max())
+        self.location_errors = np.linalg.norm(loc - self.location_values, axis=1)
+        self.location_error = float(self.location_errors.max())
 
     @property
     def keys_after(self) -> int:
@@ -133,28 +136,60 @@ def pose_points(obj, scene, frames: np.ndarray) -> np.ndarray:
 
 
 def world_pass(obj, scene, frames, reference, by_bone: Dict[str, TargetReduction],
-               position_tol: float, max_rounds: int = MAX_ROUNDS) -> tuple:
-    """Tighten the reduced bones on the chains of every head or tail that is more than
-    ``position_tol`` from ``reference`` at some frame, until none is (or ``max_rounds``).
+               position_tol: float) -> tuple:
+    """Tighten reduced bones until every head and tail is within ``position_tol`` of
+    ``reference`` at every frame. For each point that misses at a frame, the bone of its chain
+    that moves it most there is tightened: rotation error θ at that frame moving the point by
+    2·sin(θ/2)·(its distance from the bone's head), plus the bone's location error (a bone's own
+    rotation does not move its head). After ``2·MAX_ROUNDS`` rounds every reduced bone on the
+    chain of a point that misses is tightened at once, for at most ``MAX_ROUNDS`` more (by then
+    those bones keep every frame, and their points are where they were).
     Returns (largest displacement, rounds)."""
     bones = list(obj.pose.bones)
-    for rounds in range(1, max_rounds + 2):
+    index = {pb.name: i for i, pb in enumerate(bones)}
+    chains = []
+    for pb in bones:
+        chain, p = [], pb
+        while p is not None:
+            if p.name in by_bone:
+                chain.append(by_bone[p.name])
+            p = p.parent
+        chains.append(chain)
+    worst, rounds = 0.0, 0
+    for rounds in range(1, 3 * MAX_ROUNDS + 2):
         played = pose_points(obj, scene, frames)
-        d = np.linalg.norm(played - reference, axis=-1)  # (T, B, 2)
+        d = np.linalg.norm(played - reference, axis=-1)  # (T, B, 2): head, tail
         worst = float(d.max()) if d.size else 0.0
-        if worst <= position_tol or rounds > max_rounds:
-            return worst, rounds
-        missed = np.any(d > position_tol, axis=(0, 2))  # per bone: its head or tail missed
-        chains = set()
-        for b in np.nonzero(missed)[0]:
-            pb = bones[b]
-            while pb is not None:
-                chains.add(pb.name)
-                pb = pb.parent
-        for name in chains:
-            if name in by_bone:
-                by_bone[name].tighten()
+        if worst <= position_tol or rounds > 3 * MAX_ROUNDS:
+            break
+        chosen = {}
+        for b, end in zip(*np.nonzero(np.any(d > position_tol, axis=0))):
+            chain = chains[b]
+            if rounds > 2 * MAX_ROUNDS:
+                chosen.update((r.target.name, r) for r in chain)
+                continue
+            if not chain:
+                continue
+            missed = d[:, b, end] > position_tol
+            moved = np.stack([_moves(r, index[r.target.name], b, end, reference) for r in chain])
+            for i in np.unique(np.argmax(moved[:, missed], axis=0)):
+                chosen[chain[i].target.name] = chain[i]
+        if not chosen:
+            break  # the points that miss are moved by no reduced bone
+        for r in chosen.values():
+            r.tighten()
     return worst, rounds
+
+
+def _moves(r: TargetReduction, c: int, b: int, end: int, reference: np.ndarray) -> np.ndarray:
+    """(T,) how far bone ``c``'s errors (reduction ``r``) move point ``end`` (0 head, 1 tail) of
+    bone ``b`` at each frame: its location error, plus 2·sin(θ/2)·arm for its rotation error θ,
+    arm the point's distance from bone ``c``'s head (none for a bone's own head)."""
+    m = np.array(r.location_errors)
+    if not (c == b and end == 0):
+        arm = np.linalg.norm(reference[:, b, end] - reference[:, c, 0], axis=-1)
+        m = m + 2.0 * np.sin(r.angle_errors / 2.0) * arm
+    return m
 
 
 def reduce_object(obj, scene, targets: List[Target], rate: str, angle_tol: float,
