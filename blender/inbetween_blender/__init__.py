@@ -48,6 +48,13 @@ class INBETWEEN_OT_reduce_keys(bpy.types.Operator):
                     "they were, in the armature's space, at every frame (0: off)",
         subtype="DISTANCE", default=0.0, min=0.0,
     )
+    shell: FloatProperty(
+        name="Shell",
+        description="With a position tolerance, also the three points this far from each "
+                    "bone's head along its own axes, so that a twist about the bone counts "
+                    "(0: heads and tails only)",
+        subtype="DISTANCE", default=0.0, min=0.0,
+    )
     only_selected: BoolProperty(
         name="Only Selected Bones",
         description="Reduce the selected pose bones only (all bones when none is selected)",
@@ -72,7 +79,7 @@ class INBETWEEN_OT_reduce_keys(bpy.types.Operator):
         try:
             result = reduce_keys.reduce_object(
                 obj, scene, targets, rates.as_text(rates.scene_rate(scene)), self.tolerance,
-                self.location_tolerance, self.position_tolerance)
+                self.location_tolerance, self.position_tolerance, self.shell)
         except ValueError as e:  # inbetween.InputError
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
@@ -88,8 +95,9 @@ class INBETWEEN_OT_reduce_keys(bpy.types.Operator):
         msg = (f"Reduced {len(reductions)} {what}: keys {before} → {after}; largest error "
                f"{math.degrees(worst.angle_error):.3f}° ({worst.target.name})")
         if result["worst_point"] is not None:
-            msg += f"; heads and tails within {result['worst_point']:.3g}"
-            print(f"inbetween: largest head/tail displacement {result['worst_point']:.6g} "
+            msg += (f"; heads, tails{' and shells' if self.shell > 0 else ''} within "
+                    f"{result['worst_point']:.3g}")
+            print(f"inbetween: largest point displacement {result['worst_point']:.6g} "
                   f"after {result['world_rounds']} world-space round(s)")
         if skipped:
             msg += f"; axis-angle skipped: {', '.join(skipped)}"

@@ -122,23 +122,30 @@ class TargetReduction:
         return sum(len(fc.keyframe_points) for fc in self.target.fcurves())
 
 
-def pose_points(obj, scene, frames: np.ndarray) -> np.ndarray:
-    """(T, B, 2, 3): every pose bone's head and tail in the armature's space at each frame, as
-    Blender evaluates the scene there (``scene.frame_set``: the action, constraints, drivers)."""
+def pose_points(obj, scene, frames: np.ndarray, shell: float = 0.0) -> np.ndarray:
+    """(T, B, P, 3): points of every pose bone in the armature's space at each frame, as Blender
+    evaluates the scene there (``scene.frame_set``: the action, constraints, drivers): its head
+    and tail (P = 2), and with a ``shell`` distance the three points at that distance along the
+    bone's own x, y and z axes from its head (P = 5; a twist about the bone moves them, not the
+    tail)."""
     bones = list(obj.pose.bones)
-    out = np.empty((len(frames), len(bones), 2, 3))
+    out = np.empty((len(frames), len(bones), 5 if shell > 0 else 2, 3))
+    axes = np.eye(3) * shell
     for i, f in enumerate(frames):
         scene.frame_set(int(f))
         for b, pb in enumerate(bones):
             out[i, b, 0] = pb.head
             out[i, b, 1] = pb.tail
+            if shell > 0:
+                m = np.array(pb.matrix)
+                out[i, b, 2:] = m[:3, 3] + axes @ m[:3, :3].T
     return out
 
 
 def world_pass(obj, scene, frames, reference, by_bone: Dict[str, TargetReduction],
-               position_tol: float) -> tuple:
-    """Tighten reduced bones until every head and tail is within ``position_tol`` of
-    ``reference`` at every frame. For each point that misses at a frame, the bone of its chain
+               position_tol: float, shell: float) -> tuple:
+    """Tighten reduced bones until every point of :func:`pose_points` is within ``position_tol``
+    of ``reference`` at every frame. For each point that misses at a frame, the bone of its chain
     that moves it most there is tightened: rotation error θ at that frame moving the point by
     2·sin(θ/2)·(its distance from the bone's head), plus the bone's location error (a bone's own
     rotation does not move its head). After ``2·MAX_ROUNDS`` rounds every reduced bone on the
@@ -157,8 +164,8 @@ def world_pass(obj, scene, frames, reference, by_bone: Dict[str, TargetReduction
         chains.append(chain)
     worst, rounds = 0.0, 0
     for rounds in range(1, 3 * MAX_ROUNDS + 2):
-        played = pose_points(obj, scene, frames)
-        d = np.linalg.norm(played - reference, axis=-1)  # (T, B, 2): head, tail
+        played = pose_points(obj, scene, frames, shell)
+        d = np.linalg.norm(played - reference, axis=-1)  # (T, B, P): head, tail, shell
         worst = float(d.max()) if d.size else 0.0
         if worst <= position_tol or rounds > 3 * MAX_ROUNDS:
             break
@@ -182,9 +189,10 @@ def world_pass(obj, scene, frames, reference, by_bone: Dict[str, TargetReduction
 
 
 def _moves(r: TargetReduction, c: int, b: int, end: int, reference: np.ndarray) -> np.ndarray:
-    """(T,) how far bone ``c``'s errors (reduction ``r``) move point ``end`` (0 head, 1 tail) of
-    bone ``b`` at each frame: its location error, plus 2·sin(θ/2)·arm for its rotation error θ,
-    arm the point's distance from bone ``c``'s head (none for a bone's own head)."""
+    """(T,) how far bone ``c``'s errors (reduction ``r``) move point ``end`` (0 head, 1 tail,
+    2-4 shell) of bone ``b`` at each frame: its location error, plus 2·sin(θ/2)·arm for its
+    rotation error θ, arm the point's distance from bone ``c``'s head (none for a bone's own
+    head)."""
     m = np.array(r.location_errors)
     if not (c == b and end == 0):
         arm = np.linalg.norm(reference[:, b, end] - reference[:, c, 0], axis=-1)
@@ -193,7 +201,7 @@ def _moves(r: TargetReduction, c: int, b: int, end: int, reference: np.ndarray) 
 
 
 def reduce_object(obj, scene, targets: List[Target], rate: str, angle_tol: float,
-                  location_tol: float, position_tol: float) -> dict:
+                  location_tol: float, position_tol: float, shell: float = 0.0) -> dict:
     """Reduce every target of ``obj``; returns the per-target reductions and the figures."""
     start = time.perf_counter()
     f0, f1 = playback.frame_range([fc for t in targets for fc in t.fcurves()])
@@ -202,7 +210,7 @@ def reduce_object(obj, scene, targets: List[Target], rate: str, angle_tol: float
     world = position_tol > 0 and obj.type == "ARMATURE"
     current = scene.frame_current
     if world:
-        reference_points = pose_points(obj, scene, frames)
+        reference_points = pose_points(obj, scene, frames, shell)
     reductions = [TargetReduction(t, frames, rate, angle_tol, location_tol) for t in targets]
     for r in reductions:
         r.run()
@@ -210,7 +218,7 @@ def reduce_object(obj, scene, targets: List[Target], rate: str, angle_tol: float
     if world:
         by_bone = {r.target.name: r for r in reductions}
         worst_point, world_rounds = world_pass(obj, scene, frames, reference_points, by_bone,
-                                               position_tol)
+                                               position_tol, shell)
     if world:
         scene.frame_set(current)
     return {

@@ -198,6 +198,44 @@ def test_position_tolerance_bounds_heads_and_tails(extension):
           f"(1° alone: {plain:.4f}), keys {plain_keys} -> {keys}")
 
 
+def shell_points(ob, frames, shell):
+    """(T, B, 3, 3): the points ``shell`` along each bone's x, y, z from its head, computed here
+    from ``pose_bone.matrix`` (armature space) at each frame."""
+    scene = bpy.context.scene
+    out = np.empty((len(frames), len(ob.pose.bones), 3, 3))
+    for i, f in enumerate(frames):
+        scene.frame_set(f)
+        for b, pb in enumerate(ob.pose.bones):
+            m = np.array(pb.matrix)
+            for a in range(3):
+                out[i, b, a] = m[:3, 3] + shell * m[:3, a]
+    return out
+
+
+def test_shell_bounds_twists(extension):
+    """Heads and tails do not see a twist about a bone; the shell's points do."""
+    limit, shell = 0.05, 5.0
+    ob = load_bvh("QUATERNION")
+    frames = whole_frames(ob)
+    s0 = shell_points(ob, frames, shell)
+    assert bpy.ops.anim.inbetween_reduce_keys(tolerance=DEGREE, position_tolerance=limit,
+                                              only_selected=False) == {"FINISHED"}
+    without = np.linalg.norm(shell_points(ob, frames, shell) - s0, axis=-1).max()
+    assert without > limit, without  # heads and tails alone leave the shell outside
+
+    ob = load_bvh("QUATERNION")
+    _, _, ends0 = pose(ob, frames)
+    assert bpy.ops.anim.inbetween_reduce_keys(tolerance=DEGREE, position_tolerance=limit,
+                                              shell=shell, only_selected=False) == {"FINISHED"}
+    d = np.linalg.norm(shell_points(ob, frames, shell) - s0, axis=-1).max()
+    assert d <= limit + FLOAT32_LENGTH, d
+    _, _, ends1 = pose(ob, frames)
+    assert np.linalg.norm(ends1 - ends0, axis=-1).max() <= limit + FLOAT32_LENGTH
+    keys = sum(len(fc.keyframe_points) for fc in fcurves(ob))
+    print(f"\nFIGURES shell {shell} at {limit}: shell points within {d:.4f} (heads and tails "
+          f"alone: {without:.4f}), keys {keys}")
+
+
 def test_only_selected_bones_are_reduced(extension):
     ob = load_bvh("QUATERNION")
     chosen = {"LeftLeg", "RightArm"}
