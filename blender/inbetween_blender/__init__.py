@@ -102,10 +102,14 @@ class INBETWEEN_OT_reduce_keys(bpy.types.Operator):
         if skipped:
             msg += f"; axis-angle skipped: {', '.join(skipped)}"
         kept = [r.target.name for r in reductions if r.every_frame]
-        if kept or (result["worst_point"] is not None
-                    and result["worst_point"] > self.position_tolerance):
-            self.report({"WARNING"}, msg + (f"; every frame kept: {', '.join(kept)}" if kept else "")
-                        + " (a tolerance could not be met)")
+        if kept:
+            msg += f"; every frame kept: {', '.join(kept)}"
+        missed = [r.target.name for r in reductions
+                  if r.angle_error > r.angle_tol or r.location_error > r.location_tol]
+        if result["worst_point"] is not None and result["worst_point"] > self.position_tolerance:
+            missed.append("position tolerance")
+        if missed:
+            self.report({"WARNING"}, msg + f"; NOT within the tolerance: {', '.join(missed)}")
         else:
             self.report({"INFO"}, msg)
         return {"FINISHED"}

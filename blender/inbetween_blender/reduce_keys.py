@@ -30,6 +30,9 @@ from .channels import QUATERNION, Target
 
 #: Halvings of a target's tolerance before every frame becomes a key.
 MAX_ROUNDS = 12
+#: Below this angle (rad) every frame becomes a key too: ``inbetween.reduce`` refuses
+#: tolerances under 1e-9 rad (what it can verify), and float32 keys play no closer.
+MIN_ANGLE = 1e-8
 
 
 class TargetReduction:
@@ -63,7 +66,7 @@ class TargetReduction:
 
         while True:
             self.rounds += 1
-            if self.rounds > MAX_ROUNDS:
+            if self.rounds > MAX_ROUNDS or self.reduce_angle < MIN_ANGLE:
                 self.every_frame = True
                 self._write(np.arange(len(self.frames)))
                 self._measure()
@@ -96,7 +99,9 @@ class TargetReduction:
         t = self.target
         at = self.frames[keys]
         rot = self.rotation_values[keys]
-        if t.mode == QUATERNION:
+        if t.mode == QUATERNION and all(fc is not None for fc in t.rotation):
+            # Each key in the previous key's hemisphere, as nlerp plays them (a sign can only be
+            # flipped when all four channels are written; else the values stay as they were).
             rot = playback.hemisphere_continuous(rot)
         for i, fc in enumerate(t.rotation):
             if fc is not None:
@@ -206,21 +211,21 @@ def reduce_object(obj, scene, targets: List[Target], rate: str, angle_tol: float
     start = time.perf_counter()
     f0, f1 = playback.frame_range([fc for t in targets for fc in t.fcurves()])
     frames = np.arange(f0, f1 + 1, dtype=np.float64)
-    reference_points = None
     world = position_tol > 0 and obj.type == "ARMATURE"
-    current = scene.frame_current
-    if world:
-        reference_points = pose_points(obj, scene, frames, shell)
-    reductions = [TargetReduction(t, frames, rate, angle_tol, location_tol) for t in targets]
-    for r in reductions:
-        r.run()
+    current = scene.frame_current, scene.frame_subframe
     worst_point, world_rounds = None, 0
-    if world:
-        by_bone = {r.target.name: r for r in reductions}
-        worst_point, world_rounds = world_pass(obj, scene, frames, reference_points, by_bone,
-                                               position_tol, shell)
-    if world:
-        scene.frame_set(current)
+    try:
+        reference_points = pose_points(obj, scene, frames, shell) if world else None
+        reductions = [TargetReduction(t, frames, rate, angle_tol, location_tol) for t in targets]
+        for r in reductions:
+            r.run()
+        if world:
+            by_bone = {r.target.name: r for r in reductions}
+            worst_point, world_rounds = world_pass(obj, scene, frames, reference_points, by_bone,
+                                                   position_tol, shell)
+    finally:
+        if world:
+            scene.frame_set(current[0], subframe=current[1])
     return {
         "reductions": reductions,
         "frames": (f0, f1),
