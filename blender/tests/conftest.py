@@ -24,6 +24,10 @@ os.environ["BLENDER_USER_RESOURCES"] = USER
 import bpy  # noqa: E402  (after BLENDER_USER_RESOURCES)
 
 
+def pytest_report_header(config):
+    return f"Blender {bpy.app.version_string} (bpy), user resources {USER}"
+
+
 def _zip():
     z = os.environ.get("INBETWEEN_BLENDER_ZIP")
     if z:
