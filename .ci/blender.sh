@@ -31,6 +31,9 @@ venv_for target/bpy42-venv blender/requirements-test-4.2.txt
 echo "== blender/build.sh ${INBETWEEN_WHEEL:-(wheel from crates/inbetween-py)}"
 zip="$(PYTHON=target/bpy-venv/bin/python blender/build.sh ${INBETWEEN_WHEEL:+"$INBETWEEN_WHEEL"} | tail -n 1)"
 
+echo "== blender_ext.py validate, Blender 4.2 LTS's (the zip's floor, blender_version_min)"
+target/bpy42-venv/bin/python "$(find target/bpy42-venv -path '*/bl_pkg/cli/blender_ext.py' | head -n 1)" validate "$zip"
+
 echo "== cargo build --locked -p inbetween-cli (the command line the tests compare with)"
 cargo build --locked -q -p inbetween-cli
 

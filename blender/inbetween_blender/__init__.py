@@ -7,8 +7,6 @@ code as the ``inbetween`` command line. docs/blender.md in the repository says w
 guarantees.
 """
 
-from __future__ import annotations
-
 import math
 
 import bpy
