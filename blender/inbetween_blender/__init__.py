@@ -150,16 +150,23 @@ class INBETWEEN_OT_resample_action(bpy.types.Operator):
         return _animated(context)
 
     def execute(self, context):
+        import inbetween
+
         from . import resample_action
 
         obj = context.active_object
+        try:  # the rate first: nothing is changed for a rate inbetween does not read
+            inbetween.frame_times(1, "1", self.fps)
+        except ValueError as e:
+            self.report({"ERROR"}, f"Rate: {e}")
+            return {"CANCELLED"}
         targets = resample_action.collect(obj, self.only_selected)
         if not targets:
             self.report({"WARNING"}, "No quaternion, Euler or location channels to resample")
             return {"CANCELLED"}
         try:
             r = resample_action.resample_object(obj, context.scene, targets, self.fps, self.scheme)
-        except ValueError as e:  # inbetween.InputError: a rate it does not read
+        except ValueError as e:  # inbetween.InputError
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
         what = "bones" if obj.type == "ARMATURE" else "object"

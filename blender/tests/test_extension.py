@@ -350,6 +350,34 @@ def test_resample_puts_frames_on_the_exact_clock(extension, cli, tmp_path, mode,
     print(line + f", {seconds:.3f} s")
 
 
+def test_resample_refuses_a_rate_it_cannot_read_and_fills_missing_channels(extension):
+    ob = load_bvh("XYZ")
+    # Spine without its Y rotation channel: Resample would give it one before writing.
+    ad = ob.animation_data
+    owner = (ad.action.layers[0].strips[0].channelbag(ad.action_slot)
+             if getattr(ad.action, "is_action_layered", False) else ad.action)
+    owner.fcurves.remove(next(fc for fc in fcurves(ob) if fc.data_path ==
+                              'pose.bones["Spine"].rotation_euler' and fc.array_index == 1))
+    before = {(fc.data_path, fc.array_index): len(fc.keyframe_points) for fc in fcurves(ob)}
+    with pytest.raises(RuntimeError, match='fps_out: expected a positive frame rate .* found "abc"'):
+        bpy.ops.anim.inbetween_resample_action(fps="abc", only_selected=False)
+    assert before == {(fc.data_path, fc.array_index): len(fc.keyframe_points) for fc in fcurves(ob)}
+    # A rate it reads: Spine's Y channel is made, on the same 16 keys as its others.
+    frames = whole_frames(ob)
+    q0, _ = original_channels(ob, frames)
+    spine = [pb.name for pb in ob.pose.bones].index("Spine")
+    assert bpy.ops.anim.inbetween_resample_action(fps="30", only_selected=False) == {"FINISHED"}
+    ys = [fc for fc in fcurves(ob) if fc.data_path == 'pose.bones["Spine"].rotation_euler']
+    assert sorted(fc.array_index for fc in ys) == [0, 1, 2]
+    assert {len(fc.keyframe_points) for fc in ys} == {16}
+    import inbetween
+
+    expected = inbetween.resample(q0[:, spine], "120", "30")
+    bpy.context.scene.frame_set(frames[0] + 4 * 7)
+    got = np.array(tuple(ob.pose.bones["Spine"].rotation_euler.to_quaternion()))
+    assert quat_angles(got, expected[7]) <= 1e-5
+
+
 def test_action_fcurves_reads_the_legacy_api(extension):
     """Blender 4.2/4.3 (and 4.4's unlayered actions) keep F-curves in ``action.fcurves``: the
     compatibility module reads them there (a stand-in action, whatever Blender runs the test),
