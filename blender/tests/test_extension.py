@@ -5,9 +5,10 @@ clip imported by Blender's BVH importer, and every frame re-evaluated *independe
 evaluation leaves them — against the same taken before the operator ran.
 
 Tolerances: the operators promise their bounds on Blender's own evaluation of the F-curves; this
-re-evaluation reads float32 matrices and positions, so ``FLOAT32_ANGLE`` (1e-4° = 1.7e-6 rad,
-some ten times the error of float32 rotation matrices measured through their skew part) and
-``FLOAT32_LENGTH`` (1e-5 length units, for positions within ±100) are added to them.
+re-evaluation reads float32 matrices and positions, so ``FLOAT32_ANGLE`` (1e-4° = 1.7e-6 rad;
+on CMU 01_01 a float32 ``matrix_basis`` is at most 2.4e-7 rad from the float64 rotation of its
+own quaternion, measured through the skew part as below) and ``FLOAT32_LENGTH`` (1e-5 length
+units, for positions within ±100: float32 carries 7.6e-6 there) are added to them.
 """
 
 import csv
