@@ -328,6 +328,21 @@ fn segment_frames<S: Segment>(
     let s = p.piece;
     let (t0, t1) = (times[s], times[s + 1]);
     let period = fps.den() as f64 / fps.num() as f64;
+    let stop = if p.snap_end { p.to - 1 } else { p.to };
+    if !velocity && stop <= p.from + i64::from(p.snap_start) {
+        // Only keys, exact (120 → 30 fps: every frame is a key): the segment's curve is not
+        // needed, nor its checks, which are about frames inside it.
+        if p.snap_start {
+            queue.ready((p.from, fps.time_of(p.from), keys.quats[s], None), emit)?;
+        }
+        if p.snap_end {
+            queue.ready(
+                (p.to - 1, fps.time_of(p.to - 1), keys.quats[n - 1], None),
+                emit,
+            )?;
+        }
+        return Ok(());
+    }
     let seg = S::new(keys, s, curve.blend());
     let name = || {
         curve.name().map_or(String::new(), |n| {
@@ -360,7 +375,6 @@ fn segment_frames<S: Segment>(
         queue.ready((k, fps.time_of(k), keys.quats[s], omega(0.0)), emit)?;
         k += 1;
     }
-    let stop = if p.snap_end { p.to - 1 } else { p.to };
     if stop > k {
         let u0 = (fps.time_of(k) - t0) / delta;
         let du = period / delta;
