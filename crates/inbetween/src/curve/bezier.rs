@@ -17,7 +17,9 @@
 //! - Continuity: C¹ at keys, C^∞ inside.
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
-use super::blend4::{ArcLanes, Block4, Lanes4, Quat4, geodesic4, params4, steps4};
+use super::blend4::{
+    self, ArcLanes, Block4, Lanes4, Pending, Quat4, geodesic4, params4, point4, steps4, weight4,
+};
 use super::{Blend, Segment};
 use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::geodesic;
@@ -99,47 +101,27 @@ impl Lanes4 for BezierLanes {
     }
 }
 
-/// A Bézier frame before its three blends: the first-level arcs' points at `u`.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct BezierPending {
-    points: [DQuat; 3],
-    u: f64,
-}
-
 impl Segment for Bezier {
     type Frames = BezierFrames;
-    type Pending = BezierPending;
+    type Pending = Pending<3>;
 
-    fn gather(&self, u0: f64, du: f64, n: usize) -> Option<[BezierPending; 3]> {
-        // The arcs' points as `frames` steps them (its first is `eval(u0)` itself, all a single
-        // frame needs).
-        let arcs = [&self.r0, &self.r1, &self.r2];
-        let first = arcs.map(|r| r.eval(u0));
-        let mut steps = (n > 1).then(|| arcs.map(|r| r.steps(u0, du)));
-        let mut out = [BezierPending {
-            points: first,
-            u: u0,
-        }; 3];
-        for (m, slot) in out.iter_mut().enumerate().take(n.min(3)) {
-            *slot = BezierPending {
-                points: match &mut steps {
-                    None => first,
-                    Some(steps) => steps.each_mut().map(|s| s.next_point()),
-                },
-                // `params4`'s parameter of frame m of the first block.
-                u: u0 + (0.0 + m as f64) * du,
-            };
-        }
-        for m in n.min(3)..3 {
-            out[m] = out[0];
-        }
-        Some(out)
+    fn gather(&self, u0: f64, du: f64, n: usize) -> Option<[Pending<3>; 3]> {
+        Some(blend4::gather(
+            [&self.r0, &self.r1, &self.r2],
+            u0,
+            du,
+            n,
+            |u| u,
+        ))
     }
 
-    fn finish4(lanes: &[BezierPending; 4]) -> [DQuat; 4] {
-        let point = |k: usize| Quat4::from_quats(&lanes.map(|p| p.points[k]));
-        let (a, b, c) = (point(0), point(1), point(2));
-        let u = f64x4::new(lanes.map(|p| p.u));
+    fn finish4(lanes: &[Pending<3>; 4]) -> [DQuat; 4] {
+        let (a, b, c, u) = (
+            point4(lanes, 0),
+            point4(lanes, 1),
+            point4(lanes, 2),
+            weight4(lanes),
+        );
         let (s0, s1) = (geodesic4(a, b, u), geodesic4(b, c, u));
         geodesic4(s0, s1, u).to_quats()
     }
@@ -197,33 +179,9 @@ mod tests {
         check_segment::<Bezier>(&sample_keys(), Blend::Cubic);
     }
 
-    /// Frames gathered across segments into shared blocks are the bits `frames` gives, whatever
-    /// shares their block (a hold's degenerate lanes included).
     #[test]
     fn gathered_frames_are_the_frames_bits() {
-        let k = sample_keys();
-        let hold = Bezier::new(&k, 0, Blend::Cubic);
-        let hold = BezierPending {
-            points: [hold.r0.eval(0.5); 3],
-            u: 0.5,
-        };
-        for s in 0..k.segments() {
-            let seg = Bezier::new(&k, s, Blend::Cubic);
-            for (u0, du, n) in [(0.3, 0.7, 1), (0.1, 0.4, 2), (0.05, 0.3, 3), (0.9, 0.05, 2)] {
-                let want: Vec<DQuat> = seg.frames(u0, du).take(n).collect();
-                let lanes = seg.gather(u0, du, n).expect("bezier has lanes");
-                for m in 0..n {
-                    // Lane m of a block whose other lanes are a degenerate blend (a hold).
-                    let mut block = [hold; 4];
-                    block[(m + s) % 4] = lanes[m];
-                    let got = Bezier::finish4(&block)[(m + s) % 4];
-                    assert_eq!(
-                        got.to_array().map(f64::to_bits),
-                        want[m].to_array().map(f64::to_bits)
-                    );
-                }
-            }
-        }
+        check_gathered::<3, Bezier>(&sample_keys(), Blend::Cubic);
     }
 
     #[test]

@@ -98,6 +98,65 @@ pub(crate) fn params4(u0: f64, du: f64, j: f64, f: impl Fn(f64) -> f64) -> f64x4
     f64x4::new(std::array::from_fn(|i| f(u0 + (j + i as f64) * du)))
 }
 
+/// A frame up to its last blends ([`crate::curve::Segment::gather`]): the points of the
+/// segment's `K` fixed arcs at the frame, and the frame's parameter through the scheme's weight
+/// (`u` for bezier, squad's `2u(1 − u)`, hermite's blend).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Pending<const K: usize> {
+    pub points: [DQuat; K],
+    pub f: f64,
+}
+
+/// The first `n` (1 ≤ `n` ≤ 3) frames from `u0` by `du` up to their last blends, exactly as the
+/// scheme's frame iterator makes them: the arcs' points by their forward differences (the first
+/// is `eval(u0)` itself, all that one frame needs), the weight of `params4`'s first block. Slots
+/// from `n` on repeat the first.
+pub(crate) fn gather<const K: usize>(
+    arcs: [&Arc; K],
+    u0: f64,
+    du: f64,
+    n: usize,
+    weight: impl Fn(f64) -> f64,
+) -> [Pending<K>; 3] {
+    let first = arcs.map(|r| r.eval(u0));
+    let mut steps = (n > 1).then(|| arcs.map(|r| r.steps(u0, du)));
+    let mut out = [Pending {
+        points: first,
+        f: weight(u0 + 0.0 * du),
+    }; 3];
+    for (m, slot) in out.iter_mut().enumerate().take(n.min(3)) {
+        *slot = Pending {
+            points: match &mut steps {
+                None => first,
+                Some(steps) => steps.each_mut().map(|s| s.next_point()),
+            },
+            f: weight(u0 + (0.0 + m as f64) * du),
+        };
+    }
+    let head = out[0];
+    for slot in out.iter_mut().skip(n.min(3)) {
+        *slot = head;
+    }
+    out
+}
+
+/// Point `k` of four pending frames, as lanes.
+#[inline]
+pub(crate) fn point4<const K: usize>(lanes: &[Pending<K>; 4], k: usize) -> Quat4 {
+    Quat4::from_quats(&lanes.map(|p| p.points[k]))
+}
+
+/// The weights of four pending frames, as lanes.
+#[inline]
+pub(crate) fn weight4<const K: usize>(lanes: &[Pending<K>; 4]) -> f64x4 {
+    f64x4::new(lanes.map(|p| p.f))
+}
+
+/// Hermite's and squad's last blend, `geodesic(a, b, f)`, for four pending frames.
+pub(crate) fn finish_one(lanes: &[Pending<2>; 4]) -> [DQuat; 4] {
+    geodesic4(point4(lanes, 0), point4(lanes, 1), weight4(lanes)).to_quats()
+}
+
 /// `geodesic(a[i], b[i], f[i])` for the four lanes.
 #[inline]
 pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {

@@ -21,7 +21,7 @@
 //!   chord, `L − u·w_iΔ − (1 − u)·w_{i+1}Δ` (the 1-D difference `C₂ − C₁`), so a spin keeps its
 //!   turns even where the two arcs are a full turn apart (frames computed one at a time).
 
-use super::blend4::{Block4, geodesic4, params4, steps4};
+use super::blend4::{self, Block4, Pending, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::rotation::arc::{Arc, ArcSteps};
 use crate::rotation::quat::{exp, geodesic, log_near};
@@ -130,10 +130,18 @@ impl super::blend4::Lanes4 for HermiteLanes {
 
 impl Segment for Hermite {
     type Frames = HermiteFrames;
-    type Pending = std::convert::Infallible;
+    type Pending = Pending<2>;
 
-    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4] {
-        match lanes[0] {}
+    fn gather(&self, u0: f64, du: f64, n: usize) -> Option<[Pending<2>; 3]> {
+        // `--path euler` blends point by point (`Spin::blend`), not in lanes.
+        let blend = self.blend;
+        self.spin
+            .is_none()
+            .then(|| blend4::gather([&self.c1, &self.c2], u0, du, n, |u| blend.f(u)))
+    }
+
+    fn finish4(lanes: &[Pending<2>; 4]) -> [DQuat; 4] {
+        blend4::finish_one(lanes)
     }
 
     fn new(keys: &Knots, s: usize, blend: Blend) -> Self {
@@ -200,6 +208,12 @@ mod tests {
     use crate::curve::test_support::*;
     use crate::tangent::{EndConditions, Ends};
     use glam::DVec3;
+
+    #[test]
+    fn gathered_frames_are_the_frames_bits() {
+        check_gathered::<2, Hermite>(&sample_keys(), Blend::Cubic);
+        check_gathered::<2, Hermite>(&sample_keys(), Blend::Quadratic);
+    }
 
     #[test]
     fn keys_and_forward_differences() {

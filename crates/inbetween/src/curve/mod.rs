@@ -328,6 +328,36 @@ pub(crate) mod test_support {
         )
     }
 
+    /// Frames gathered across segments into shared blocks of lanes are the bits `frames` gives,
+    /// whatever shares their block (a hold's degenerate blends included).
+    pub(crate) fn check_gathered<const K: usize, S>(k: &Knots, blend: Blend)
+    where
+        S: Segment<Pending = blend4::Pending<K>>,
+    {
+        for s in 0..k.segments() {
+            let seg = S::new(k, s, blend);
+            for (u0, du, n) in [(0.3, 0.7, 1), (0.1, 0.4, 2), (0.05, 0.3, 3), (0.9, 0.05, 2)] {
+                let want: Vec<DQuat> = seg.frames(u0, du).take(n).collect();
+                let lanes = seg.gather(u0, du, n).expect("the scheme has lanes");
+                for m in 0..n {
+                    // Lane m of a block whose other lanes are a hold: every point the same.
+                    let hold = blend4::Pending {
+                        points: [lanes[m].points[0]; K],
+                        f: 0.5,
+                    };
+                    let mut block = [hold; 4];
+                    block[(m + s) % 4] = lanes[m];
+                    let got = S::finish4(&block)[(m + s) % 4];
+                    assert_eq!(
+                        got.to_array().map(f64::to_bits),
+                        want[m].to_array().map(f64::to_bits),
+                        "segment {s}, frame {m} of {n}"
+                    );
+                }
+            }
+        }
+    }
+
     /// Keys hit, forward differences agree with direct evaluation, unit norm.
     pub(crate) fn check_segment<S: Segment>(k: &Knots, blend: Blend) {
         for s in 0..k.segments() {

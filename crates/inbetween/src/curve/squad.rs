@@ -22,7 +22,7 @@
 //!   about a turn per segment, or a reversal next to a much shorter segment) the tangent is lost
 //!   and the curve is not C¹ there; the tool says so on stderr.
 
-use super::blend4::{Block4, geodesic4, params4, steps4};
+use super::blend4::{self, Block4, Pending, geodesic4, params4, steps4};
 use super::{Blend, Segment};
 use crate::error::{Message, Setting};
 use crate::message;
@@ -175,10 +175,21 @@ impl super::blend4::Lanes4 for SquadLanes {
 
 impl Segment for Squad {
     type Frames = SquadFrames;
-    type Pending = std::convert::Infallible;
+    type Pending = Pending<2>;
 
-    fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4] {
-        match lanes[0] {}
+    fn gather(&self, u0: f64, du: f64, n: usize) -> Option<[Pending<2>; 3]> {
+        let weight = |u: f64| 2.0 * u * (1.0 - u);
+        Some(blend4::gather(
+            [&self.outer, &self.inner],
+            u0,
+            du,
+            n,
+            weight,
+        ))
+    }
+
+    fn finish4(lanes: &[Pending<2>; 4]) -> [DQuat; 4] {
+        blend4::finish_one(lanes)
     }
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
@@ -243,6 +254,11 @@ mod tests {
     use crate::rotation::quat::log;
     use crate::tangent::EndConditions;
     use glam::DVec3;
+
+    #[test]
+    fn gathered_frames_are_the_frames_bits() {
+        check_gathered::<2, Squad>(&sample_keys(), Blend::Cubic);
+    }
 
     #[test]
     fn keys_and_forward_differences() {
