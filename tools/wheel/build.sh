@@ -14,7 +14,8 @@
 #    `auditwheel show` finds it consistent with manylinux_2_17_x86_64 (or an older, more portable
 #    policy); wheel and sdist carry LICENSE-MIT, LICENSE-APACHE and THIRD-PARTY-LICENSES and
 #    declare `License-Expression: MIT OR Apache-2.0`; pyproject.toml's classifiers are all
-#    known to trove-classifiers (PyPI refuses unknown ones).
+#    known to trove-classifiers (PyPI refuses unknown ones); the sdist resolves offline to
+#    exactly the versions Cargo.lock pins (cargo prunes the command line's crates from its copy).
 # 4. A new venv (target/wheel-test-venv, made anew each run) with the pinned test requirements
 #    (crates/inbetween-py/requirements-test.txt, wheels only) and the wheel; the module must be
 #    imported from there, not from the source tree; then pytest on crates/inbetween-py/tests,
@@ -55,7 +56,7 @@ rm -rf "$dist"
 mkdir -p "$dist"
 step "maturin build --zig --compatibility manylinux2014 (x86_64-unknown-linux-gnu)"
 # maturin runs zig as `python -m ziglang` with the python on PATH: the tools' venv first.
-PATH="$root/$tools/bin:$PATH" "$tools/bin/maturin" build --zig --compatibility manylinux2014 \
+PATH="$root/$tools/bin:$PATH" "$tools/bin/maturin" build --locked --zig --compatibility manylinux2014 \
   --target x86_64-unknown-linux-gnu --manifest-path crates/inbetween-py/Cargo.toml --out "$dist"
 step "maturin sdist"
 PATH="$root/$tools/bin:$PATH" "$tools/bin/maturin" sdist --manifest-path crates/inbetween-py/Cargo.toml --out "$dist"
@@ -101,6 +102,24 @@ for what, m in (("wheel", meta), ("sdist", pkg_info)):
 if problems:
     sys.exit("\n".join(problems))
 EOF
+
+step "the sdist resolves offline to Cargo.lock's pins (cargo metadata --offline in it)"
+# What pip does with the sdist, short of compiling: its Cargo.lock, pruned to the crates the
+# sdist's workspace keeps, must pin every package to the version this repository's lock pins.
+unpacked="$(mktemp -d)"
+tar -xzf "$sdist" -C "$unpacked"
+top="$(ls "$unpacked")"
+cargo metadata --offline --format-version 1 --manifest-path "$unpacked/$top/Cargo.toml" >/dev/null
+"$tools/bin/python" - Cargo.lock "$unpacked/$top/Cargo.lock" <<'EOF'
+import sys, tomllib
+repo, sdist = (tomllib.load(open(p, "rb"))["package"] for p in sys.argv[1:])
+pins = {(p["name"], p["version"]) for p in repo}
+extra = sorted(f"{p['name']} {p['version']}" for p in sdist if (p["name"], p["version"]) not in pins)
+if extra or not sdist:
+    sys.exit(f"the sdist resolves to versions Cargo.lock does not pin: {extra}")
+print(f"{len(sdist)} packages, every one at the version Cargo.lock pins ({len(repo)} there)")
+EOF
+rm -rf "$unpacked"
 
 step "auditwheel show"
 audit="$("$tools/bin/auditwheel" show "$wheel")"
