@@ -6,6 +6,7 @@ R(t − h)ᵀ R(t + h) over 2h (both O(h²) from the rate). scipy's `RotationSpl
 to be a body-frame rate by the same two formulas on its own rotations, and to equal
 `frame="body"` on a curve both libraries draw alike (a spin at a constant rate)."""
 
+import importlib.metadata
 import pathlib
 import re
 import tomllib
@@ -289,3 +290,17 @@ def test_version():
     assert inbetween.__version__ == cargo["workspace"]["package"]["version"]
     assert re.fullmatch(r"\d+\.\d+\.\d+.*", inbetween.__version__)
     assert "__version__" in inbetween.__all__
+    # The version is the installed distribution's, which is `inbetween-rs` (the PyPI name
+    # `inbetween` is another project's), and the extension was built from the same version.
+    assert py["project"]["name"] == inbetween._DISTRIBUTION == "inbetween-rs"
+    assert importlib.metadata.version("inbetween-rs") == inbetween.__version__
+    assert inbetween._inbetween.__version__ == inbetween.__version__
+    assert "inbetween-rs" in importlib.metadata.packages_distributions()["inbetween"]
+    # The licence the wheel declares (PEP 639), and its texts installed beside it.
+    meta = importlib.metadata.metadata("inbetween-rs")
+    assert meta["License-Expression"] == "MIT OR Apache-2.0"
+    licence_files = sorted(meta.get_all("License-File"))
+    assert licence_files == ["LICENSE-APACHE", "LICENSE-MIT", "THIRD-PARTY-LICENSES"], licence_files
+    installed = {pathlib.PurePath(str(f)).name: f for f in importlib.metadata.files("inbetween-rs")}
+    assert "ufbx" in installed["THIRD-PARTY-LICENSES"].read_text()
+    assert installed["LICENSE-MIT"].read_text() == (ROOT / "LICENSE-MIT").read_text()

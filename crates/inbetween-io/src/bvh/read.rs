@@ -992,7 +992,14 @@ Frame Time: 0.0333333
 
     #[test]
     fn reading_in_pieces_is_parsing_the_text() {
-        let fixture = include_str!("../../../../fixtures/bvh/mixed_orders.bvh");
+        // Read at run time from the repository (not include_str!: the crate's package has no
+        // fixtures/, and its build must not need them).
+        let fixture = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../fixtures/bvh/mixed_orders.bvh"
+        ))
+        .unwrap();
+        let fixture = fixture.as_str();
         let texts = [
             SMALL.to_string(),
             format!("\u{feff}{}", SMALL.replace('\n', "\r\n")),

@@ -238,7 +238,8 @@ impl Channel<DQuat> {
     /// use glam::DQuat;
     /// # use inbetween_io::gltf::Asset;
     /// // A LINEAR channel from identity to 90° about z over one second, from a glTF asset:
-    /// # let asset = Asset::from_slice(include_bytes!("../../../../fixtures/gltf/minimal_linear.gltf"), "m.gltf", None).unwrap();
+    /// # let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fixtures/gltf/minimal_linear.gltf");
+    /// # let asset = Asset::read_path(path.as_ref()).unwrap();
     /// let anim = &asset.animations().unwrap()[0];
     /// let q = anim.rotations()[0].sample(0.5);
     /// let expected = DQuat::from_rotation_z(std::f64::consts::FRAC_PI_4);

@@ -24,8 +24,24 @@ from ._inbetween import InputError
 __all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times", "from_rot6d",
            "process_file", "read", "reduce", "resample", "resample_amass", "to_rot6d", "write"]
 
-#: The package's version (the Rust crate's, which pyproject.toml repeats).
-__version__: str = _inbetween.__version__
+#: The distribution this module is installed from (``pip install inbetween-rs``; the name
+#: ``inbetween`` on PyPI is another project's).
+_DISTRIBUTION = "inbetween-rs"
+
+
+def _version() -> str:
+    """The installed distribution's version; the extension's own (the Rust crates' version,
+    which pyproject.toml repeats) when no metadata is found, as in a source tree on ``sys.path``."""
+    from importlib import metadata
+
+    try:
+        return metadata.version(_DISTRIBUTION)
+    except metadata.PackageNotFoundError:
+        return _inbetween.__version__
+
+
+#: The package's version: ``inbetween-rs``'s, equal to the Rust crates' (tested).
+__version__: str = _version()
 
 Rate = Union[int, float, str, Any]
 
