@@ -43,6 +43,7 @@ fn write_bvh(
 /// Runs `convert`. Keys must be finite with strictly increasing times per track; unlike
 /// `interp`, a track of one key is fine.
 pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    crate::settings::check_output_name(&args.output)?;
     let (doc, in_format, gltf) =
         read_input(&args.input, args.fps, (Mode::Keys, true), stdin, warn)?;
     let reads = files_read(&args.input, &[args.skeleton.as_deref()], gltf.as_deref());

@@ -472,6 +472,33 @@ pub fn tracks_take_translations(args: &OutputArgs) -> bool {
     !matches!(output_format(args, Format::Gltf), OutputFormat::Gltf(_))
 }
 
+/// An output named for a format that is read but not written (`.fbx`; binary USD `.usdc`,
+/// `.usdz`, and `.usd`, which names either form) is refused unless the output format is given:
+/// the input's format would otherwise go into a file whose name says another (a BVH's text in
+/// `x.fbx`). Checked before anything is read.
+pub fn check_output_name(args: &OutputArgs) -> Result<(), InputError> {
+    let Some(path) = args
+        .output
+        .as_deref()
+        .filter(|_| args.output_format.is_none())
+    else {
+        return Ok(());
+    };
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let what = match ext.as_deref() {
+        Some("fbx") => "FBX is read, not written",
+        Some("usd" | "usdc" | "usdz") => "USD is written as text only: name it .usda",
+        _ => return Ok(()),
+    };
+    Err(InputError::new(format!(
+        "{}: {what}; the formats written are .bvh, .glb, .gltf, .usda, .csv, .json, .npy and .npz",
+        path.display()
+    )))
+}
+
 /// The output format: `--output-format`, else the extension of `-o` (`.csv`, `.json`, `.npy`,
 /// any case), else the input's format.
 pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {

@@ -534,3 +534,70 @@ fn an_output_that_is_a_file_the_command_reads_is_refused() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// An output named for a format that is read but not written (FBX, binary USD) is refused
+/// before anything is read or written, by every command that writes one; `--output-format`
+/// says what to write under any name.
+#[test]
+fn an_output_named_for_a_format_not_written_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    let cases: [(&str, &Path, &str, &str); 5] = [
+        ("interp", &bvh, "clip.fbx", "FBX is read, not written"),
+        ("convert", &bvh, "clip.FBX", "FBX is read, not written"),
+        (
+            "reduce",
+            &fixture(),
+            "small.fbx",
+            "FBX is read, not written",
+        ),
+        (
+            "interp",
+            &bvh,
+            "clip.usdc",
+            "USD is written as text only: name it .usda",
+        ),
+        (
+            "reduce",
+            &fixture(),
+            "small.usdz",
+            "USD is written as text only: name it .usda",
+        ),
+    ];
+    for (command, input, target, says) in cases {
+        let mut cmd = Command::new(BIN);
+        cmd.current_dir(dir.path()).arg(command).arg(input);
+        match command {
+            "interp" => cmd.args(["--fps", "30"]),
+            "reduce" => cmd.args(["--tolerance", "1"]),
+            _ => &mut cmd,
+        };
+        let out = cmd.args(["-o", target]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command} -o {target}: {err}");
+        assert!(err.contains(&format!("{target}: {says}")), "{err}");
+        assert!(
+            names(dir.path()).is_empty(),
+            "{command} -o {target} wrote {:?}",
+            names(dir.path())
+        );
+    }
+    // Named explicitly, the format is written under the name asked for.
+    let out = Command::new(BIN)
+        .current_dir(dir.path())
+        .args(["interp", "--output-format", "csv", "-o", "keys.fbx"])
+        .arg(fixture())
+        .output()
+        .unwrap();
+    assert_ok(&out);
+    let csv = Command::new(BIN)
+        .args(["interp", "--output-format", "csv"])
+        .arg(fixture())
+        .output()
+        .unwrap();
+    assert!(csv.status.success() && csv.stdout.starts_with(b"frame,time,"));
+    assert_eq!(
+        std::fs::read(dir.path().join("keys.fbx")).unwrap(),
+        csv.stdout
+    );
+}

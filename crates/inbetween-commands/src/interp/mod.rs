@@ -29,6 +29,7 @@ use std::io::Read;
 /// the frame count (`--max-frames`), and every curve (minaccel's grid cap), so that only I/O can
 /// fail once output has started.
 pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    crate::settings::check_output_name(&args.output)?;
     if let Some(done) = bvh::lean(args, warn) {
         return done;
     }

@@ -42,6 +42,7 @@ fn needs(args: &ReduceArgs) -> Result<(), Error> {
 
 /// Runs `reduce`: every track reduced (or all on shared keys), verified, written as keys.
 pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    crate::settings::check_output_name(&args.output)?;
     needs(args)?;
     if let Some(done) = bvh::lean(args, warn) {
         return done;
