@@ -477,24 +477,28 @@ pub fn tracks_take_translations(args: &OutputArgs) -> bool {
 /// the input's format would otherwise go into a file whose name says another (a BVH's text in
 /// `x.fbx`). Checked before anything is read.
 pub fn check_output_name(args: &OutputArgs) -> Result<(), InputError> {
-    let Some(path) = args
-        .output
-        .as_deref()
-        .filter(|_| args.output_format.is_none())
-    else {
+    match (&args.output, args.output_format) {
+        (Some(path), None) => check_output_path(path),
+        _ => Ok(()),
+    }
+}
+
+/// [`check_output_name`] for an output path without `--output-format`: by the end of its file
+/// name, in any case (`.fbx` alone too, which has no extension to `Path`).
+pub fn check_output_path(path: &Path) -> Result<(), InputError> {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    let what = if name.ends_with(".fbx") {
+        "FBX is read, not written: name the output for a format this command writes"
+    } else if [".usd", ".usdc", ".usdz"].iter().any(|e| name.ends_with(e)) {
+        "USD is written as text only: name it .usda"
+    } else {
         return Ok(());
     };
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let what = match ext.as_deref() {
-        Some("fbx") => "FBX is read, not written",
-        Some("usd" | "usdc" | "usdz") => "USD is written as text only: name it .usda",
-        _ => return Ok(()),
-    };
     Err(InputError::new(format!(
-        "{}: {what}; the formats written are .bvh, .glb, .gltf, .usda, .csv, .json, .npy and .npz",
+        "{}: {what}, or say what to write under this name with --output-format",
         path.display()
     )))
 }

@@ -55,6 +55,26 @@ def test_process_file_writes_what_the_command_line_writes(tmp_path, cli):
         inbetween.process_file(clip, out, "plot")
 
 
+def test_process_file_refuses_an_output_named_for_a_format_not_written(tmp_path, cli):
+    """`x.fbx` held the input's format with status "ok"; now refused before its folder is made
+    or a newer file of that name skips it; with `output_format` it is written."""
+    clip = FIXTURES / "bvh/cmu_01_01.bvh"
+    newer = tmp_path / "old.fbx"
+    newer.write_text("")
+    for out, says in ((tmp_path / "new/x.fbx", "FBX is read, not written"), (newer, "FBX is"),
+                      (tmp_path / "x.USDZ", "USD is written as text only")):
+        r = inbetween.process_file(clip, out, "interp", fps=30)
+        assert r["status"] == "failed" and r["exit_code"] == 2, r
+        assert r["error"].startswith(f"{out}: {says}"), r["error"]
+    assert not (tmp_path / "new").exists() and newer.read_text() == ""
+    assert not (tmp_path / "x.USDZ").exists()
+    r = inbetween.process_file(clip, tmp_path / "y.fbx", "interp", fps=30, output_format="csv")
+    assert r["status"] == "ok", r
+    csv = subprocess.run([cli, "interp", str(clip), "--fps", "30", "--output-format", "csv"],
+                         check=True, capture_output=True).stdout
+    assert (tmp_path / "y.fbx").read_bytes() == csv
+
+
 def test_the_dask_example_matches_the_command_lines_batch(tmp_path, cli):
     try:
         import dask.distributed  # noqa: F401

@@ -542,8 +542,9 @@ fn an_output_that_is_a_file_the_command_reads_is_refused() {
 fn an_output_named_for_a_format_not_written_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
-    let cases: [(&str, &Path, &str, &str); 5] = [
+    let cases: [(&str, &Path, &str, &str); 6] = [
         ("interp", &bvh, "clip.fbx", "FBX is read, not written"),
+        ("interp", &bvh, ".fbx", "FBX is read, not written"),
         ("convert", &bvh, "clip.FBX", "FBX is read, not written"),
         (
             "reduce",

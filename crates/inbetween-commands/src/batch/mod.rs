@@ -489,6 +489,15 @@ pub fn process_one(
             p.to_path_buf()
         }
     };
+    // An output named for a format not written is refused before anything is made or skipped.
+    let format_given = match &request {
+        Request::Convert(a) => a.output.output_format.is_some(),
+        Request::Interp(a) => a.output.output_format.is_some(),
+        Request::Reduce(a) => a.output.output_format.is_some(),
+    };
+    if !format_given && let Err(e) = crate::settings::check_output_path(output) {
+        return failed(e.to_string());
+    }
     let one = |input: &Path, output: &Path, warn: &mut dyn Events| {
         let (input, output) = (Some(as_path(input)), Some(as_path(output)));
         let empty = &mut std::io::empty();
