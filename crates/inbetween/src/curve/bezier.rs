@@ -48,6 +48,13 @@ pub(crate) struct BezierFrames {
     block: Block4,
 }
 
+/// The last two levels of de Casteljau's construction for four frames: the lanes' blends of
+/// the first-level arcs' points `a`, `b`, `c` at `u`.
+#[inline]
+fn casteljau4(a: Quat4, b: Quat4, c: Quat4, u: f64x4) -> Quat4 {
+    geodesic4(geodesic4(a, b, u), geodesic4(b, c, u), u)
+}
+
 #[inline]
 fn casteljau(a: DQuat, b: DQuat, c: DQuat, u: f64) -> DQuat {
     geodesic(geodesic(a, b, u), geodesic(b, c, u), u)
@@ -71,8 +78,7 @@ impl Iterator for BezierFrames {
             let (a, b, c) = (steps4(r0), steps4(r1), steps4(r2));
             let u = params4(*u0, *du, *j, |u| u);
             *j += 4.0;
-            let (s0, s1) = (geodesic4(a, b, u), geodesic4(b, c, u));
-            geodesic4(s0, s1, u).to_quats()
+            casteljau4(a, b, c, u).to_quats()
         }))
     }
 }
@@ -97,7 +103,7 @@ impl Lanes4 for BezierLanes {
     fn eval4(&self, u: f64x4) -> Quat4 {
         let [r0, r1, r2] = &self.0;
         let (a, b, c) = (r0.eval4(u), r1.eval4(u), r2.eval4(u));
-        geodesic4(geodesic4(a, b, u), geodesic4(b, c, u), u)
+        casteljau4(a, b, c, u)
     }
 }
 
@@ -116,14 +122,8 @@ impl Segment for Bezier {
     }
 
     fn finish4(lanes: &[Pending<3>; 4]) -> [DQuat; 4] {
-        let (a, b, c, u) = (
-            point4(lanes, 0),
-            point4(lanes, 1),
-            point4(lanes, 2),
-            weight4(lanes),
-        );
-        let (s0, s1) = (geodesic4(a, b, u), geodesic4(b, c, u));
-        geodesic4(s0, s1, u).to_quats()
+        let point = |k| point4(lanes, k);
+        casteljau4(point(0), point(1), point(2), weight4(lanes)).to_quats()
     }
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {

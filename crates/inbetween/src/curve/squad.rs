@@ -126,6 +126,12 @@ pub(crate) struct SquadFrames {
     block: Block4,
 }
 
+/// Squad's blend weight `2u(1 − u)` between the outer and inner arcs.
+#[inline]
+fn weight(u: f64) -> f64 {
+    2.0 * u * (1.0 - u)
+}
+
 impl Iterator for SquadFrames {
     type Item = DQuat;
 
@@ -141,7 +147,7 @@ impl Iterator for SquadFrames {
         } = self;
         Some(block.next(|| {
             let (a, b) = (steps4(outer), steps4(inner));
-            let f = params4(*u0, *du, *j, |u| 2.0 * u * (1.0 - u));
+            let f = params4(*u0, *du, *j, weight);
             *j += 4.0;
             geodesic4(a, b, f).to_quats()
         }))
@@ -168,7 +174,7 @@ impl Squad {
 impl super::blend4::Lanes4 for SquadLanes {
     #[inline]
     fn eval4(&self, u: wide::f64x4) -> super::blend4::Quat4 {
-        let f = super::blend4::map4(u, |u| 2.0 * u * (1.0 - u));
+        let f = super::blend4::map4(u, weight);
         geodesic4(self.outer.eval4(u), self.inner.eval4(u), f)
     }
 }
@@ -178,7 +184,6 @@ impl Segment for Squad {
     type Pending = Pending<2>;
 
     fn gather(&self, u0: f64, du: f64, n: usize) -> Option<[Pending<2>; 3]> {
-        let weight = |u: f64| 2.0 * u * (1.0 - u);
         Some(blend4::gather(
             [&self.outer, &self.inner],
             u0,
@@ -212,7 +217,7 @@ impl Segment for Squad {
     }
 
     fn eval(&self, u: f64) -> DQuat {
-        geodesic(self.outer.eval(u), self.inner.eval(u), 2.0 * u * (1.0 - u))
+        geodesic(self.outer.eval(u), self.inner.eval(u), weight(u))
     }
 
     fn frames(&self, u0: f64, du: f64) -> SquadFrames {
