@@ -14,19 +14,9 @@ if ! python3 -c 'import sys; sys.exit(sys.version_info[:2] != (3, 11))'; then
   echo "bpy 4.2 and 5.0 need CPython 3.11; python3 is $(python3 --version 2>&1)" >&2
   exit 1
 fi
-venv_for() {  # venv_for VENV REQUIREMENTS
-  local venv="$1" req="$2" stamp
-  stamp="$(python3 --version 2>&1; cat "$req")"
-  if [ ! -x "$venv/bin/python" ] || [ "$(cat "$venv/.installed" 2>/dev/null)" != "$stamp" ]; then
-    echo "== bpy venv ($venv, $req)"
-    rm -rf "$venv"
-    python3 -m venv "$venv"
-    "$venv/bin/python" -m pip install -q --disable-pip-version-check --only-binary=:all: -r "$req"
-    printf '%s\n' "$stamp" >"$venv/.installed"
-  fi
-}
-venv_for target/bpy-venv blender/requirements-test.txt
-venv_for target/bpy42-venv blender/requirements-test-4.2.txt
+. .ci/venv.sh
+cached_venv target/bpy-venv blender/requirements-test.txt
+cached_venv target/bpy42-venv blender/requirements-test-4.2.txt
 
 echo "== blender/build.sh ${INBETWEEN_WHEEL:-(wheel from crates/inbetween-py)}"
 zip="$(PYTHON=target/bpy-venv/bin/python blender/build.sh ${INBETWEEN_WHEEL:+"$INBETWEEN_WHEEL"} | tail -n 1)"

@@ -30,14 +30,8 @@ step() { echo "== $1 ($((SECONDS - t0)) s)"; }
 
 tools=target/wheel-tools
 req=tools/wheel/requirements.txt
-stamp="$(python3 --version 2>&1; cat "$req")"
-if [ ! -x "$tools/bin/python" ] || [ "$(cat "$tools/.installed" 2>/dev/null)" != "$stamp" ]; then
-  step "wheel tools ($tools, $req)"
-  rm -rf "$tools"
-  python3 -m venv "$tools"
-  "$tools/bin/python" -m pip install -q --disable-pip-version-check --only-binary=:all: -r "$req"
-  printf '%s\n' "$stamp" >"$tools/.installed"
-fi
+. .ci/venv.sh
+cached_venv "$tools" "$req"
 
 step "classifiers of crates/inbetween-py/pyproject.toml (trove-classifiers)"
 "$tools/bin/python" - <<'EOF'
@@ -136,13 +130,9 @@ cargo build --locked -q -p inbetween-cli
 if [ ! -d tools/gltf-validator/node_modules/gltf-validator ]; then
   npm ci --prefix tools/gltf-validator --no-audit --no-fund --loglevel=error >/dev/null
 fi
-# The checkers' Python (numpy, scipy, pygltflib: fixtures/requirements.txt) that some tests run;
-# .ci/run builds it first (and rebuilds it when stale), so this is for a run on its own.
-if [ ! -x target/ci-venv/bin/python ]; then
-  python3 -m venv target/ci-venv
-  target/ci-venv/bin/python -m pip install -q --disable-pip-version-check --only-binary=:all: -r fixtures/requirements.txt
-  printf '%s\n' "$(python3 --version 2>&1; cat fixtures/requirements.txt)" >target/ci-venv/.installed
-fi
+# The checkers' Python (numpy, scipy, pygltflib: fixtures/requirements.txt) that some tests run
+# (.ci/run has made it already; for a run on its own).
+cached_venv target/ci-venv fixtures/requirements.txt
 
 venv=target/wheel-test-venv
 step "a fresh venv ($venv): the wheel and crates/inbetween-py/requirements-test.txt"
