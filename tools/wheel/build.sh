@@ -9,7 +9,10 @@
 #    that file or the interpreter changes; wheels only).
 # 2. `maturin build --zig --compatibility manylinux2014`: zig compiles ufbx's C and links against
 #    glibc 2.17's symbols whatever this machine's glibc; abi3 from pyo3's `abi3-py39` feature
-#    (crates/inbetween-py/Cargo.toml); the `wheel` profile of pyproject.toml. `maturin sdist`.
+#    (crates/inbetween-py/Cargo.toml); the `wheel` profile of pyproject.toml. Then the same
+#    code again as `inbetween._inbetween_avx2`, for AVX2 without FMA (crates/inbetween-py/avx2),
+#    added to the wheel by tools/wheel/add_module.py; the package imports it on CPUs with AVX2
+#    (the same bits, tested; 1.3x less CPU for `Curve`, docs/performance.md). `maturin sdist`.
 # 3. Checks that fail the script: the wheel's tags are cp39-abi3 and manylinux_2_17_x86_64;
 #    `auditwheel show` finds it consistent with manylinux_2_17_x86_64 (or an older, more portable
 #    policy); wheel and sdist carry LICENSE-MIT, LICENSE-APACHE and THIRD-PARTY-LICENSES and
@@ -46,12 +49,26 @@ print(f"{len(project['classifiers'])} classifiers, all known")
 EOF
 
 dist=target/dist
+# The features of the AVX2 module (src/lib.rs `cpu_has_avx2` tests for each of them).
+avx2_flags="-C target-feature=+sse4.1,+sse4.2,+ssse3,+popcnt,+avx,+avx2"
 rm -rf "$dist"
 mkdir -p "$dist"
 step "maturin build --zig --compatibility manylinux2014 (x86_64-unknown-linux-gnu)"
 # maturin runs zig as `python -m ziglang` with the python on PATH: the tools' venv first.
 PATH="$root/$tools/bin:$PATH" "$tools/bin/maturin" build --locked --zig --compatibility manylinux2014 \
   --target x86_64-unknown-linux-gnu --manifest-path crates/inbetween-py/Cargo.toml --out "$dist"
+step "the AVX2 module: maturin build in crates/inbetween-py/avx2, RUSTFLAGS=\"$avx2_flags\""
+# The same code compiled a second time for AVX2 and not FMA (a fused multiply-add rounds once
+# where the portable code rounds twice: other bits), into its own target folder, and put beside
+# the portable module in the wheel (tools/wheel/add_module.py refuses a fused instruction). The
+# package imports it where the CPU has these features (python/inbetween/__init__.py);
+# tests/test_simd.py holds its results to the portable module's bits (required below).
+avx2_dist="$(mktemp -d)"
+(cd crates/inbetween-py/avx2 && PATH="$root/$tools/bin:$PATH" CARGO_TARGET_DIR="$root/target/avx2" \
+  RUSTFLAGS="$avx2_flags" "$root/$tools/bin/maturin" build --locked --zig --compatibility manylinux2014 \
+  --target x86_64-unknown-linux-gnu --out "$avx2_dist")
+"$tools/bin/python" tools/wheel/add_module.py "$dist"/*.whl "$avx2_dist"/*.whl
+rm -rf "$avx2_dist"
 step "maturin sdist"
 PATH="$root/$tools/bin:$PATH" "$tools/bin/maturin" sdist --manifest-path crates/inbetween-py/Cargo.toml --out "$dist"
 
@@ -144,12 +161,15 @@ python3 -m venv "$venv"
 import importlib.metadata, pathlib, sys
 import inbetween, inbetween._inbetween
 venv = pathlib.Path(sys.argv[1]).resolve()
-for f in (inbetween.__file__, inbetween._inbetween.__file__):
+for f in (inbetween.__file__, inbetween._inbetween.__file__, inbetween._ext.__file__):
     if venv not in pathlib.Path(f).resolve().parents:
         sys.exit(f"imported {f}, not the wheel installed in {venv}")
-print(f"inbetween {inbetween.__version__} from {pathlib.Path(inbetween._inbetween.__file__).relative_to(venv)}")
+print(f"inbetween {inbetween.__version__} from {pathlib.Path(inbetween._ext.__file__).relative_to(venv)}")
 EOF
 
 step "pytest crates/inbetween-py/tests against the installed wheel"
-INBETWEEN_REQUIRE_CLI=1 INBETWEEN_BIN="$root/target/debug/inbetween" "$venv/bin/python" -m pytest -q -p no:cacheprovider crates/inbetween-py/tests
+# The AVX2 module is required where the CPU has AVX2 (CI's does): test_simd.py then compares it
+# with the portable one, bit for bit.
+require_avx2="$("$venv/bin/python" -c 'import inbetween; print(int(inbetween._inbetween.cpu_has_avx2()))')"
+INBETWEEN_REQUIRE_AVX2="$require_avx2" INBETWEEN_REQUIRE_CLI=1 INBETWEEN_BIN="$root/target/debug/inbetween" "$venv/bin/python" -m pytest -q -p no:cacheprovider crates/inbetween-py/tests
 step "done: $wheel, $sdist"

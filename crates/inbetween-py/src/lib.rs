@@ -73,8 +73,24 @@ pub(crate) fn error(e: inbetween::Error) -> PyErr {
     }
 }
 
+/// The portable extension module, `inbetween._inbetween` (baseline x86-64: SSE2).
+#[cfg(not(feature = "avx2"))]
 #[pymodule]
 fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    register(m)
+}
+
+/// The same module compiled for AVX2 without FMA, `inbetween._inbetween_avx2`
+/// (tools/wheel/build.sh; the package imports it where [`cpu_has_avx2`] says the CPU runs it).
+/// No operation is fused or reordered by the wider lanes, so its results are the portable
+/// module's bits (tested: crates/inbetween-py/tests/test_simd.py).
+#[cfg(feature = "avx2")]
+#[pymodule]
+fn _inbetween_avx2(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    register(m)
+}
+
+fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("InputError", m.py().get_type::<InputError>())?;
     // The package's version: the crate's, which pyproject.toml repeats.
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -86,5 +102,25 @@ fn _inbetween(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(read::read, m)?)?;
     m.add_function(wrap_pyfunction!(write::write, m)?)?;
     m.add_function(wrap_pyfunction!(batch::process_file, m)?)?;
+    m.add_function(wrap_pyfunction!(cpu_has_avx2, m)?)?;
     Ok(())
+}
+
+/// Whether this CPU runs `_inbetween_avx2`: every feature that module is compiled with
+/// (tools/wheel/build.sh `AVX2_FEATURES`), as the operating system reports them.
+#[pyfunction]
+fn cpu_has_avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("avx")
+            && std::arch::is_x86_feature_detected!("sse4.2")
+            && std::arch::is_x86_feature_detected!("sse4.1")
+            && std::arch::is_x86_feature_detected!("ssse3")
+            && std::arch::is_x86_feature_detected!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
 }

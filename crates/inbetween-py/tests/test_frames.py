@@ -216,7 +216,7 @@ def test_frame_keyword_is_checked():
         inbetween.resample(q, 10, 20, velocity=True, frame="Body")
     # The raw extension checks it too.
     with pytest.raises(inbetween.InputError, match=r"^frame: "):
-        inbetween._inbetween.Curve(times, q)(np.array([0.1]), 1, "inertial")
+        inbetween._ext.Curve(times, q)(np.array([0.1]), 1, "inertial")
     # Rotations (order 0) are the same in either frame.
     assert np.array_equal(curve([0.1, 0.2], frame="body"), curve([0.1, 0.2]))
 

@@ -19,7 +19,26 @@ from typing import Any, Dict, Mapping, Optional, Tuple, Union
 import numpy as np
 
 from . import _inbetween
-from ._inbetween import InputError
+
+
+def _extension() -> Any:
+    """The compiled module the package calls: ``_inbetween_avx2`` (the same code compiled for
+    AVX2 without FMA, which gives the portable module's bits; tests/test_simd.py) where the
+    wheel carries it and the CPU has every feature it needs, unless ``INBETWEEN_SIMD=portable``;
+    else the portable ``_inbetween`` (a build from the source folder has only that one)."""
+    if os.environ.get("INBETWEEN_SIMD", "").strip().lower() == "portable":
+        return _inbetween
+    if not _inbetween.cpu_has_avx2():
+        return _inbetween
+    try:
+        from . import _inbetween_avx2
+    except ImportError:
+        return _inbetween
+    return _inbetween_avx2
+
+
+_ext = _extension()
+InputError = _ext.InputError
 
 __all__ = ["Clip", "Curve", "InputError", "Reduction", "__version__", "frame_times", "from_rot6d",
            "process_file", "read", "reduce", "resample", "resample_amass", "to_rot6d", "write"]
@@ -37,7 +56,7 @@ def _version() -> str:
     try:
         return metadata.version(_DISTRIBUTION)
     except metadata.PackageNotFoundError:
-        return _inbetween.__version__
+        return _ext.__version__
 
 
 #: The package's version: ``inbetween-rs``'s, equal to the Rust crates' (tested).
@@ -134,7 +153,7 @@ class Curve:
     ) -> None:
         self._scalar_first = bool(scalar_first)
         self._rotation_type = type(rotations) if _is_rotation(rotations) else None
-        self._curve = _inbetween.Curve(
+        self._curve = _ext.Curve(
             _array(times, "times"),
             _rotations(rotations, scalar_first),
             scheme,
@@ -181,7 +200,7 @@ class Curve:
         out = self._curve(a.reshape(1) if one else a, order, frame, outside)
         if out.shape[-1] == 4:
             if convention is not None:
-                out = _inbetween.rot6d(out, convention, False, scalar_first=self._scalar_first)
+                out = _ext.rot6d(out, convention, False, scalar_first=self._scalar_first)
             elif scalar_first is None and self._rotation_type is not None:
                 if dtype is not None:
                     raise InputError("dtype: the rotations come back as a scipy Rotation (float64); "
@@ -245,7 +264,7 @@ def to_rot6d(q: Any, convention: str = "rows", *, scalar_first: bool = True,
     it, ``"rot6d:rows"`` or ``"rot6d:columns"``."""
     if _is_rotation(q):
         q, scalar_first = q.as_quat(scalar_first=True), True
-    return _cast(_inbetween.rot6d(_array(q, "q"), convention, False, scalar_first=scalar_first),
+    return _cast(_ext.rot6d(_array(q, "q"), convention, False, scalar_first=scalar_first),
                  dtype)
 
 
@@ -255,7 +274,7 @@ def from_rot6d(a: Any, convention: str = "rows", *, scalar_first: bool = True) -
     ``rotation_6d_to_matrix`` (``b1 = a1/‖a1‖``, ``b2`` the part of ``a2`` orthogonal to it,
     normalised, ``b3 = b1 × b2``; rows or columns by ``convention``). A zero or parallel pair
     is an ``InputError`` naming its row."""
-    return _inbetween.rot6d(_array(a, "a"), convention, True, scalar_first=scalar_first)
+    return _ext.rot6d(_array(a, "a"), convention, True, scalar_first=scalar_first)
 
 
 def resample(
@@ -286,7 +305,7 @@ def resample(
     float32 results; ``tangent`` as for :class:`Curve`."""
     frame = _check_frame(frame)
     convention = _rot6d_convention(to)
-    out = _inbetween.resample(
+    out = _ext.resample(
         _rotations(rotations, scalar_first),
         fps_in,
         fps_out,
@@ -300,7 +319,7 @@ def resample(
         tangent=tangent,
     )
     if convention is not None:
-        six = lambda r: _inbetween.rot6d(r, convention, False, scalar_first=scalar_first)
+        six = lambda r: _ext.rot6d(r, convention, False, scalar_first=scalar_first)
         out = (six(out[0]),) + out[1:] if isinstance(out, tuple) else six(out)
     elif _is_rotation(rotations):
         if dtype is not None:
@@ -315,7 +334,7 @@ def resample(
 def frame_times(n: int, fps_in: Rate, fps_out: Rate) -> np.ndarray:
     """The times (M,) of the frames ``resample`` writes for ``n`` frames at ``fps_in``:
     ``k/fps_out`` for k = 0 … ⌊(n − 1)/fps_in · fps_out⌋, each an exact ratio rounded once."""
-    return _inbetween.frame_times(n, fps_in, fps_out)
+    return _ext.frame_times(n, fps_in, fps_out)
 
 
 class Reduction:
@@ -412,7 +431,7 @@ def reduce(
     q = _rotations(rotations, scalar_first)
     rad = distance is None and degrees
     tol = float(np.radians(tolerance)) if rad else float(tolerance)
-    per_joint = _inbetween.reduce(
+    per_joint = _ext.reduce(
         q, fps, tol, scheme=scheme, method=method, distance=distance,
         shared_keys=shared_keys, velocities=velocities,
         translations=_optional(translations, "translations"),
@@ -559,7 +578,7 @@ def read(
     ``--times``."""
     path = os.fspath(path)
     before = _stat(path)
-    d = _inbetween.read(path, rotation=rotation, angles=angles, key_fps=key_fps,
+    d = _ext.read(path, rotation=rotation, angles=angles, key_fps=key_fps,
                         quat_order=quat_order, scalar_first=scalar_first, columns=columns,
                         time_unit=time_unit, times=times)
     if d["format"] == "gltf":
@@ -666,7 +685,7 @@ def write(
         read = clip._asset["translations"]
         tracks = [(n, t, q, None if p is None or read.get(n) == _digest(t, p) else p)
                   for n, t, q, p in tracks]
-    _inbetween.write(path, tracks,
+    _ext.write(path, tracks,
                      fps=fps if fps is not None else clip.fps,
                      skeleton=None if skeleton is None else os.fspath(skeleton),
                      asset=asset, to=to, angles=angles, precision=precision, euler=euler,
@@ -703,7 +722,7 @@ def process_file(path: Union[str, os.PathLike], out: Union[str, os.PathLike], co
     starts with ``-`` (``"--help"``, ``"-"``) is a file of that name, and option values are
     values whatever they start with (``fps="-24"`` is refused as a rate, not read as a flag).
     """
-    return _inbetween.process_file(os.fspath(path), os.fspath(out), command, dict(options),
+    return _ext.process_file(os.fspath(path), os.fspath(out), command, dict(options),
                                    refresh)
 
 
