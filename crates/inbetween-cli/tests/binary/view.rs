@@ -398,3 +398,49 @@ fn a_title_cannot_close_the_script_that_holds_it() {
     );
     assert_eq!(page_data(&html)["title"], title);
 }
+
+/// `diff --per-frame`, the curve's other reader: one row per compared frame in each report
+/// format, and refused (exit 2, nothing written) where there are no world positions to measure.
+#[test]
+fn diff_per_frame_reports_the_curve_or_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = reduced_pair(dir.path());
+    let csv = per_frame(dir.path(), CLIP, &keys);
+    let json: Value =
+        serde_json::from_str(&stdout_of(bin().args(["diff", CLIP]).arg(&keys).args([
+            "--per-frame",
+            "--output-format",
+            "json",
+        ])))
+        .unwrap();
+    let rows = json["frames"].as_array().unwrap();
+    assert_eq!(rows.len(), 61);
+    for (f, (row, (t, d))) in rows.iter().zip(&csv).enumerate() {
+        assert_eq!(row["frame"], f);
+        assert_eq!(
+            (row["time"].as_f64(), row["max_world"].as_f64()),
+            (Some(*t), Some(*d))
+        );
+    }
+    let text = stdout_of(bin().args(["diff", CLIP]).arg(&keys).arg("--per-frame"));
+    assert_eq!(text.lines().count(), 62, "a header and 61 rows");
+    let out = dir.path().join("no.csv");
+    let o = bin()
+        .args([
+            "diff",
+            "fixtures/diff/turned.json",
+            "fixtures/diff/turned_more.json",
+            "--per-frame",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("diff: --per-frame reports world displacements, which fixtures/diff/turned.json does not give"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

@@ -136,4 +136,16 @@ fn the_page_plays_in_headless_chromium() {
         late,
         "the same frame twice differs"
     );
+    // A alone: one figure, no curve, the same silence.
+    let single = dir.path().join("single.html");
+    stdout_of(
+        bin()
+            .args(["view", "fixtures/bvh/cmu_01_01.bvh", "-o"])
+            .arg(&single),
+    );
+    let url = format!("file://{}#frame=60", single.display());
+    let (dom, console) = run(&chromium, &profile, &url, "--dump-dom");
+    assert!(console.is_empty(), "console: {console:?}");
+    assert!(dom.contains("data-ready=\"1\"") && dom.contains("data-frame=\"60\""));
+    assert!(dom.contains("\"errors\":null"), "A alone has no curve");
 }

@@ -171,8 +171,8 @@ fn pair(
 fn skeleton_of(a: &Curves) -> Result<Skeleton, Error> {
     let Some(s) = a.doc.hierarchy.as_deref() else {
         return Err(InputError::new(format!(
-            "{}: view draws a skeleton, and this input has none (BVH, glTF, FBX and USD \
-             skeletal animation have one; keys are drawn as B beside the clip they came from)",
+            "{}: view draws a skeleton, and this input gives none to compose its joints on \
+             (keys have none: draw them as B beside the clip they came from)",
             a.doc.source
         ))
         .into());
