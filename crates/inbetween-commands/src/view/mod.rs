@@ -179,8 +179,11 @@ fn skeleton_of(a: &Curves) -> Result<Skeleton, Error> {
     };
     if s.track_count() != a.tracks.len() {
         return Err(InputError::new(format!(
-            "{}: view poses every joint: select no tracks (--tracks)",
-            a.doc.source
+            "{}: view poses the skeleton by its tracks, and this input has {} tracks for a \
+             skeleton that animates {}",
+            a.doc.source,
+            a.tracks.len(),
+            s.track_count()
         ))
         .into());
     }
