@@ -7,7 +7,8 @@
 use crate::support::{bin, stdout_of};
 use crate::view::{assert_self_contained, per_frame, reduced_pair};
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 /// The Chromium to run: `INBETWEEN_CHROMIUM`, else `/usr/bin/chromium`.
 fn chromium() -> Option<PathBuf> {
@@ -29,10 +30,12 @@ fn chromium() -> Option<PathBuf> {
 }
 
 /// Runs headless Chromium on `url` with `mode` (`--dump-dom`, `--screenshot=…`) in a fresh
-/// profile, with the flags that keep it off the network; returns its stdout and its console
-/// lines (Chromium logs each console message and uncaught error as `…:CONSOLE:…`).
+/// profile, with the flags that keep it off the network, killed after 90 s; returns its stdout
+/// and its console lines (Chromium logs each console message and uncaught error as
+/// `…:CONSOLE:…`).
 fn run(chromium: &Path, profile: &Path, url: &str, mode: &str) -> (String, Vec<String>) {
-    let out = Command::new(chromium)
+    let (out_path, err_path) = (profile.with_extension("out"), profile.with_extension("err"));
+    let mut child = Command::new(chromium)
         .args([
             "--headless",
             "--no-sandbox",
@@ -51,16 +54,31 @@ fn run(chromium: &Path, profile: &Path, url: &str, mode: &str) -> (String, Vec<S
         .arg(format!("--user-data-dir={}", profile.display()))
         .arg(mode)
         .arg(url)
-        .output()
+        .stdin(Stdio::null())
+        .stdout(std::fs::File::create(&out_path).unwrap())
+        .stderr(std::fs::File::create(&err_path).unwrap())
+        .spawn()
         .expect("chromium runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success(), "chromium failed: {stderr}");
+    let deadline = Instant::now() + Duration::from_secs(90);
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if Instant::now() > deadline {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("chromium did not finish within 90 s on {url}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    };
+    let stderr = std::fs::read_to_string(&err_path).unwrap_or_default();
+    assert!(status.success(), "chromium failed: {stderr}");
     let console = stderr
         .lines()
         .filter(|l| l.contains(":CONSOLE"))
         .map(str::to_string)
         .collect();
-    (String::from_utf8_lossy(&out.stdout).into_owned(), console)
+    (std::fs::read_to_string(&out_path).unwrap(), console)
 }
 
 #[test]

@@ -231,3 +231,23 @@ fn figure(
         positions,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_page_is_named_html_unless_the_format_is_said() {
+        for ok in ["page.html", "PAGE.HTM", "dir.v/p.Html"] {
+            assert!(check_name(Path::new(ok), None).is_ok(), "{ok}");
+        }
+        for bad in ["page.txt", "page", "page.html.bak", ".html"] {
+            let e = check_name(Path::new(bad), None).unwrap_err().to_string();
+            assert!(
+                e.starts_with(&format!("-o {bad}: view writes an HTML page")),
+                "{e}"
+            );
+            assert!(check_name(Path::new(bad), Some(PageFormat::Html)).is_ok());
+        }
+    }
+}
