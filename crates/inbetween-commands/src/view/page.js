@@ -143,7 +143,10 @@
 
   const fmt = (x) => (x === 0 ? "0" : Math.abs(x) >= 1e4 || Math.abs(x) < 1e-3 ? x.toExponential(3) : x.toPrecision(4));
   const t0 = times[0], t1 = times[frames - 1];
-  const top = errors ? Math.max(cmp.largest, data.tolerance || 0) * 1.1 || 1 : 1;
+  // The curve's scale: its largest value or the tolerance (1 for a curve of zeros), and a tenth
+  // of headroom above.
+  const scale = errors ? Math.max(cmp.largest, data.tolerance || 0) || 1 : 1;
+  const top = scale * 1.1;
 
   function drawCurve() {
     const canvas = $("curve");
@@ -161,9 +164,9 @@
     g.lineWidth = r;
     g.beginPath();
     g.moveTo(left, y(0)); g.lineTo(w - right, y(0));
-    g.moveTo(left, y(top / 1.1)); g.lineTo(w - right, y(top / 1.1));
+    g.moveTo(left, y(scale)); g.lineTo(w - right, y(scale));
     g.stroke();
-    g.fillText(fmt(top / 1.1), 4 * r, y(top / 1.1) + 4 * r);
+    g.fillText(fmt(scale), 4 * r, y(scale) + 4 * r);
     g.fillText("0", 4 * r, y(0) + 4 * r);
     g.fillText(`${fmt(t0)} s`, left, h - 6 * r);
     const end = `${fmt(t1)} s`;
@@ -218,7 +221,7 @@
     p.append(span("a", "A"), `: ${figures[0].source}`);
     if (figures[1]) p.append(" · ", span("b", "B"), `: ${figures[1].source} (${cmp.keys} keys, ${keyed.size} of ${frames} frames keyed)`);
     parts.push(`skeleton: ${data.joints.length} joints, ${points} points, height ${fmt(data.height)}${unit}, box over the clip ${ext}`);
-    if (cmp) parts.push(`largest displacement ${fmt(cmp.largest)} at ${fmt(cmp.largest_time)} s` + (cmp.worst_track ? ` (track ${cmp.worst_track})` : ""));
+    if (cmp) parts.push(`largest displacement ${fmt(cmp.largest)} at ${fmt(cmp.largest_time)} s` + (cmp.worst_track && cmp.largest > 0 ? ` (track ${cmp.worst_track})` : ""));
     if (data.tolerance) {
       const over = errors ? errors.filter((e) => e > data.tolerance).length : 0;
       parts.push(`tolerance ${fmt(data.tolerance)}` + (errors ? `: ${over} frame${over === 1 ? "" : "s"} beyond` : ""));
