@@ -238,7 +238,8 @@ pub struct ViewArgs {
     pub common_frames: bool,
 
     /// The points the displacement curve measures, as diff's --shell: three points this far
-    /// from each joint along its own axes; 0: the joints and end points only.
+    /// (length units, world space) from each joint along its own axes. Without it, as diff: a
+    /// joint whose rotation moves no point gets end points at its bone length; 0: neither.
     #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_non_negative))]
     pub shell: Option<f64>,
 
