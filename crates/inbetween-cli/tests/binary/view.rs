@@ -444,3 +444,78 @@ fn diff_per_frame_reports_the_curve_or_refuses() {
     );
     assert!(!out.exists());
 }
+
+/// B's figure is B as played: keys that every track shares (`reduce --shared-keys`) are the
+/// capture's own frames, hit by the curve, so at a keyed frame B's figure is A's, point for
+/// point, and the displacement 0 (to rounding); where the curve is largest, the figures part by
+/// it.
+#[test]
+fn at_shared_keys_b_is_a_and_between_them_b_is_its_curve() {
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("shared.json");
+    stdout_of(
+        bin()
+            .args([
+                "reduce",
+                CLIP,
+                "--tolerance",
+                "2",
+                "--translation-tolerance",
+                "0.5",
+            ])
+            .args(["--shared-keys", "-o"])
+            .arg(&keys),
+    );
+    let page = dir.path().join("shared.html");
+    stdout_of(bin().args(["view", CLIP]).arg(&keys).arg("-o").arg(&page));
+    let data = page_data(&std::fs::read_to_string(&page).unwrap());
+    let cmp = &data["compared"];
+    let errors = f64s(&cmp["errors"]);
+    let figures = data["figures"].as_array().unwrap();
+    let (a, b) = (
+        f32s(&figures[0]["positions"]),
+        f32s(&figures[1]["positions"]),
+    );
+    let frame = |pos: &[f32], f: usize| pos[f * 38 * 3..(f + 1) * 38 * 3].to_vec();
+    let keyed: Vec<usize> = cmp["keyed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_u64().unwrap() as usize)
+        .collect();
+    assert!(keyed.len() > 2 && keyed.len() < 30, "{keyed:?}");
+    // The keys are the frames' quaternions written and read back (normalised on reading):
+    // equal to rounding, not to the bit.
+    for &f in &keyed {
+        let (pa, pb) = (frame(&a, f), frame(&b, f));
+        let apart = pa
+            .iter()
+            .zip(&pb)
+            .map(|(x, y)| (x - y).abs())
+            .fold(0.0f32, f32::max);
+        assert!(apart <= 1e-5, "keyed frame {f}: the figures {apart} apart");
+        assert!(errors[f] < 1e-12, "keyed frame {f}: {}", errors[f]);
+    }
+    // The largest displacement: the farthest pair of points of the two figures there.
+    let (worst, largest) = errors
+        .iter()
+        .enumerate()
+        .fold((0, 0.0f64), |m, (f, &e)| if e > m.1 { (f, e) } else { m });
+    assert!(!keyed.contains(&worst) && largest > 0.0);
+    let far = frame(&a, worst)
+        .chunks_exact(3)
+        .zip(frame(&b, worst).chunks_exact(3))
+        .map(|(p, q)| {
+            let d: f64 = (0..3)
+                .map(|i| (f64::from(p[i]) - f64::from(q[i])).powi(2))
+                .sum();
+            d.sqrt()
+        })
+        .fold(0.0, f64::max);
+    // The curve also measures points the figures do not draw (default ends at bone length), so
+    // the drawn points part by at most the curve, and by most of it here (float32 aside).
+    assert!(
+        far <= largest + 1e-4 && far > 0.5 * largest,
+        "{far} {largest}"
+    );
+}
