@@ -28,7 +28,8 @@
     frame: 0, playing: false, overlay: !!data.overlay, showB: true,
     az: 0, el: 0, up: data.up, speed: 1, clock: 0, last: 0,
   };
-  // The initial state from the address's fragment: #frame=N&b=hidden&overlay=1&view=side&up=z&az=30&el=10
+  // The initial state from the address's fragment:
+  // #frame=N&b=hidden&overlay=1&view=side&up=z&az=30&el=10&play=1
   for (const part of location.hash.replace(/^#/, "").split("&")) {
     const [k, v] = part.split("=");
     if (k === "frame" && isFinite(+v)) state.frame = Math.max(0, Math.min(frames - 1, Math.floor(+v)));
@@ -38,6 +39,7 @@
     if (k === "az" && isFinite(+v)) state.az = (+v * Math.PI) / 180;
     if (k === "el" && isFinite(+v)) state.el = (+v * Math.PI) / 180;
     if (k === "view" && ["front", "side", "top"].includes(v)) { setView(v); $("view").value = v; }
+    if (k === "play") state.autoplay = v === "1";
   }
 
   function setView(v) {
@@ -299,5 +301,6 @@
   $("values").textContent = JSON.stringify({ frames, errors: errors ? Array.from(errors) : null, keyed: Array.from(keyed) });
   window.inbetweenView = { data, times, figures, errors, state, seek, draw };
   draw();
+  if (state.autoplay) play(true);
   document.body.dataset.ready = "1";
 })();
