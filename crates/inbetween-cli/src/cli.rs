@@ -5,7 +5,7 @@
 
 use clap::{Parser, Subcommand};
 use inbetween_commands::args::{
-    AnalyzeArgs, ConvertArgs, DiffArgs, InterpArgs, PlotArgs, ReduceArgs,
+    AnalyzeArgs, ConvertArgs, DiffArgs, InterpArgs, PlotArgs, ReduceArgs, ViewArgs,
 };
 
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
@@ -79,6 +79,16 @@ pub enum Command {
     ///   inbetween reduce anim.glb --tolerance 0.5 --scheme slerp -o small.glb
     #[command(verbatim_doc_comment)]
     Reduce(ReduceArgs),
+
+    /// One self-contained HTML page that plays A (and B beside it, as diff plays it) as stick
+    /// figures, with the world displacement per frame under them and B's keyed frames marked.
+    ///
+    /// Examples:
+    ///   inbetween view clip.bvh -o clip.html
+    ///   inbetween view clip.bvh small.json --tolerance 0.5 -o check.html
+    ///   inbetween view clip.bvh small.glb --overlay --title "walk, reduced" -o walk.html
+    #[command(verbatim_doc_comment)]
+    View(ViewArgs),
 }
 
 impl Command {
@@ -91,7 +101,7 @@ impl Command {
             Command::Reduce(a) => &mut a.output.output,
             Command::Analyze(a) => &mut a.output,
             Command::Diff(a) => &mut a.output,
-            Command::Plot(_) => return,
+            Command::Plot(_) | Command::View(_) => return,
         };
         if output.as_deref().is_some_and(|p| p.as_os_str() == "-") {
             *output = None;

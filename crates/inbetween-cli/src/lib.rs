@@ -15,7 +15,7 @@ use inbetween::Error;
 use inbetween_commands::batch::Progress;
 use inbetween_commands::events::{Collected, Events};
 use inbetween_commands::record::Record;
-use inbetween_commands::{analyze, batch, convert, diff, exit_code, flags, interp, reduce};
+use inbetween_commands::{analyze, batch, convert, diff, exit_code, flags, interp, reduce, view};
 use std::ffi::OsString;
 use std::io::Read;
 
@@ -172,6 +172,7 @@ pub fn run(args: Vec<OsString>, stdin: &mut dyn Read, err: &mut dyn FnMut(&str))
         Command::Analyze(args) => analyze::run(args, stdin, &mut warn),
         Command::Plot(args) => plot::run(args, stdin, &mut warn),
         Command::Reduce(args) => reduce::run(args, stdin, &mut warn),
+        Command::View(args) => view::run(args, stdin, &mut warn),
         Command::Diff(args) => diff::run(args, stdin, &mut warn).map(|exceeded| {
             exceeds = exceeded;
         }),

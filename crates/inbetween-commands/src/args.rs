@@ -1,5 +1,6 @@
-//! A command's request: the options of `interp`, `convert`, `reduce`, `diff`, `analyze` and
-//! `plot`, each value parsed into its library type (a bad value is refused naming the option).
+//! A command's request: the options of `interp`, `convert`, `reduce`, `diff`, `view`,
+//! `analyze` and `plot`, each value parsed into its library type (a bad value is refused naming
+//! the option).
 //! The command line parses them with clap (the `clap` feature derives its parsers; the doc
 //! comments are the help text); Python sets them by name ([`crate::keywords`]). Defaults are
 //! the command line's ([`Default`], checked against clap's by the command line's tests).
@@ -179,6 +180,11 @@ pub struct DiffArgs {
     #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_non_negative))]
     pub shell: Option<f64>,
 
+    /// Report per compared frame of A the largest world displacement of any point (the curve
+    /// view draws) instead of per track; needs world positions (a skeleton).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub per_frame: bool,
+
     /// Exit 1 when any angle exceeds this (--angles units).
     #[cfg_attr(feature = "clap", arg(long, value_name = "ANGLE", value_parser = parse_positive))]
     pub max_angle: Option<f64>,
@@ -200,6 +206,70 @@ pub struct DiffArgs {
     )]
     pub output: Option<PathBuf>,
 }
+
+/// `inbetween view A [B] -o page.html`: a page that plays the motion (docs/spec.md §1,
+/// *Options of `view`*).
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "clap", derive(clap::Args))]
+#[cfg_attr(feature = "clap", command(mut_arg("input", |a| a.required(true).index(1).value_name("A")
+    .help("Motion A, with a skeleton: BVH, glTF, FBX or USD; `-` reads standard input"))))]
+pub struct ViewArgs {
+    /// Motion A (its options are those below; `-` reads standard input).
+    /// Where the keys come from and how to read them.
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub input: InputArgs,
+
+    /// Motion B, drawn beside A on A's skeleton as diff plays it, with the world displacement
+    /// per frame under both; read with the same options as A.
+    #[cfg_attr(feature = "clap", arg(value_name = "B", index = 2))]
+    pub other: Option<PathBuf>,
+
+    /// The scheme B is interpolated with at A's frame times, as diff's --scheme. Default: as
+    /// B's format plays it.
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
+    pub scheme: Option<SchemeArg>,
+
+    /// The options that shape the curve.
+    #[cfg_attr(feature = "clap", command(flatten))]
+    pub curve: CurveArgs,
+
+    /// Show only the times where both have a key (within 1e-9 s), as diff's --common-frames.
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub common_frames: bool,
+
+    /// The points the displacement curve measures, as diff's --shell: three points this far
+    /// (length units, world space) from each joint along its own axes. Without it, as diff: a
+    /// joint whose rotation moves no point gets end points at its bone length; 0: neither.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "D", value_parser = parse_non_negative))]
+    pub shell: Option<f64>,
+
+    /// A world displacement (length units) drawn as a line across the curve, the frames beyond
+    /// it marked (the --position-tolerance B was reduced with, say).
+    #[cfg_attr(feature = "clap", arg(long, value_name = "LEN", value_parser = parse_positive))]
+    pub tolerance: Option<f64>,
+
+    /// The page's title. Default: A's file name, and B's.
+    #[cfg_attr(feature = "clap", arg(long, value_name = "TEXT"))]
+    pub title: Option<String>,
+
+    /// Open the page with B drawn over A rather than beside it (the page has a toggle).
+    #[cfg_attr(feature = "clap", arg(long))]
+    pub overlay: bool,
+
+    /// html, the only format view writes; by default from the extension of -o, which must
+    /// then be .html or .htm.
+    #[cfg_attr(feature = "clap", arg(long, value_enum))]
+    pub output_format: Option<PageFormat>,
+
+    /// The page to write (replaced atomically), or - for standard output.
+    #[cfg_attr(
+        feature = "clap",
+        arg(short = 'o', long = "output", value_name = "FILE.html")
+    )]
+    pub output: PathBuf,
+}
+
+named! { PageFormat { Html = "html" } }
 
 /// Several inputs at once (docs/spec.md §1, *Batch*): more inputs, and where their outputs go.
 #[derive(Debug, Clone, Default, PartialEq)]

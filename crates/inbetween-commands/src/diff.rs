@@ -1,11 +1,12 @@
 //! `inbetween diff A B`: how far motion B is from motion A, per track and, with a skeleton, in
 //! world space (the library's [`inbetween::diff`]; docs/spec.md §5b).
 
-use super::settings::read_curves;
+use super::settings::{Curves, read_curves};
 use crate::args::{DiffArgs, InputArgs, ReportFormat};
 use crate::events::Events;
 use crate::played::{self, TrackCurve};
 use crate::table::{aligned, format_sig};
+use glam::{DQuat, DVec3};
 use inbetween::diff::{Extent, TrackDiff, WorldDiff, track_diff, world_diff};
 use inbetween::rotation::AngleUnit;
 use inbetween::skeleton::Skeleton;
@@ -27,6 +28,25 @@ struct Row {
     world: Option<Extent>,
 }
 
+/// Both motions read, B played at A's compared times, and what `diff` measures there: one
+/// computation for `diff`'s report and `view`'s page.
+pub(crate) struct Compared {
+    /// Motion A as read.
+    pub(crate) a: Curves,
+    /// Motion B as read.
+    pub(crate) b: Curves,
+    /// Per track of A, its name in A's order.
+    pub(crate) names: Vec<String>,
+    /// Per track of A, the indices of its keys compared.
+    pub(crate) compared: Vec<Vec<usize>>,
+    /// Per track of A, B's rotation and translation at each compared key.
+    pub(crate) b_poses: Vec<Vec<(DQuat, Option<DVec3>)>>,
+    /// The world displacement, when A has a skeleton and every track is compared at the same
+    /// frames.
+    pub(crate) world: Option<WorldDiff>,
+    rows: Vec<Row>,
+}
+
 /// Runs `diff`; `Ok(Some(message))` when a `--max-angle`/`--max-position` limit is exceeded
 /// (the report is written all the same).
 pub fn run(
@@ -34,6 +54,30 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn Events,
 ) -> Result<Option<String>, Error> {
+    let c = compare(args, stdin, warn)?;
+    let rows = &c.rows;
+    let unit = args.input.angles;
+    let format = super::analyze::report_format(args.output_format, args.output.as_deref());
+    let bytes = match (args.per_frame, format) {
+        (true, _) => per_frame(&c, format)?,
+        (false, ReportFormat::Text) => text(rows, unit).into_bytes(),
+        (false, ReportFormat::Csv) => csv(rows, unit),
+        (false, ReportFormat::Json) => json(rows, unit),
+    };
+    let reads = [&c.a.reads[..], &c.b.reads[..]].concat();
+    let mut out = crate::output::open_output(args.output.as_deref(), &reads)?;
+    out.write_all(&bytes)?;
+    out.commit()?;
+    Ok(exceeded(rows, args, unit))
+}
+
+/// Reads A and B and measures B against A at A's times, as `diff` does (its output options
+/// unused): every error `diff` reports on its inputs.
+pub(crate) fn compare(
+    args: &DiffArgs,
+    stdin: &mut dyn Read,
+    warn: &mut dyn Events,
+) -> Result<Compared, Error> {
     // Each side's keys as its format plays them, unless --scheme says how (played::scheme).
     let scheme = |f, recorded| played::scheme(args.scheme, f, recorded);
     let a_stdin = args
@@ -148,16 +192,17 @@ pub fn run(
         compared.push(keys);
         b_poses.push(poses);
     }
-    if let Some(world) = world(
+    let world = world(
         &a,
         b.doc.hierarchy.as_deref(),
         &compared,
         &b_poses,
         args,
         warn,
-    )? {
-        for (row, w) in rows.iter_mut().zip(world.tracks) {
-            row.world = w;
+    )?;
+    if let Some(world) = &world {
+        for (row, w) in rows.iter_mut().zip(&world.tracks) {
+            row.world = *w;
         }
     }
     // Positions too large to compose (offsets, translations or --shell near the largest
@@ -183,17 +228,69 @@ pub fn run(
             .into());
         }
     }
-    let unit = args.input.angles;
-    let bytes = match super::analyze::report_format(args.output_format, args.output.as_deref()) {
-        ReportFormat::Text => text(&rows, unit).into_bytes(),
-        ReportFormat::Csv => csv(&rows, unit),
-        ReportFormat::Json => json(&rows, unit),
+    Ok(Compared {
+        a,
+        b,
+        names: a_names,
+        compared,
+        b_poses,
+        world,
+        rows,
+    })
+}
+
+/// The `--per-frame` report: per compared frame of A, its index among them, its time and the
+/// largest world displacement of any point there ([`WorldDiff::frames`]).
+fn per_frame(c: &Compared, format: ReportFormat) -> Result<Vec<u8>, Error> {
+    let Some(world) = &c.world else {
+        return Err(InputError::new(format!(
+            "diff: --per-frame reports world displacements, which {} does not give: it needs a \
+             skeleton and every track compared at the same frames",
+            c.a.doc.source
+        ))
+        .into());
     };
-    let reads = [&a.reads[..], &b.reads[..]].concat();
-    let mut out = crate::output::open_output(args.output.as_deref(), &reads)?;
-    out.write_all(&bytes)?;
-    out.commit()?;
-    Ok(exceeded(&rows, args, unit))
+    let times: Vec<f64> = c.compared[0]
+        .iter()
+        .map(|&k| c.a.tracks[0].times()[k])
+        .collect();
+    let mut nums = NumWriter::new(NumFormat::Shortest);
+    Ok(match format {
+        ReportFormat::Csv => {
+            let mut out = b"frame,time,max_world\n".to_vec();
+            for (f, (t, d)) in times.iter().zip(&world.frames).enumerate() {
+                out.extend_from_slice(format!("{f},").as_bytes());
+                nums.float(&mut out, *t);
+                out.push(b',');
+                nums.float(&mut out, *d);
+                out.push(b'\n');
+            }
+            out
+        }
+        ReportFormat::Json => {
+            let rows: Vec<_> = times
+                .iter()
+                .zip(&world.frames)
+                .enumerate()
+                .map(|(f, (t, d))| serde_json::json!({"frame": f, "time": t, "max_world": d}))
+                .collect();
+            let mut out = serde_json::to_vec_pretty(&serde_json::json!({ "frames": rows }))
+                .unwrap_or_default();
+            out.push(b'\n');
+            out
+        }
+        ReportFormat::Text => {
+            let mut cells = vec![vec![
+                "frame".to_string(),
+                "time s".into(),
+                "max world".into(),
+            ]];
+            for (f, (t, d)) in times.iter().zip(&world.frames).enumerate() {
+                cells.push(vec![f.to_string(), format_sig(*t), format_sig(*d)]);
+            }
+            aligned(&cells, 1).into_bytes()
+        }
+    })
 }
 
 /// The key indices of `a` compared and B's rotation and translation at each: every key of A,

@@ -30,6 +30,7 @@ pub mod settings;
 pub mod shown;
 pub mod skeleton;
 pub mod table;
+pub mod view;
 
 use inbetween::Error;
 

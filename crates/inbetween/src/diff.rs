@@ -80,6 +80,9 @@ pub struct WorldDiff {
     /// the joints below it that no other track animates) over the frames, with the frame; the
     /// mean is of its joint's origin. `None` for a track no joint takes.
     pub tracks: Vec<Option<Extent>>,
+    /// Per frame, the largest displacement of any point measured (infinite for a NaN): the
+    /// curve whose largest value is the largest of `tracks` (`inbetween view` draws it).
+    pub frames: Vec<f64>,
 }
 
 /// A pose source: the rotation and translation of track `t` at frame `f`, as `(f, t) → pose`.
@@ -127,6 +130,7 @@ pub fn world_diff(
                 })
             })
             .collect(),
+        frames: scan.frames,
     }
 }
 
@@ -161,6 +165,8 @@ struct Scan {
     points: Vec<(f64, usize)>,
     /// Per joint, the sum over the frames of its origin's displacement.
     origin_sums: Vec<f64>,
+    /// Per frame, the largest displacement of any point.
+    frames: Vec<f64>,
     /// The points past their limits, when limits are given.
     misses: Vec<Miss>,
 }
@@ -183,6 +189,7 @@ fn scan(
     let parts = crate::parallel::map(&starts, |&s| {
         let mut best = vec![(0.0f64, s); n_points];
         let mut origin_sums = vec![0.0; n_joints];
+        let mut largest = Vec::with_capacity(chunk);
         let mut misses = Vec::new();
         let (mut wa, mut wb) = (Vec::new(), Vec::new());
         let (mut pa, mut pb) = (Vec::new(), Vec::new());
@@ -191,8 +198,10 @@ fn scan(
             skeleton.world(|t| b(f, t), &mut wb);
             points(skeleton, &wa, shell, &mut pa);
             points(skeleton, &wb, shell, &mut pb);
+            let mut frame_max = 0.0f64;
             for (point, ((x, y), best)) in pa.iter().zip(&pb).zip(&mut best).enumerate() {
                 let d = nan_max((*x - *y).length());
+                frame_max = frame_max.max(d);
                 if d > best.0 {
                     *best = (d, f);
                 }
@@ -204,6 +213,7 @@ fn scan(
                     });
                 }
             }
+            largest.push(frame_max);
             for ((x, y), sum) in wa.iter().zip(&wb).zip(&mut origin_sums) {
                 *sum += nan_max((x.translation - y.translation).length());
             }
@@ -211,12 +221,14 @@ fn scan(
         Scan {
             points: best,
             origin_sums,
+            frames: largest,
             misses,
         }
     });
     let mut out = Scan {
         points: vec![(0.0, 0); n_points],
         origin_sums: vec![0.0; n_joints],
+        frames: Vec::with_capacity(frames),
         misses: Vec::new(),
     };
     for part in parts {
@@ -228,6 +240,7 @@ fn scan(
         for (o, p) in out.origin_sums.iter_mut().zip(&part.origin_sums) {
             *o += p;
         }
+        out.frames.extend(part.frames);
         out.misses.extend(part.misses);
     }
     out
@@ -264,6 +277,12 @@ mod tests {
         let want = 2.0 * 2.0 * (theta * 2.0 / 2.0).sin();
         assert!((e.max - want).abs() < 1e-14, "{} {want}", e.max);
         assert_eq!(e.at, 2);
+        // Per frame: the end's chord at each frame's angle, 0 at frame 0.
+        for (f, &x) in d.frames.iter().enumerate() {
+            let chord = 2.0 * 2.0 * (theta * f as f64 / 2.0).sin();
+            assert!((x - chord).abs() < 1e-14, "frame {f}: {x} {chord}");
+        }
+        assert_eq!(d.frames.len(), 3);
         // The origin sits on the axis: it never moves.
         assert_eq!(e.mean, 0.0);
         // A shell at 0.5 around the root adds a point that moves by 2·0.5·sin(θ): less.

@@ -43,3 +43,5 @@ mod usage;
 mod usd;
 mod usd_untrusted;
 mod validation;
+mod view;
+mod view_browser;
