@@ -50,6 +50,14 @@ pub(super) fn keys_format(args: &ReduceArgs, input: Format) -> Result<OutputForm
             }
             OutputFormat::Usda
         }
+        OutputFormat::Fbx => {
+            return Err(InputError::new(
+                "reduce does not write FBX: an FBX player interpolates each Euler angle of a \
+                 joint separately, and reduce's keys are verified under a quaternion scheme; \
+                 write csv, json or .usda keys, or interp the clip to .fbx (every frame a key)",
+            )
+            .into());
+        }
         other => {
             let name = match other {
                 OutputFormat::Npy => "npy",
