@@ -28,6 +28,7 @@
 pub(crate) mod binary;
 pub mod frames;
 pub mod keys;
+pub mod play;
 pub mod write;
 
 use crate::bvh::rate::frame_time_text;

@@ -189,13 +189,119 @@ fn convert_fbx_writes_the_keys_and_reads_back() {
     }
 }
 
+/// `reduce input --tolerance deg [extra] -o small.fbx`, read back by ufbx at every frame of the
+/// input's rate: every track within the tolerances at every input frame. Returns the largest
+/// angle (degrees), translation error, and the number of keys of the first track's curves.
+fn reduced_plays_within(input: &Path, deg: f64, extra: &[&str]) -> (f64, f64, usize) {
+    let dir = tempfile::tempdir().unwrap();
+    let fbx = dir.path().join("small.fbx");
+    bin()
+        .arg("reduce")
+        .arg(input)
+        .args(["--tolerance", &deg.to_string()])
+        .args(extra)
+        .arg("-o")
+        .arg(&fbx)
+        .assert()
+        .success();
+    let src = read(input);
+    let fps = src.fps.unwrap();
+    let back = read(&fbx);
+    assert_eq!(back.fps, Some(fps));
+    let translation_tol = extra
+        .iter()
+        .position(|a| *a == "--translation-tolerance")
+        .map(|i| extra[i + 1].parse::<f64>().unwrap());
+    let (a, b) = (frames(&src, fps), frames(&back, fps));
+    let (mut worst, mut worst_p) = (0.0f64, 0.0f64);
+    for (name, (times, rots, trans)) in &a {
+        let label = format!("{} reduced to {deg}°: track {name}", input.display());
+        let Some((bt, br, btrans)) = b.get(name) else {
+            assert!(
+                rots.iter()
+                    .all(|q| q.angle_between(glam::DQuat::IDENTITY) < ANGLE_TOL),
+                "{label}: missing from the FBX"
+            );
+            continue;
+        };
+        assert_eq!(times.len(), bt.len(), "{label}: frames");
+        for i in 0..times.len() {
+            let angle = rots[i].angle_between(br[i]).to_degrees();
+            assert!(angle <= deg, "{label}: frame {i} plays {angle}° off");
+            worst = worst.max(angle);
+            if let (Some(tt), Some(Some(p)), Some(Some(q))) =
+                (translation_tol, trans.get(i), btrans.get(i))
+            {
+                let d = (*p - *q).length();
+                assert!(d <= tt, "{label}: frame {i} position {d} off");
+                worst_p = worst_p.max(d);
+            }
+        }
+    }
+    // The keys of a curve of the file: what reduce kept (fewer than the frames).
+    let bytes = std::fs::read(&fbx).unwrap();
+    let keys = count_keys(&bytes);
+    (worst, worst_p, keys)
+}
+
+/// The key count of the first `KeyTime` array of a binary FBX file (its `l` array's count).
+fn count_keys(bytes: &[u8]) -> usize {
+    let at = bytes
+        .windows(8)
+        .position(|w| w == b"\x07KeyTime")
+        .expect("a KeyTime node");
+    let p = at + 8;
+    assert_eq!(bytes[p], b'l');
+    u32::from_le_bytes(bytes[p + 1..p + 5].try_into().unwrap()) as usize
+}
+
+#[test]
+fn reduce_fbx_plays_within_its_tolerance_as_ufbx_evaluates_it() {
+    let f = fixtures();
+    let cmu = f.join("bvh/cmu_01_01.bvh");
+    let frames = 61;
+    for (input, deg, extra) in [
+        (&cmu, 1.0, &["--translation-tolerance", "0.1"][..]),
+        (&cmu, 0.2, &["--translation-tolerance", "0.05"][..]),
+        (
+            &cmu,
+            1.0,
+            &["--translation-tolerance", "0.1", "--shared-keys"][..],
+        ),
+        (
+            &cmu,
+            1.0,
+            &["--translation-tolerance", "0.1", "--scheme", "bezier"][..],
+        ),
+        (
+            &f.join("bvh/mixed_orders.bvh"),
+            0.5,
+            &["--translation-tolerance", "0.01"][..],
+        ),
+        (
+            &f.join("fbx/closed_empties_zxy_24.fbx"),
+            0.5,
+            &["--translation-tolerance", "0.001"][..],
+        ),
+    ] {
+        let (worst, worst_p, keys) = reduced_plays_within(input, deg, extra);
+        eprintln!(
+            "{} {deg}° {extra:?}: {worst:.4}°, {worst_p:.4}, {keys} keys",
+            input.display()
+        );
+        if input == &cmu {
+            assert!(keys < frames, "{keys} keys of {frames} frames");
+        }
+    }
+}
+
 #[test]
 fn fbx_output_refuses_what_it_has_no_place_for() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("x.fbx");
     let keys = fixtures().join("ok/clean.csv");
     let bvh = fixtures().join("bvh/cmu_01_01.bvh");
-    let cases: [(Vec<&std::ffi::OsStr>, &str); 4] = [
+    let cases: [(Vec<&std::ffi::OsStr>, &str); 5] = [
         (
             vec![
                 "interp".as_ref(),
@@ -222,10 +328,23 @@ fn fbx_output_refuses_what_it_has_no_place_for() {
             vec![
                 "reduce".as_ref(),
                 bvh.as_os_str(),
-                "--tolerance".as_ref(),
+                "--position-tolerance".as_ref(),
                 "1".as_ref(),
             ],
-            "reduce does not write FBX",
+            "--position-tolerance: FBX output verifies each joint's rotation",
+        ),
+        (
+            vec![
+                "reduce".as_ref(),
+                bvh.as_os_str(),
+                "--tolerance".as_ref(),
+                "1".as_ref(),
+                "--translation-tolerance".as_ref(),
+                "1".as_ref(),
+                "--precision".as_ref(),
+                "3".as_ref(),
+            ],
+            "--precision: FBX stores its keys as float32",
         ),
     ];
     for (args, says) in cases {

@@ -152,6 +152,16 @@ fn leaf(name: &'static str, v: Prop) -> Node {
     Node::new(name, vec![v])
 }
 
+/// The rotation curves' values of a track's keys in `seq`: degrees about X, Y and Z, each key's
+/// triple the one nearest the previous key's ([`EulerUnwrap`]). Written as float32.
+pub fn curve_degrees(seq: EulerSeq, rotations: &[DQuat]) -> Vec<[f64; 3]> {
+    let mut unwrap = EulerUnwrap::new(seq);
+    rotations
+        .iter()
+        .map(|&q| xyz_degrees(seq, unwrap.next(q)))
+        .collect()
+}
+
 /// Degrees about X, Y and Z of a triple (radians) in `seq`'s letter order.
 fn xyz_degrees(seq: EulerSeq, t: [f64; 3]) -> [f64; 3] {
     let mut out = [0.0; 3];
@@ -247,14 +257,9 @@ fn scene_nodes(scene: &Scene) -> io::Result<Vec<Node>> {
         let seq = scene.orders[j];
         let keys = joint.track.map(|t| &scene.tracks[t]);
         // The rotation curves: the track's keys, else the rest rotation held.
-        let mut unwrap = EulerUnwrap::new(seq);
         let angles: Vec<[f64; 3]> = match keys {
-            Some(k) => k
-                .rotations
-                .iter()
-                .map(|&q| xyz_degrees(seq, unwrap.next(q)))
-                .collect(),
-            None => vec![xyz_degrees(seq, unwrap.next(joint.rotation))],
+            Some(k) => curve_degrees(seq, &k.rotations),
+            None => curve_degrees(seq, &[joint.rotation]),
         };
         let ticks: Vec<i64> = keys.map_or_else(|| vec![first], |k| k.ticks.clone());
         let rest_t = joint.translation;
