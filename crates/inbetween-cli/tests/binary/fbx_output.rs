@@ -1,7 +1,8 @@
 //! FBX output (`-o clip.fbx`): every file `interp` and `convert` write is read back by ufbx (the
 //! FBX reader of `inbetween_io`, which samples what ufbx evaluates at each frame of the scene's
 //! rate) and compared, frame by frame, with the tool's own frames of the same input — from BVH,
-//! glTF and FBX inputs, at 24, 30 and 29.97 fps.
+//! glTF, FBX and USD inputs, at 24, 30 and 29.97 fps; and a reduced file, read back the same
+//! way, plays within its tolerance at every input frame.
 
 use crate::support::{bin, fixtures, stderr_of};
 use inbetween_io::document::Document;
@@ -91,14 +92,15 @@ fn interp_reads_back(input: &Path, rate: &str, extra: &[&str]) -> (f64, f64) {
 }
 
 #[test]
-fn interp_fbx_reads_back_every_frame_from_bvh_gltf_and_fbx_at_24_30_and_2997() {
+fn interp_fbx_reads_back_every_frame_from_bvh_gltf_fbx_and_usd_at_24_30_and_2997() {
     let f = fixtures();
-    let inputs: [(std::path::PathBuf, &[&str]); 5] = [
+    let inputs: [(std::path::PathBuf, &[&str]); 6] = [
         (f.join("bvh/cmu_01_01.bvh"), &[]),
         (f.join("bvh/mixed_orders.bvh"), &[]),
         (f.join("gltf/real/CesiumMan.glb"), &[]),
         (f.join("fbx/real/huesitos.fbx"), &[]),
         (f.join("fbx/closed_empties_zxy_24.fbx"), &[]),
+        (f.join("usd/skel_closed_24.usda"), &[]),
     ];
     for (input, extra) in &inputs {
         for rate in ["24", "30", "29.97"] {
