@@ -27,6 +27,19 @@ target/bpy42-venv/bin/python "$(find target/bpy42-venv -path '*/bl_pkg/cli/blend
 echo "== cargo build --locked -p inbetween-cli (the command line the tests compare with)"
 cargo build --locked -q -p inbetween-cli
 
+# FBX output (docs/spec.md §3, FBX output) imported by Blender 5.0.1's own FBX importer and
+# compared with the tool's frames at every frame (its self-test first: a shifted frame fails).
+echo "== FBX output read by Blender's importer (fixtures/fbx/check_written.py --self-test)"
+mkdir -p target/blender
+if target/bpy-venv/bin/python fixtures/fbx/check_written.py --self-test target/debug/inbetween \
+    >target/blender/fbx-written.log 2>&1; then
+  grep -E '^(ok|self-test)' target/blender/fbx-written.log
+else
+  grep -E '^(ok|FAIL|self-test|Traceback|[A-Za-z]*Error)' target/blender/fbx-written.log
+  echo "fixtures/fbx/check_written.py failed (whole log: target/blender/fbx-written.log)" >&2
+  exit 1
+fi
+
 for venv in target/bpy-venv target/bpy42-venv; do
   version="$("$venv/bin/python" -c 'import bpy; print(bpy.app.version_string)' 2>/dev/null | tail -n 1)"
   echo "== blender/tests on Blender $version ($venv, $zip)"

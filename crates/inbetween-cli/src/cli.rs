@@ -11,7 +11,7 @@ use inbetween_commands::args::{
 /// Keyframe in-betweener for 3D orientations: reads keyframes (quaternions, Euler angles,
 /// matrices, axis-angle, rotation vectors) from CSV, JSON, BVH motion capture, glTF 2.0
 /// (.gltf, .glb), FBX or USD (.usda) and writes every in-between frame as CSV, JSON, npy, npz,
-/// BVH, glTF or USD.
+/// BVH, glTF, USD or FBX.
 #[derive(Debug, Parser)]
 #[command(name = "inbetween", version, max_term_width = 100)]
 pub struct Cli {

@@ -396,7 +396,8 @@ pub struct OutputArgs {
 
     /// Output format: csv, json, or (interp only) npy, a NumPy array of float64 rows, or npz,
     /// named NumPy arrays (times, names, rotations, …); bvh, gltf/glb, usda (a UsdSkel
-    /// animation) for input with a skeleton; by default the input's format.
+    /// animation), fbx (binary FBX 7.4) for input with a skeleton; by default the input's
+    /// format.
     #[cfg_attr(feature = "clap", arg(long, value_name = "F", value_parser = parse_output_format))]
     pub output_format: Option<OutputFormat>,
 

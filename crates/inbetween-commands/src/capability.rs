@@ -71,7 +71,17 @@ pub fn of(format: OutputFormat) -> Capability {
             ),
             no_precision: Some("USD stores its values as float32"),
         },
-        // Not written (FBX: issue 50): nothing to carry.
+        OutputFormat::Fbx => Capability {
+            needs: Needs::Skeleton,
+            no_velocities: Some("FBX has no place for angular velocities"),
+            no_track_selection: Some(
+                "an FBX skeleton is written with every joint, posed by its track",
+            ),
+            no_precision: Some("FBX stores its keys as float32"),
+            ..all
+        },
+        // Not documents these variants write (each has its own output variant): nothing to
+        // carry.
         OutputFormat::Doc(Format::Bvh | Format::Gltf | Format::Fbx | Format::Amass) => all,
     }
 }
@@ -97,5 +107,10 @@ mod tests {
             assert!(c.no_velocities.is_some() && c.no_track_spans.is_some());
             assert!(c.no_track_selection.is_some());
         }
+        // FBX: a skeleton, every joint, float32 keys; each joint's curves have their own keys.
+        let fbx = of(OutputFormat::Fbx);
+        assert_eq!(fbx.needs, Needs::Skeleton);
+        assert!(fbx.no_velocities.is_some() && fbx.no_track_selection.is_some());
+        assert!(fbx.no_precision.is_some() && fbx.no_track_spans.is_none());
     }
 }

@@ -119,6 +119,12 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
             out.commit()?;
             return Ok(());
         }
+        OutputFormat::Fbx => {
+            let mut out = crate::output::open_output(args.output.output.as_deref(), &reads)?;
+            inbetween_io::fbx::keys::write_keys(&mut out, &doc, frame_fps)?;
+            out.commit()?;
+            return Ok(());
+        }
         OutputFormat::Gltf(_) => {
             return Err(InputError::new(
                 "convert does not write glTF; resample a glTF asset's rotation channels into \

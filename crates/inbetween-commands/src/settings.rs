@@ -290,7 +290,7 @@ pub(super) fn check_carries(
     {
         format!("--tracks: {why}; select tracks for csv or json output")
     } else if let Some(why) = can.no_precision.filter(|_| args.output.precision.is_some()) {
-        format!("--precision: {why}; drop --precision for .usda output")
+        format!("--precision: {why}; drop --precision")
     } else {
         return Ok(());
     };
@@ -472,10 +472,10 @@ pub fn tracks_take_translations(args: &OutputArgs) -> bool {
     !matches!(output_format(args, Format::Gltf), OutputFormat::Gltf(_))
 }
 
-/// An output named for a format that is read but not written (`.fbx`; binary USD `.usdc`,
-/// `.usdz`, and `.usd`, which names either form) is refused unless the output format is given:
-/// the input's format would otherwise go into a file whose name says another (a BVH's text in
-/// `x.fbx`). Checked before anything is read.
+/// An output named for a format that is read but not written (binary USD `.usdc`, `.usdz`, and
+/// `.usd`, which names either form) is refused unless the output format is given: the input's
+/// format would otherwise go into a file whose name says another (a BVH's text in `x.usdc`).
+/// Checked before anything is read. (`.fbx` is written since issue 50.)
 pub fn check_output_name(args: &OutputArgs) -> Result<(), InputError> {
     match (&args.output, args.output_format) {
         (Some(path), None) => check_output_path(path),
@@ -484,14 +484,15 @@ pub fn check_output_name(args: &OutputArgs) -> Result<(), InputError> {
 }
 
 /// [`check_output_name`] for an output path without `--output-format`: by the end of its file
-/// name, in any case (`.fbx` alone too, which has no extension to `Path`).
+/// name, in any case (`.usdc` alone too, which has no extension to `Path`).
 pub fn check_output_path(path: &Path) -> Result<(), InputError> {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let what = if name.ends_with(".fbx") {
-        "FBX is read, not written: name the output for a format this command writes"
+    let what = if name == ".fbx" {
+        // A hidden file without an extension to `Path`: it would get the input's format.
+        "FBX output needs a file name before .fbx (clip.fbx)"
     } else if [".usd", ".usdc", ".usdz"].iter().any(|e| name.ends_with(e)) {
         "USD is written as text only: name it .usda"
     } else {
@@ -517,7 +518,7 @@ pub fn output_format(args: &OutputArgs, input: Format) -> OutputFormat {
             Format::Bvh => OutputFormat::Bvh,
             // interp writes the input's container (convert writes JSON keys).
             Format::Gltf => OutputFormat::Gltf(ContainerFormat::Glb),
-            // FBX is not written: JSON, which keeps the tracks' names and translations.
+            // FBX is binary, written only when named: JSON, which keeps the names and translations.
             Format::Fbx => OutputFormat::Doc(Format::Json),
             Format::Usd => OutputFormat::Usda,
             // An AMASS file is written back in its own shape at the output rate.

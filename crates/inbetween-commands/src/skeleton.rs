@@ -77,21 +77,28 @@ pub fn joint_order(
     Ok(order)
 }
 
-/// USD output's checks (§3, *USD output*): the input's skeleton, and no option USD has no place
-/// for (`--span track`, `--velocity`, `--tracks`, `--precision`).
+/// USD and FBX output's checks (§3, *USD output*, *FBX output*): the input's skeleton, and no
+/// option the format has no place for (USD: `--span track`; both: `--velocity`, `--tracks`,
+/// `--precision`).
 pub fn usd_output(
     args: &crate::args::InterpArgs,
     doc: &inbetween_io::document::Document,
+    format: OutputFormat,
 ) -> Result<std::sync::Arc<inbetween::skeleton::Skeleton>, inbetween::Error> {
     use inbetween::InputError;
     let Some(h) = doc.hierarchy.clone() else {
+        let name = if format == OutputFormat::Fbx {
+            "FBX"
+        } else {
+            "USD"
+        };
         return Err(InputError::new(format!(
-            "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, \
+            "{}: {name} output is a skeleton's animation; this input has no skeleton (BVH, \
              glTF, FBX or USD input has one); write csv or json",
             doc.source
         ))
         .into());
     };
-    super::settings::check_carries(args, inbetween_io::OutputFormat::Usda)?;
+    super::settings::check_carries(args, format)?;
     Ok(h)
 }

@@ -25,6 +25,12 @@
 //! read by [`crate::bvh::parse`], so an FBX clip is a BVH clip in every later step: tracks, BVH
 //! output, the skeleton of world-space measures.
 
+pub(crate) mod binary;
+pub mod frames;
+pub mod keys;
+pub mod play;
+pub mod write;
+
 use crate::bvh::rate::frame_time_text;
 use crate::clip::Clip;
 use glam::{DQuat, DVec3};

@@ -126,10 +126,13 @@ pub enum OutputFormat {
     /// A USD layer in text form (`.usda`): a UsdSkel skeleton and its animation (input with a
     /// skeleton only: BVH, glTF, FBX).
     Usda,
+    /// A binary FBX scene (7.4): the skeleton as LimbNode models and its motion as per-channel
+    /// Euler curves ([`fbx::write`]; input with a skeleton only).
+    Fbx,
 }
 
 impl OutputFormat {
-    /// `csv`, `json`, `npy`, `npz`, `bvh`, `gltf`, `glb` or `usda`.
+    /// `csv`, `json`, `npy`, `npz`, `bvh`, `gltf`, `glb`, `usda` or `fbx`.
     pub fn parse(s: &str) -> InputResult<OutputFormat> {
         match s {
             "npy" => Ok(OutputFormat::Npy),
@@ -138,9 +141,10 @@ impl OutputFormat {
             "gltf" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Gltf)),
             "glb" => Ok(OutputFormat::Gltf(gltf::ContainerFormat::Glb)),
             "usda" => Ok(OutputFormat::Usda),
+            "fbx" => Ok(OutputFormat::Fbx),
             "csv" | "json" => Format::parse(s).map(OutputFormat::Doc),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\", \"glb\" or \"usda\", found \"{s}\""
+                "expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\", \"glb\", \"usda\" or \"fbx\", found \"{s}\""
             )),
         }
     }

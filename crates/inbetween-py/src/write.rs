@@ -85,9 +85,10 @@ pub fn write<'py>(
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
-    // USD is not written from Python (yet): `.usda` is refused, never CSV under its name.
+    // USD and FBX are not written by `write` (a skeleton's scene; `process_file` writes them):
+    // `.usda` and `.fbx` are refused, never CSV under their names.
     let target = match ext.as_deref().and_then(|e| OutputFormat::parse(e).ok()) {
-        Some(t) if t != OutputFormat::Usda => t,
+        Some(t) if !matches!(t, OutputFormat::Usda | OutputFormat::Fbx) => t,
         _ => {
             return Err(input_error(format!(
                 "path: {source}: write takes .csv, .json, .npy, .npz, .bvh, .glb or .gltf"

@@ -56,23 +56,31 @@ def test_process_file_writes_what_the_command_line_writes(tmp_path, cli):
 
 
 def test_process_file_refuses_an_output_named_for_a_format_not_written(tmp_path, cli):
-    """`x.fbx` held the input's format with status "ok"; now refused before its folder is made
-    or a newer file of that name skips it; with `output_format` it is written."""
+    """`x.usdc` held the input's format with status "ok"; now refused before its folder is made
+    or a newer file of that name skips it; with `output_format` it is written. (`x.fbx` was
+    refused alike until issue 50, which writes FBX.)"""
     clip = FIXTURES / "bvh/cmu_01_01.bvh"
-    newer = tmp_path / "old.fbx"
+    newer = tmp_path / "old.usdc"
     newer.write_text("")
-    for out, says in ((tmp_path / "new/x.fbx", "FBX is read, not written"), (newer, "FBX is"),
+    for out, says in ((tmp_path / "new/x.usdc", "USD is written as text only"),
+                      (newer, "USD is written"),
                       (tmp_path / "x.USDZ", "USD is written as text only")):
         r = inbetween.process_file(clip, out, "interp", fps=30)
         assert r["status"] == "failed" and r["exit_code"] == 2, r
         assert r["error"].startswith(f"{out}: {says}"), r["error"]
     assert not (tmp_path / "new").exists() and newer.read_text() == ""
     assert not (tmp_path / "x.USDZ").exists()
-    r = inbetween.process_file(clip, tmp_path / "y.fbx", "interp", fps=30, output_format="csv")
+    r = inbetween.process_file(clip, tmp_path / "y.usdc", "interp", fps=30, output_format="csv")
     assert r["status"] == "ok", r
     csv = subprocess.run([cli, "interp", str(clip), "--fps", "30", "--output-format", "csv"],
                          check=True, capture_output=True).stdout
-    assert (tmp_path / "y.fbx").read_bytes() == csv
+    assert (tmp_path / "y.usdc").read_bytes() == csv
+    # FBX is written: the same bytes as the command line's.
+    r = inbetween.process_file(clip, tmp_path / "z.fbx", "interp", fps=30)
+    assert r["status"] == "ok", r
+    subprocess.run([cli, "interp", str(clip), "--fps", "30", "-o", str(tmp_path / "cli.fbx")],
+                   check=True)
+    assert (tmp_path / "z.fbx").read_bytes() == (tmp_path / "cli.fbx").read_bytes()
 
 
 def test_the_dask_example_matches_the_command_lines_batch(tmp_path, cli):

@@ -113,7 +113,7 @@ fn bad_option_values_name_option_and_value() {
         ),
         (
             &["--output-format", "xml"],
-            "error: invalid value 'xml' for '--output-format <F>': expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\", \"glb\" or \"usda\", found \"xml\"",
+            "error: invalid value 'xml' for '--output-format <F>': expected \"csv\", \"json\", \"npy\", \"npz\", \"bvh\", \"gltf\", \"glb\", \"usda\" or \"fbx\", found \"xml\"",
         ),
     ];
     for (args, first_line) in cases {

@@ -18,6 +18,7 @@ mod bvh_untrusted;
 mod diff;
 mod errors;
 mod fbx;
+mod fbx_output;
 mod fbx_untrusted;
 mod gltf;
 mod gltf_real;

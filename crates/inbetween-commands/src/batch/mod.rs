@@ -369,7 +369,7 @@ pub fn wanted(batch: &BatchArgs) -> bool {
 }
 
 /// The extension of an input's output: `--output-format`'s, else what the command writes for
-/// that input without `-o` — `interp` the input's own format (FBX, which is not written: JSON),
+/// that input without `-o` — `interp` the input's own format (FBX, binary and written only when named: JSON),
 /// `convert` and `reduce` keys as JSON for a BVH, FBX or USD input (`reduce` of glTF: glTF), a
 /// keys document's own format otherwise.
 pub fn extension(
@@ -388,6 +388,7 @@ pub fn extension(
         Some(OutputFormat::Gltf(ContainerFormat::Gltf)) => "gltf",
         Some(OutputFormat::Gltf(ContainerFormat::Glb)) => "glb",
         Some(OutputFormat::Usda) => "usda",
+        Some(OutputFormat::Fbx) => "fbx",
         None => {
             let own = input
                 .extension()

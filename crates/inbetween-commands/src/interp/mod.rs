@@ -16,6 +16,7 @@ use inbetween::error::num;
 use inbetween::{BakeOptions, Error, Fps, FrameSink, InputError, bake_over};
 use inbetween_io::OutputFormat;
 use inbetween_io::bvh::frames::BvhFrames;
+use inbetween_io::fbx::frames::FbxFrames;
 use inbetween_io::gltf::document::Mode;
 use inbetween_io::gltf::frames::{GltfFrames, check_grid, edges as gltf_edges};
 use inbetween_io::usd::frames::UsdFrames;
@@ -173,7 +174,9 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         _ => None,
     };
     let usd = match format {
-        OutputFormat::Usda => Some(super::skeleton::usd_output(args, doc)?),
+        OutputFormat::Usda | OutputFormat::Fbx => {
+            Some(super::skeleton::usd_output(args, doc, format)?)
+        }
         _ => None,
     };
     // The order the tracks are written in: the skeleton's joints' for BVH output.
@@ -242,6 +245,13 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
                 None => w,
             })
         }
+        OutputFormat::Fbx => Box::new(FbxFrames::new(
+            out,
+            usd.expect("checked above"),
+            inbetween_io::fbx::keys::joint_orders(doc),
+            fps,
+            inbetween_io::fbx::keys::stage(doc),
+        )),
         OutputFormat::Usda => Box::new(UsdFrames::new(
             out,
             usd.expect("checked above"),
@@ -481,6 +491,12 @@ impl Sink for UsdFrames<WriteBehind> {
     }
     fn edge(&mut self, time: f64, q: DQuat, p: Option<DVec3>) -> std::io::Result<()> {
         UsdFrames::edge(self, time, q, p)
+    }
+}
+
+impl Sink for FbxFrames<WriteBehind> {
+    fn into_output(self: Box<Self>) -> std::io::Result<Output> {
+        self.into_inner()?.finish()
     }
 }
 

@@ -50,6 +50,28 @@ pub(super) fn keys_format(args: &ReduceArgs, input: Format) -> Result<OutputForm
             }
             OutputFormat::Usda
         }
+        OutputFormat::Fbx => {
+            let refused = if args.position_tolerance.is_some() {
+                Some((
+                    "--position-tolerance",
+                    "FBX output verifies each joint's rotation (--tolerance) and translation \
+                     (--translation-tolerance) as FBX plays them, not world positions",
+                ))
+            } else if args.distance.is_some() {
+                Some((
+                    "--distance",
+                    "FBX output verifies each joint's rotation as an angle (--tolerance)",
+                ))
+            } else if args.output.precision.is_some() {
+                Some(("--precision", "FBX stores its keys as float32"))
+            } else {
+                None
+            };
+            if let Some((flag, why)) = refused {
+                return Err(InputError::new(format!("{flag}: {why}")).into());
+            }
+            OutputFormat::Fbx
+        }
         other => {
             let name = match other {
                 OutputFormat::Npy => "npy",
@@ -109,6 +131,8 @@ pub(super) fn write(
     let mut out = crate::output::open_output(args.output.output.as_deref(), reads)?;
     if output_format(&args.output, input) == OutputFormat::Usda {
         inbetween_io::usd::keys::write_keys(&mut out, doc, frame_fps)?;
+    } else if output_format(&args.output, input) == OutputFormat::Fbx {
+        inbetween_io::fbx::keys::write_keys(&mut out, doc, frame_fps)?;
     } else {
         write_keys(&mut out, doc, format, style, frame_fps)?;
     }
@@ -169,7 +193,7 @@ pub(super) fn keys_style(
 pub(super) fn scheme(args: &ReduceArgs, input: Format) -> Scheme {
     match (args.scheme, output_format(&args.output, input)) {
         (Some(s), _) => s.into(),
-        (None, OutputFormat::Gltf(_) | OutputFormat::Usda) => Scheme::Slerp,
+        (None, OutputFormat::Gltf(_) | OutputFormat::Usda | OutputFormat::Fbx) => Scheme::Slerp,
         (None, _) => Scheme::Bezier,
     }
 }

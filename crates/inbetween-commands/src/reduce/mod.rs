@@ -2,6 +2,7 @@
 //! (the library's [`inbetween::reduce`]).
 
 mod bvh;
+mod fbx;
 mod gltf;
 mod keys;
 mod report;
@@ -22,6 +23,10 @@ use keys::{kept, keys_format, keys_style, scheme, write};
 use report::report_all;
 use std::io::Read;
 use tracks::{FLOAT32_MARGIN, reduce_tracks};
+
+/// How much tighter than `--tolerance` FBX keys are verified (rad): the player's time fractions
+/// are computed from integer ticks, which differ from the frames' exact times by under a tick.
+const FBX_SLACK: f64 = 1e-9;
 
 /// The options a request needs with others (the command line's parser refuses these first; a
 /// request built by keyword meets them here).
@@ -75,6 +80,8 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         OutputFormat::Doc(f) => f,
         // USD keys are written from the kept keys as JSON's are (`write` sends them to USD).
         OutputFormat::Usda => Format::Json,
+        // FBX keys likewise, refined until FBX's per-channel playback is verified (`fbx`).
+        OutputFormat::Fbx => Format::Json,
         _ => unreachable!("keys_format gives keys documents, glTF and USD"),
     };
     if let Some(s) = args.scale_tolerance {
@@ -118,7 +125,8 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
     };
     // USD stores float32 rotations and translations: the tolerances are tightened by what that
     // rounding can move a key (as for glTF output).
-    let margin = if keys_format(args, input.format)? == OutputFormat::Usda {
+    let to_fbx = keys_format(args, input.format)? == OutputFormat::Fbx;
+    let margin = if keys_format(args, input.format)? == OutputFormat::Usda || to_fbx {
         let largest = tracks
             .iter()
             .filter_map(|t| t.translations())
@@ -139,6 +147,15 @@ pub fn run(args: &ReduceArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
             };
             rounded::as_written(args, &input, (format, style, frame_fps), &encode, warn)?
         }
+    };
+    let reduced = if to_fbx {
+        let bounds = fbx::Bounds {
+            rotation: args.input.angles.to_rad(args.tolerance.unwrap_or(180.0)) - FBX_SLACK,
+            translation: args.translation_tolerance,
+        };
+        fbx::refine(doc, tracks, reduced, &bounds, args.shared_keys, frame_fps)?
+    } else {
+        reduced
     };
     report_all(args, &input, &reduced, warn);
     let out_doc = doc_of(&reduced);

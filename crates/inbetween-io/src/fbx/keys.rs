@@ -1,0 +1,93 @@
+//! A document's keys as an FBX scene: what `convert` and `reduce` write. Each joint's curves
+//! have their own key times (FBX plays every channel separately), so tracks need not share
+//! them; between keys a player interpolates each Euler angle and coordinate linearly.
+
+use super::write::{Scene, TrackKeys, time_tick, write_fbx};
+use crate::document::Document;
+use crate::usd::write::Stage;
+use inbetween::Error;
+use inbetween::clock::Fps;
+use inbetween::error::InputError;
+use inbetween::rotation::EulerSeq;
+use std::io::Write;
+
+/// Each joint's intrinsic Euler sequence in `doc`'s skeleton: a BVH clip's (BVH and FBX input:
+/// the joint's rotation channels, a hinge's completed as BVH reads it), else `ZYX` (FBX's
+/// default order, `eEulerXYZ`).
+pub fn joint_orders(doc: &Document) -> Vec<EulerSeq> {
+    let default = EulerSeq::parse("ZYX").expect("a valid sequence");
+    let n = doc.hierarchy.as_ref().map_or(0, |h| h.joints().len());
+    match &doc.skeleton {
+        Some(clip) if clip.joints().len() == n => clip
+            .joints()
+            .iter()
+            .map(|j| j.rotation().map_or(default, |(seq, _)| seq))
+            .collect(),
+        _ => vec![default; n],
+    }
+}
+
+/// The stage of a document: its unit (else centimetres, 0.01 m) and up axis.
+pub fn stage(doc: &Document) -> Stage {
+    Stage {
+        meters_per_unit: doc.unit_meters.unwrap_or(0.01),
+        z_up: doc.z_up == Some(true),
+    }
+}
+
+/// Writes the keys of `doc` (a document with a skeleton: BVH, glTF, FBX or USD input, or keys
+/// reduced from one) as an FBX scene at `fps`: each key a key of its joint's curves, at its
+/// time's tick ([`time_tick`]: a frame's exact tick where the key is on a frame). Errors: no
+/// skeleton, and the writer's.
+pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Error> {
+    let Some(skeleton) = doc.hierarchy.as_deref() else {
+        return Err(InputError::new(format!(
+            "{}: FBX output is a skeleton's animation; this input has no skeleton (BVH, glTF, \
+             FBX or USD input has one)",
+            doc.source
+        ))
+        .into());
+    };
+    if doc.tracks.len() != skeleton.track_count() {
+        return Err(Error::Internal(format!(
+            "internal error: {} tracks on a skeleton of {}",
+            doc.tracks.len(),
+            skeleton.track_count()
+        )));
+    }
+    let joints = skeleton.track_joints();
+    let mut tracks = Vec::with_capacity(doc.tracks.len());
+    for (i, track) in doc.tracks.iter().enumerate() {
+        let times = doc.track_times(track, fps, 1)?;
+        let positions = track.translations.iter().any(Option::is_some).then(|| {
+            // A key without a position holds the joint's rest translation.
+            let rest = joints[i].map(|j| skeleton.joints()[j].translation);
+            (0..track.keys.len())
+                .map(|k| {
+                    track
+                        .translations
+                        .get(k)
+                        .copied()
+                        .flatten()
+                        .or(rest)
+                        .unwrap_or_default()
+                })
+                .collect()
+        });
+        tracks.push(TrackKeys {
+            ticks: times.iter().map(|&t| time_tick(t, fps)).collect(),
+            rotations: track.keys.iter().map(|k| k.rot).collect(),
+            positions,
+        });
+    }
+    let orders = joint_orders(doc);
+    let scene = Scene {
+        skeleton,
+        orders: &orders,
+        fps,
+        tracks: &tracks,
+        stage: stage(doc),
+    };
+    write_fbx(out, &scene)?;
+    Ok(())
+}
