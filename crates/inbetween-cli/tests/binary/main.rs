@@ -41,5 +41,6 @@ mod rot6d;
 mod roundtrip;
 mod usage;
 mod usd;
+mod usd_binary;
 mod usd_untrusted;
 mod validation;
