@@ -184,3 +184,36 @@ fn damaged_binary_usd_is_an_input_error_naming_the_file() {
         assert!(!out.exists(), "{name}: nothing written");
     }
 }
+
+/// A folder of binary USD: each file is an input of the batch, and `interp` writes each as the
+/// USD the tool writes, `.usda`, the same as from the `.usda` twin.
+#[test]
+fn a_batch_reads_binary_usd_and_writes_usda() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in");
+    std::fs::create_dir(&input).unwrap();
+    let usd = fixtures().join("usd");
+    for f in ["skel_ntsc.usdz", "skel_closed_24.usdc"] {
+        std::fs::copy(usd.join(f), input.join(f)).unwrap();
+    }
+    let out = dir.path().join("out");
+    let o = bin()
+        .arg("interp")
+        .arg(&input)
+        .arg("--out-dir")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    for name in ["skel_ntsc", "skel_closed_24"] {
+        let got = std::fs::read_to_string(out.join(format!("{name}.usda"))).unwrap();
+        let want = stdout_of(
+            bin()
+                .arg("interp")
+                .arg(usd.join(format!("{name}.usda")))
+                .args(["--output-format", "usda"]),
+        );
+        assert_eq!(got, want, "{name}");
+    }
+}

@@ -9,7 +9,8 @@
 //! - every structural section (tokens, strings, fields, fieldsets, paths, specs) lies in the
 //!   file, every LZ4 block is walked to the length it really decompresses to (one chunk: the
 //!   chunked form is openusd's `todo!()`), and every count is one that length can hold;
-//! - the path tree's jumps visit every entry at most once, its indices in range;
+//! - the path tree's jumps visit every entry at most once, its indices in range, and the paths
+//!   openusd builds from it (each its parent's and a token more) fit the budget;
 //! - each value the reader decodes (the few fields of a skeletal animation) is of a type it
 //!   expects, its array lengths fit in the bytes after it (or its compressed block decompresses
 //!   to what they need), and all values decoded together stay under [`decoded_budget`].
@@ -70,7 +71,8 @@ pub(crate) fn decoded_budget(file_len: usize) -> u64 {
 pub(crate) struct Crate<'a> {
     b: &'a [u8],
     version: (u8, u8, u8),
-    tokens: u64,
+    /// The length of each token (for the length of the paths openusd builds from them).
+    token_lens: Vec<u64>,
     /// Bytes of values left to decode ([`decoded_budget`]).
     pub(crate) budget: u64,
 }
@@ -144,12 +146,19 @@ impl<'a> Crate<'a> {
         Ok(end)
     }
 
+    /// The bytes the compressed block at `at` decompresses to (walked first: what it really
+    /// holds, no more), and its end.
+    fn decompressed(&self, at: u64, what: &str) -> Check<(u64, Vec<u8>)> {
+        let (end, _) = self.block(at, what)?;
+        let mut buf = Vec::new();
+        lz4(&self.b[(at + 9) as usize..end as usize], Some(&mut buf));
+        Ok((end, buf))
+    }
+
     /// The decoded integers of the block at `at` (for the path tree's jumps).
     fn decoded_ints(&self, at: u64, count: u64, what: &str) -> Check<(u64, Vec<i64>)> {
         let end = self.ints(at, count, what)?;
-        // The block was walked: it decompresses to what it really holds, no more.
-        let mut buf = Vec::new();
-        lz4(&self.b[(at + 9) as usize..end as usize], Some(&mut buf));
+        let (_, buf) = self.decompressed(at, what)?;
         let ints = decode_ints(&buf, count as usize).ok_or_else(|| {
             format!("{what}: the integer coding ends before its {count} integers")
         })?;
@@ -243,7 +252,7 @@ pub(crate) fn check_structure(b: &[u8]) -> Check<Crate<'_>> {
     let mut c = Crate {
         b,
         version,
-        tokens: 0,
+        token_lens: Vec::new(),
         budget: decoded_budget(b.len()),
     };
     let toc = c.u64_at(16)?;
@@ -270,7 +279,13 @@ pub(crate) fn check_structure(b: &[u8]) -> Check<Crate<'_>> {
                 "TOKENS: {count} tokens in {size} bytes claimed, {out} decompressed"
             ));
         }
-        c.tokens = count;
+        let (_, text) = c.decompressed(at + 16, "TOKENS")?;
+        let body = text.strip_suffix(&[0]).unwrap_or(&text);
+        c.token_lens = if body.is_empty() {
+            Vec::new()
+        } else {
+            body.split(|&x| x == 0).map(|t| t.len() as u64).collect()
+        };
     }
     if let Some(at) = section("STRINGS") {
         let count = c.u64_at(at)?;
@@ -291,7 +306,7 @@ pub(crate) fn check_structure(b: &[u8]) -> Check<Crate<'_>> {
         c.ints(at + 8, count, "FIELDSETS")?;
     }
     if let Some(at) = section("PATHS") {
-        paths(&c, at)?;
+        paths(&mut c, at)?;
     }
     if let Some(at) = section("SPECS") {
         let count = c.u64_at(at)?;
@@ -304,8 +319,10 @@ pub(crate) fn check_structure(b: &[u8]) -> Check<Crate<'_>> {
 }
 
 /// The PATHS section: its counts, and its tree walked as openusd walks it (children next,
-/// siblings by jump), each entry visited at most once.
-fn paths(c: &Crate, at: u64) -> Check<()> {
+/// siblings by jump), each entry visited at most once; the paths it builds, as long as their
+/// parents' and a token more, within the budget (a chain of nested names would otherwise cost
+/// memory quadratic in its length).
+fn paths(c: &mut Crate, at: u64) -> Check<()> {
     let paths = c.u64_at(at)?;
     let count = c.u64_at(at + 8)?;
     let (end, index) = c.decoded_ints(at + 16, count, "PATHS")?;
@@ -317,8 +334,14 @@ fn paths(c: &Crate, at: u64) -> Check<()> {
     let n = count as usize;
     let bad = |what: &str, i: usize| Err(format!("PATHS: entry {i}: {what}"));
     let mut seen = vec![false; n];
-    let mut pending = if n > 0 { vec![0usize] } else { Vec::new() };
-    while let Some(mut i) = pending.pop() {
+    let mut total = 0u64;
+    // (entry, the length of its parent's path)
+    let mut pending = if n > 0 {
+        vec![(0usize, 0u64)]
+    } else {
+        Vec::new()
+    };
+    while let Some((mut i, mut parent)) = pending.pop() {
         loop {
             if i >= n || seen[i] {
                 return bad("the tree reaches an entry twice or none", i);
@@ -327,21 +350,33 @@ fn paths(c: &Crate, at: u64) -> Check<()> {
             if index[i] < 0 || index[i] as u64 >= paths {
                 return bad("a path index out of range", i);
             }
-            if i > 0 && tokens[i].unsigned_abs() >= c.tokens {
-                return bad("a token index out of range", i);
+            let len = if i == 0 {
+                1
+            } else {
+                let Some(t) = c.token_lens.get(tokens[i].unsigned_abs() as usize) else {
+                    return bad("a token index out of range", i);
+                };
+                parent + 1 + t
+            };
+            total += len;
+            if total > c.budget {
+                return bad("the paths are longer in all than the file can hold", i);
             }
             let (child, sibling) = (jumps[i] > 0 || jumps[i] == -1, jumps[i] >= 0);
             if child && sibling {
-                pending.push(i.saturating_add(jumps[i] as usize));
+                pending.push((i.saturating_add(jumps[i] as usize), parent));
             }
             if !child && !sibling {
                 break;
+            }
+            if child {
+                parent = len;
             }
             // The next entry is the child (or, for a jump of 0, the sibling).
             i += 1;
         }
     }
-    Ok(())
+    c.spend(2 * total, "PATHS")
 }
 
 impl Crate<'_> {
@@ -478,6 +513,61 @@ mod tests {
         assert_eq!(lz4(&[0x22, b'a', b'b', 9, 0, 0x10, b'z'], None), None);
         assert_eq!(lz4(&[0x50, b'a'], None), None);
         assert_eq!(lz4(&[], None), None);
+    }
+
+    /// A compressed block of 32-bit integers as a crate holds it: a u64 size, no chunks, one
+    /// literal-only LZ4 sequence of the integer coding (common delta 0, every delta 4 bytes).
+    fn int_block(values: &[i64]) -> Vec<u8> {
+        let mut coded = 0i32.to_le_bytes().to_vec();
+        coded.extend(std::iter::repeat_n(0xffu8, values.len().div_ceil(4)));
+        let mut prev = 0i64;
+        for &v in values {
+            coded.extend(((v - prev) as i32).to_le_bytes());
+            prev = v;
+        }
+        let mut lz4 = vec![0xf0u8];
+        let mut rest = coded.len() - 15;
+        while rest >= 255 {
+            lz4.push(255);
+            rest -= 255;
+        }
+        lz4.push(rest as u8);
+        lz4.extend(&coded);
+        let mut out = ((lz4.len() + 1) as u64).to_le_bytes().to_vec();
+        out.push(0);
+        out.extend(lz4);
+        out
+    }
+
+    /// A PATHS section of `jumps.len()` entries (entry i is path i, token 0) checked.
+    fn check_paths(jumps: &[i64]) -> Check<()> {
+        let n = jumps.len() as u64;
+        let mut b = n.to_le_bytes().to_vec();
+        b.extend(n.to_le_bytes());
+        b.extend(int_block(&(0..n as i64).collect::<Vec<_>>()));
+        b.extend(int_block(&vec![0; jumps.len()]));
+        b.extend(int_block(jumps));
+        let mut c = Crate {
+            b: &b,
+            version: (0, 8, 0),
+            token_lens: vec![4],
+            budget: decoded_budget(b.len()),
+        };
+        paths(&mut c, 0)
+    }
+
+    /// openusd walks the path tree by the file's jumps: 40 entries each with a child and a
+    /// sibling at the next entry would be 2^40 steps there; here the second visit is refused.
+    #[test]
+    fn a_path_tree_reaching_an_entry_twice_is_refused() {
+        // The root, a child with a sibling (jump 2), its child (a leaf), the sibling (a leaf).
+        assert_eq!(check_paths(&[-1, 2, -2, -2]), Ok(()));
+        let mut chain = vec![1; 39];
+        chain.push(-2);
+        let e = check_paths(&chain).unwrap_err();
+        assert!(e.contains("reaches an entry twice"), "{e}");
+        // A sibling past the end.
+        assert!(check_paths(&[-1, 9, -2]).is_err());
     }
 
     #[test]
