@@ -53,7 +53,8 @@ pub enum Format {
     /// An FBX scene, binary or ASCII (input only): one animation stack as a clip on its node
     /// hierarchy ([`fbx`]), read as a BVH clip is from then on.
     Fbx,
-    /// A USD text layer (`.usda`): a UsdSkel skeleton's animation ([`usd::read`]).
+    /// A USD layer, text (`.usda`), binary (`.usdc`) or packaged (`.usdz`; `.usd` names either
+    /// syntax, told apart by the bytes): a UsdSkel skeleton's animation ([`usd::read`]).
     Usd,
     /// An AMASS motion file, a NumPy `.npz` archive of SMPL-H or SMPL-X poses ([`amass`]):
     /// input; as output, [`OutputFormat::Npz`] writes it back at the output rate.
@@ -62,7 +63,8 @@ pub enum Format {
 
 impl Format {
     /// `csv`, `json`, `bvh`, `gltf`/`glb` (either container: it is recognised by its
-    /// bytes), `fbx`, `usda` or `npz` (an AMASS motion file).
+    /// bytes), `fbx`, `usda`/`usdc`/`usdz`/`usd` (any USD syntax: it is recognised by its bytes)
+    /// or `npz` (an AMASS motion file).
     pub fn parse(s: &str) -> InputResult<Format> {
         match s {
             "csv" => Ok(Format::Csv),
@@ -70,16 +72,16 @@ impl Format {
             "bvh" => Ok(Format::Bvh),
             "gltf" | "glb" => Ok(Format::Gltf),
             "fbx" => Ok(Format::Fbx),
-            "usda" => Ok(Format::Usd),
+            "usda" | "usdc" | "usdz" | "usd" => Ok(Format::Usd),
             "npz" => Ok(Format::Amass),
             _ => Err(input_err!(
-                "expected \"csv\", \"json\", \"bvh\", \"gltf\", \"glb\", \"fbx\", \"usda\" or \"npz\", found \"{s}\""
+                "expected \"csv\", \"json\", \"bvh\", \"gltf\", \"glb\", \"fbx\", \"usda\", \"usdc\", \"usdz\", \"usd\" or \"npz\", found \"{s}\""
             )),
         }
     }
 
     /// From a file extension (`.csv`, `.json`, `.bvh`, `.gltf`, `.glb`, `.fbx`, `.usda`,
-    /// `.npz`, case-insensitive).
+    /// `.usdc`, `.usdz`, `.usd`, `.npz`, case-insensitive).
     pub fn from_path(path: &Path) -> Option<Format> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         match ext.as_str() {
@@ -254,17 +256,19 @@ pub fn parse_bytes(
         let fbx = fbx::read(&bytes, source, None)?;
         return Ok((fbx_document(fbx, source), Format::Fbx));
     }
+    let declared = format.or_else(|| path.and_then(Format::from_path));
+    // USD in any syntax: declared or named so (text, crate or package), else a crate's magic,
+    // else (undeclared, unnamed: standard input) a zip whose first entry is a USD layer.
+    let usd = match declared {
+        Some(f) => f == Format::Usd,
+        None => usd::is_binary_usd(&bytes),
+    };
+    if usd {
+        return Ok((usd::read::read_bytes(&bytes, source)?, Format::Usd));
+    }
     if amass::is_npz(&bytes, path, format) {
         let clip = amass::read(&bytes, source, opts.key_fps)?;
         return Ok((clip.document()?, Format::Amass));
-    }
-    let usd = format.or_else(|| path.and_then(Format::from_path)) == Some(Format::Usd);
-    if bytes.starts_with(b"PXR-USDC") || (usd && bytes.starts_with(b"PK\x03\x04")) {
-        return Err(input_err!(
-            "{source}: binary USD (usdc, or a usdz package) is not read, only the text form: \
-             write it as text first (usdcat {source} -o clip.usda)"
-        )
-        .into());
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         input_err!(

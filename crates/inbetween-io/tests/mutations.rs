@@ -1,13 +1,49 @@
 //! A bounded mutation test of the FBX and USD readers (docs/reliability.md, *Untrusted
-//! folders*): every fixture of `fixtures/fbx` and `fixtures/usd` mutated a few hundred ways
+//! folders*): every fixture of `fixtures/fbx` and `fixtures/usd` (text, usdc and usdz; a usdc
+//! also cut at every length) mutated a few hundred ways
 //! with a fixed seed — bytes flipped, the file cut short, ranges repeated or deleted, numbers
 //! and lengths made huge, deep nesting spliced in — and read. Each read must return a document
 //! or an input error: no panic (caught and named with its mutation), no abort, and each within
-//! a few seconds. Deterministic, so a failure reproduces; CI runs it in seconds.
+//! a few seconds, allocating at most [`memory_bound`] at a time on its thread. Deterministic,
+//! so a failure reproduces; CI runs it in seconds.
 
 use inbetween_io::{Format, ReadOptions, parse_bytes};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+
+/// The system allocator, counting the bytes each thread holds and the most it held.
+struct Counting;
+
+thread_local! {
+    static HELD: Cell<usize> = const { Cell::new(0) };
+    static PEAK: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let _ = HELD.try_with(|h| {
+            h.set(h.get() + layout.size());
+            let _ = PEAK.try_with(|p| p.set(p.get().max(h.get())));
+        });
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        let _ = HELD.try_with(|h| h.set(h.get().saturating_sub(layout.size())));
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOCATOR: Counting = Counting;
+
+/// The most a read of `len` bytes may hold at once: what the binary USD reader's budget allows
+/// (64 times the file and 64 MiB) and as much again for the document and its copies.
+fn memory_bound(len: usize) -> usize {
+    2 * (64 * len + (64 << 20))
+}
 
 /// xorshift64*: a fixed, dependency-free sequence.
 struct Rng(u64);
@@ -138,14 +174,16 @@ fn fixtures(dir: &str, ext: &str) -> Vec<PathBuf> {
 
 /// Reads every mutation of every fixture; returns how many were read and how many refused.
 fn run(files: &[PathBuf], format: Format, per_file: usize, seed: u64) -> (usize, usize) {
-    let text = format == Format::Usd;
     let mut rng = Rng(seed);
     let (mut read, mut refused) = (0, 0);
     for file in files {
+        let text = format == Format::Usd && file.extension().is_some_and(|e| e == "usda");
         let bytes = std::fs::read(file).unwrap();
         for k in 0..per_file {
             let (what, mutated) = mutate(&bytes, &mut rng, text);
-            let t = Instant::now();
+            let (len, t) = (mutated.len(), Instant::now());
+            HELD.with(|h| PEAK.with(|p| p.set(h.get())));
+            let before = HELD.with(Cell::get);
             let result = std::panic::catch_unwind(|| {
                 parse_bytes(
                     mutated,
@@ -157,6 +195,12 @@ fn run(files: &[PathBuf], format: Format, per_file: usize, seed: u64) -> (usize,
                 .map(|_| ())
             });
             let took = t.elapsed();
+            let peak = PEAK.with(Cell::get) - before;
+            assert!(
+                peak <= memory_bound(len),
+                "{} mutation {k} ({what}): {peak} bytes held at once",
+                file.display()
+            );
             match result {
                 Ok(Ok(())) => read += 1,
                 Ok(Err(inbetween::Error::Input(e))) => {
@@ -194,6 +238,51 @@ fn mutated_usd_layers_are_read_or_refused() {
     eprintln!("usd: {} files, {read} read, {refused} refused", files.len());
     // The mutations reach both outcomes (a test that only ever refused would prove little).
     assert!(read > 0 && refused > 0, "{read} read, {refused} refused");
+}
+
+#[test]
+fn mutated_binary_usd_is_read_or_refused() {
+    let mut files = fixtures("usd", "usdc");
+    files.extend(fixtures("usd", "usdz"));
+    let (read, refused) = run(&files, Format::Usd, 400, 0x5eed_0003);
+    eprintln!(
+        "usdc/usdz: {} files, {read} read, {refused} refused",
+        files.len()
+    );
+    assert!(read > 0 && refused > 0, "{read} read, {refused} refused");
+}
+
+/// A usdc crate cut at every length (its table of contents is at the end): each an input
+/// error, none a panic, each quick and small.
+#[test]
+fn every_truncation_of_a_usdc_is_refused() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../fixtures/usd/skel_ntsc.usdc");
+    let bytes = std::fs::read(&file).unwrap();
+    for n in 0..bytes.len() {
+        let t = Instant::now();
+        HELD.with(|h| PEAK.with(|p| p.set(h.get())));
+        let before = HELD.with(Cell::get);
+        let result = std::panic::catch_unwind(|| {
+            parse_bytes(
+                bytes[..n].to_vec(),
+                "cut.usdc",
+                None,
+                Some(Format::Usd),
+                &ReadOptions::default(),
+            )
+            .map(|_| ())
+        });
+        match result {
+            Ok(Err(inbetween::Error::Input(e))) => {
+                assert!(e.message().starts_with("cut.usdc"), "{}", e.message())
+            }
+            Ok(other) => panic!("cut at {n}: {other:?}"),
+            Err(_) => panic!("cut at {n}: the reader panicked"),
+        }
+        assert!(t.elapsed() < Duration::from_secs(2), "cut at {n}");
+        let peak = PEAK.with(Cell::get) - before;
+        assert!(peak <= memory_bound(n), "cut at {n}: {peak} bytes");
+    }
 }
 
 #[test]

@@ -155,3 +155,25 @@ def test_process_file_never_writes_over_its_input(tmp_path):
     # An output path that is a folder is no output to be up to date: a failure, not a skip.
     r = inbetween.process_file(src, tmp_path, "interp", fps=30)
     assert r["status"] == "failed" and "directory" in r["error"], r
+
+
+def test_binary_usd_reads_as_its_text_and_damage_is_a_value_error(tmp_path):
+    """`.usdc`/`.usdz` through the shared reader: the `.usda` twin's tracks; a damaged crate (an
+    openusd panic or a refused claim inside) a ValueError naming the file, never an abort."""
+    text = inbetween.read(FIXTURES / "usd" / "skel_ntsc.usda")
+    for twin in ("skel_ntsc.usdc", "skel_ntsc.usdz"):
+        clip = inbetween.read(FIXTURES / "usd" / twin)
+        assert clip.names == text.names and clip.fps == text.fps, twin
+        for (t1, q1, p1), (t2, q2, p2) in zip(clip.tracks, text.tracks):
+            assert np.array_equal(t1, t2) and np.array_equal(q1, q2) and np.array_equal(p1, p2)
+    good = (FIXTURES / "usd" / "skel_ntsc.usdc").read_bytes()
+    code = "import inbetween\n"
+    for k in range(0, len(good), 97):
+        cut = tmp_path / f"cut{k}.usdc"
+        cut.write_bytes(good[:k])
+        code += (f"try:\n    inbetween.read({str(cut)!r})\n"
+                 "except ValueError as e:\n    print('ValueError:', e)\n")
+    r = _in_subprocess(code)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+    assert r.stdout.count("ValueError:") == len(range(0, len(good), 97)), r.stdout
+    assert "cut97.usdc" in r.stdout

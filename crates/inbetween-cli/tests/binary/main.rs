@@ -42,6 +42,7 @@ mod rot6d;
 mod roundtrip;
 mod usage;
 mod usd;
+mod usd_binary;
 mod usd_untrusted;
 mod validation;
 mod view;

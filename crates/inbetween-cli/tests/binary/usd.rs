@@ -421,14 +421,16 @@ fn usd_input_follows_usd_core_where_a_layer_leaves_things_out() {
     let path = dir.path().join("no_tcps.usda");
     std::fs::write(&path, kept).unwrap();
     assert_eq!(keys_of(&path)["fps"], "30000/1001");
-    // Binary USD is refused by name.
+    // A usdc too short for its header: an input error naming the file (binary USD is read,
+    // tests/binary/usd_binary.rs).
     let usdc = dir.path().join("clip.usdc");
     std::fs::write(&usdc, b"PXR-USDC\x00\x07\x00\x00").unwrap();
     let o = bin().arg("convert").arg(&usdc).output().unwrap();
     assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
     assert!(
-        String::from_utf8_lossy(&o.stderr)
-            .contains("binary USD (usdc, or a usdz package) is not read")
+        err.contains("clip.usdc: usdc: not a usdc crate (too short for its header)"),
+        "{err}"
     );
 }
 

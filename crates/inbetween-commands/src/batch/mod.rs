@@ -18,7 +18,9 @@ pub use crate::inputs::Job;
 use crate::shown::shown;
 
 /// The extensions of the input formats (a folder's other files are failed inputs).
-pub const INPUT_EXTENSIONS: [&str; 7] = ["csv", "json", "bvh", "gltf", "glb", "fbx", "usda"];
+pub const INPUT_EXTENSIONS: [&str; 10] = [
+    "csv", "json", "bvh", "gltf", "glb", "fbx", "usda", "usdc", "usdz", "usd",
+];
 
 /// Runs `one` on `input`, writing `output`, as a batch runs each of its inputs: skipped when
 /// `output` is up to date ([`inputs::up_to_date`]) unless `refresh`, else the output's folder made and the
@@ -371,7 +373,8 @@ pub fn wanted(batch: &BatchArgs) -> bool {
 /// The extension of an input's output: `--output-format`'s, else what the command writes for
 /// that input without `-o` — `interp` the input's own format (FBX, binary and written only when named: JSON),
 /// `convert` and `reduce` keys as JSON for a BVH, FBX or USD input (`reduce` of glTF: glTF), a
-/// keys document's own format otherwise.
+/// keys document's own format otherwise; `interp` of binary USD (`.usdc`, `.usdz`, `.usd`):
+/// `.usda`, the USD the tool writes.
 pub fn extension(
     input: &Path,
     output: &crate::args::OutputArgs,
@@ -397,7 +400,9 @@ pub fn extension(
                 .unwrap_or_default();
             return Ok(match own.as_str() {
                 "fbx" | "" => "json".into(),
-                "bvh" | "usda" if keys => "json".into(),
+                "bvh" | "usda" | "usdc" | "usdz" | "usd" if keys => "json".into(),
+                // Binary USD is read, written as text.
+                "usdc" | "usdz" | "usd" => "usda".into(),
                 _ => own,
             });
         }

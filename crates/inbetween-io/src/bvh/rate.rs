@@ -45,6 +45,20 @@ pub(crate) const RATE_TOLERANCE: f64 = 1e-4;
 /// whose frame time needs more (or does not terminate) gets 9 significant digits.
 pub(crate) const MAX_EXACT_DECIMALS: u32 = 12;
 
+/// The standard rate within [`RATE_TOLERANCE`] (relative) of `approx` frames per second, if
+/// any: the rule for a rate a writer rounded (a BVH `Frame Time`, a USD `timeCodesPerSecond`
+/// such as Blender's 30.000030398399637 for a scene at 30/0.999999).
+pub(crate) fn nearest_standard(approx: f64) -> Option<Fps> {
+    let (n, d, rel) = STANDARD_RATES
+        .iter()
+        .map(|&(n, d)| {
+            let r = n as f64 / d as f64;
+            (n, d, (approx - r).abs() / r)
+        })
+        .min_by(|a, b| a.2.total_cmp(&b.2))?;
+    (rel <= RATE_TOLERANCE).then(|| Fps::new(n, d).expect("a standard rate"))
+}
+
 /// The exact rate of a `Frame Time` value as written (seconds per frame): a standard rate
 /// when within [`RATE_TOLERANCE`], else `1 / frame time` with the frame time read as the
 /// exact decimal written. Accepts what files write: `0.0333333`, `.0083333`, `8.3333e-3`, an
@@ -70,21 +84,8 @@ pub(crate) fn rate_from_frame_time(text: &str) -> InputResult<Fps> {
             shorten(t)
         ));
     }
-    let approx = 1.0 / x;
-    let nearest = STANDARD_RATES
-        .iter()
-        .map(|&(n, d)| {
-            (
-                n,
-                d,
-                (approx - n as f64 / d as f64).abs() / (n as f64 / d as f64),
-            )
-        })
-        .min_by(|a, b| a.2.total_cmp(&b.2));
-    if let Some((n, d, rel)) = nearest
-        && rel <= RATE_TOLERANCE
-    {
-        return Fps::new(n, d);
+    if let Some(fps) = nearest_standard(1.0 / x) {
+        return Ok(fps);
     }
     let (sig, pow10) = exact_decimal(t).ok_or_else(|| {
         input_err!(

@@ -1,4 +1,4 @@
-//! `.usda` input: a UsdSkel `Skeleton`'s bound `SkelAnimation` as tracks (docs/spec.md §3, *USD
+//! USD input (`.usda` text, `.usdc` crate, `.usdz` package): a UsdSkel `Skeleton`'s bound `SkelAnimation` as tracks (docs/spec.md §3, *USD
 //! input*). Each joint the animation lists is a track named by its joint's full path
 //! (`Hips/Spine/LeftArm`, unique in the Skeleton); its keys are the animation's time samples — a time code is a frame number at
 //! `timeCodesPerSecond` — and its translations the `translations` samples. Where rotations and
@@ -7,7 +7,8 @@
 //! Skeleton's joints and `restTransforms` give the hierarchy for world-space measures and USD
 //! output.
 
-use super::text::{Prim, Property, Value, parse};
+use super::binary;
+use super::text::{Layer, Prim, Property, Value, parse};
 use crate::document::{DocTrack, Document, Key, KeyOrigin, KeyTime};
 use glam::{DMat4, DQuat, DVec3, DVec4};
 use inbetween::clock::Fps;
@@ -21,10 +22,53 @@ pub(crate) const DEFAULT_TIME_CODES_PER_SECOND: f64 = 24.0;
 
 /// Reads `.usda` text into a document (see the module documentation).
 pub fn read(text: &str, source: &str) -> InputResult<Document> {
-    let layer = parse(text, source)?;
-    let at = |prim: &Prim, prop: Option<&Property>| {
-        format!("{source}:{}", prop.map_or(prim.line, |p| p.line))
-    };
+    document(&parse(text, source)?, source)
+}
+
+/// Reads a USD layer of any syntax into a document: a usdc crate (`PXR-USDC`), a usdz package
+/// (a zip: its root layer, the first entry, read as usdc or usda), else `.usda` text. Messages
+/// about a package's root layer name it as `clip.usdz[clip.usdc]`; the document's source stays
+/// `source`.
+pub fn read_bytes(bytes: &[u8], source: &str) -> InputResult<Document> {
+    if binary::is_zip(bytes) {
+        let (name, root) = binary::package_root(bytes, source)?;
+        let inner = format!("{source}[{}]", inbetween::error::shorten(&name));
+        if binary::is_zip(&root) {
+            return Err(InputError::new(format!(
+                "{inner}: a usdz package inside a usdz package is not read"
+            )));
+        }
+        let mut doc = read_bytes(&root, &inner)?;
+        doc.source = source.to_string();
+        return Ok(doc);
+    }
+    if binary::is_crate(bytes) {
+        return document(&binary::read_crate(bytes, source)?, source);
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        InputError::new(format!(
+            "{source}: expected a USD layer (usda text, a usdc crate or a usdz package), found \
+             an invalid UTF-8 byte at offset {}",
+            e.valid_up_to()
+        ))
+    })?;
+    read(text, source)
+}
+
+/// Where a prim or property is: `file:line` in text, `file` in a binary layer (line 0), whose
+/// messages name the field instead.
+fn place(source: &str, line: usize) -> String {
+    if line == 0 {
+        source.to_string()
+    } else {
+        format!("{source}:{line}")
+    }
+}
+
+/// A parsed layer (of either syntax) as a document.
+fn document(layer: &Layer, source: &str) -> InputResult<Document> {
+    let at =
+        |prim: &Prim, prop: Option<&Property>| place(source, prop.map_or(prim.line, |p| p.line));
     // A Skeleton's animation: its own skel:animationSource, else its nearest ancestor's (a
     // SkelRoot's binding is inherited, as UsdSkel resolves it).
     let binding = |skel: usize| -> Option<(usize, &Property)> {
@@ -214,14 +258,19 @@ pub fn read(text: &str, source: &str) -> InputResult<Document> {
     })
 }
 
-/// A `timeCodesPerSecond` as an exact rate: `n/1001` where it is one (`29.97002997002997` is
-/// 30000/1001), else the shortest decimal of the double.
+/// A `timeCodesPerSecond` as an exact rate: `n` or `n/1001` where it is one (`29.97002997002997`
+/// is 30000/1001), else a standard rate within 1e-4 relative (BVH's rule for a rounded rate:
+/// Blender writes 30.000030398399637 for a scene at 30/0.999999), else the shortest decimal of
+/// the double.
 fn exact_rate(x: f64) -> InputResult<Fps> {
     for den in [1u64, 1001] {
         let n = (x * den as f64).round();
         if n >= 1.0 && (n / den as f64 - x).abs() <= 1e-12 * x {
             return Fps::new(n as u64, den);
         }
+    }
+    if let Some(fps) = crate::bvh::rate::nearest_standard(x) {
+        return Ok(fps);
     }
     Fps::from_f64(x)
 }
@@ -230,8 +279,9 @@ fn exact_rate(x: f64) -> InputResult<Fps> {
 fn tokens(prim: &Prim, name: &str, source: &str) -> InputResult<Vec<String>> {
     let prop = prim.property(name).ok_or_else(|| {
         InputError::new(format!(
-            "{source}:{}: the {} has no {name}",
-            prim.line, prim.type_name
+            "{}: the {} has no {name}",
+            place(source, prim.line),
+            prim.type_name
         ))
     })?;
     match &prop.value {
@@ -241,14 +291,14 @@ fn tokens(prim: &Prim, name: &str, source: &str) -> InputResult<Vec<String>> {
             .map(|(i, v)| match v {
                 Value::Str(s) => Ok(s.clone()),
                 _ => Err(InputError::new(format!(
-                    "{source}:{}: {name}[{i}]: expected a quoted token",
-                    prop.line
+                    "{}: {name}[{i}]: expected a quoted token",
+                    place(source, prop.line)
                 ))),
             })
             .collect(),
         _ => Err(InputError::new(format!(
-            "{source}:{}: {name}: expected a list of tokens",
-            prop.line
+            "{}: {name}: expected a list of tokens",
+            place(source, prop.line)
         ))),
     }
 }
@@ -271,8 +321,13 @@ fn numbers(v: &Value, out: &mut Vec<f64>) -> bool {
 
 /// A `matrix4d[]` of `n` matrices (rows, the translation last: USD's row vectors).
 fn matrices(prop: &Property, n: usize, source: &str) -> InputResult<Vec<DMat4>> {
-    let bad =
-        |what: &str| InputError::new(format!("{source}:{}: {}: {what}", prop.line, prop.name));
+    let bad = |what: &str| {
+        InputError::new(format!(
+            "{}: {}: {what}",
+            place(source, prop.line),
+            prop.name
+        ))
+    };
     let Some(Value::List(items)) = &prop.value else {
         return Err(bad("expected a list of matrices"));
     };
@@ -317,8 +372,9 @@ fn samples(
     for (code, v) in list {
         let bad = |what: String| {
             InputError::new(format!(
-                "{source}:{}: {} at time code {code}: {what}",
-                prop.line, prop.name
+                "{}: {} at time code {code}: {what}",
+                place(source, prop.line),
+                prop.name
             ))
         };
         if !code.is_finite() {
@@ -363,8 +419,9 @@ fn samples(
     out.sort_by(|a, b| a.0.total_cmp(&b.0));
     if out.windows(2).any(|w| w[0].0 == w[1].0) {
         return Err(InputError::new(format!(
-            "{source}:{}: {}: a time code sampled twice",
-            prop.line, prop.name
+            "{}: {}: a time code sampled twice",
+            place(source, prop.line),
+            prop.name
         )));
     }
     Ok(out)
@@ -410,6 +467,12 @@ mod tests {
         );
         assert_eq!(exact_rate(24.0).unwrap(), Fps::new(24, 1).unwrap());
         assert_eq!(exact_rate(12.5).unwrap(), Fps::new(25, 2).unwrap());
+        // Blender's scene at 30/0.999999 (a BVH import's rate), and 1e-4 off: not snapped.
+        assert_eq!(
+            exact_rate(30.000030398399637).unwrap(),
+            Fps::new(30, 1).unwrap()
+        );
+        assert_eq!(exact_rate(30.006).unwrap(), Fps::new(15003, 500).unwrap());
     }
 
     #[test]
