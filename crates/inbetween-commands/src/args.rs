@@ -362,8 +362,8 @@ pub struct InputArgs {
     #[cfg_attr(feature = "clap", arg(long, value_name = "O", value_parser = parse_quat_order, default_value = "wxyz"))]
     pub quat_order: QuatOrder,
 
-    /// Input format (csv, json, bvh, gltf, glb, fbx, usda); by default from the file extension,
-    /// and standard input is sniffed (`{` or `[` first means JSON).
+    /// Input format (csv, json, bvh, gltf, glb, fbx, usda, usdc, usdz, usd); by default from the
+    /// file extension, and standard input is sniffed (`{` or `[` first means JSON).
     #[cfg_attr(feature = "clap", arg(long, value_name = "F", value_parser = parse_format))]
     pub input_format: Option<Format>,
 
