@@ -366,6 +366,28 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
         "{err}"
     );
     assert!(!out("keys.html").exists());
+    // A glTF read with all its animations has no skeleton (each animation poses the nodes
+    // apart): the message says to choose one, and with --animation the page is drawn.
+    let gltf = "fixtures/gltf/real/RiggedSimple.gltf";
+    let o = bin()
+        .args(["view", gltf, "-o"])
+        .arg(out("all.html"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("its tracks come from 2 animations") && err.contains("--animation"),
+        "{err}"
+    );
+    assert!(!err.contains("keys have none"), "{err}");
+    assert!(!out("all.html").exists());
+    stdout_of(
+        bin()
+            .args(["view", gltf, "--animation", "0", "-o"])
+            .arg(out("one.html")),
+    );
+    assert!(out("one.html").exists());
     // B with other tracks: diff's own refusal, file and track named.
     let o = bin()
         .args(["view", CLIP, "fixtures/bvh/mixed_orders.bvh", "-o"])

@@ -170,9 +170,19 @@ fn pair(
 /// A's skeleton, which every figure is posed on.
 fn skeleton_of(a: &Curves) -> Result<Skeleton, Error> {
     let Some(s) = a.doc.hierarchy.as_deref() else {
+        // Why there is none: a glTF's tracks from several animations (each poses the nodes
+        // apart) or nodes that are not a forest (docs/spec.md §4.8); else keys, which have none.
+        let why = match a.gltf.as_deref().map(|g| g.animations().len()) {
+            Some(n) if n > 1 => format!(
+                "its tracks come from {n} animations, each posing the nodes apart: choose one \
+                 with --animation NAME or INDEX"
+            ),
+            Some(_) => "its nodes do not form a forest".to_string(),
+            None => "keys have none: draw them as B beside the clip they came from".to_string(),
+        };
         return Err(InputError::new(format!(
             "{}: view draws a skeleton, and this input gives none to compose its joints on \
-             (keys have none: draw them as B beside the clip they came from)",
+             ({why})",
             a.doc.source
         ))
         .into());
