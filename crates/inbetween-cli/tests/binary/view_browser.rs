@@ -154,6 +154,18 @@ fn the_page_plays_in_headless_chromium() {
         late,
         "the same frame twice differs"
     );
+    // `az` and `el` turn the view chosen, whether they come before `view` or after it.
+    let turned = shot("frame=45&view=side&az=30&el=10", "turned.png");
+    assert_ne!(
+        turned,
+        shot("frame=45&view=side", "side.png"),
+        "az, el unused"
+    );
+    assert_eq!(
+        shot("frame=45&az=30&el=10&view=side", "turned_first.png"),
+        turned,
+        "view undid the az and el before it"
+    );
     // A alone: one figure, no curve, the same silence.
     let single = dir.path().join("single.html");
     stdout_of(

@@ -30,17 +30,19 @@
   };
   // The initial state from the address's fragment:
   // #frame=N&b=hidden&overlay=1&view=side&up=z&az=30&el=10&play=1
-  for (const part of location.hash.replace(/^#/, "").split("&")) {
-    const [k, v] = part.split("=");
+  // `view` first and `az`, `el` then, in whatever order they come: they turn the view chosen.
+  const fragment = new Map(location.hash.replace(/^#/, "").split("&").map((part) => part.split("=")));
+  for (const [k, v] of fragment) {
     if (k === "frame" && isFinite(+v)) state.frame = Math.max(0, Math.min(frames - 1, Math.floor(+v)));
     if (k === "b") state.showB = v !== "hidden";
     if (k === "overlay") state.overlay = v === "1";
     if (k === "up" && (v === "y" || v === "z")) state.up = v;
-    if (k === "az" && isFinite(+v)) state.az = (+v * Math.PI) / 180;
-    if (k === "el" && isFinite(+v)) state.el = (+v * Math.PI) / 180;
     if (k === "view" && ["front", "side", "top"].includes(v)) { setView(v); $("view").value = v; }
     if (k === "play") state.autoplay = v === "1";
   }
+  const turn = (k) => (fragment.has(k) && isFinite(+fragment.get(k)) ? (+fragment.get(k) * Math.PI) / 180 : null);
+  if (turn("az") !== null) state.az = turn("az");
+  if (turn("el") !== null) state.el = turn("el");
 
   function setView(v) {
     state.az = v === "side" ? Math.PI / 2 : 0;
