@@ -110,6 +110,11 @@ fn the_page_plays_in_headless_chromium() {
         "the script did not finish"
     );
     assert!(dom.contains("data-frame=\"20\""));
+    // The frame shown is numbered from 0, as the fragment and `diff --per-frame` number it.
+    assert!(
+        dom.contains("<span id=\"readout\">frame 20 (0–60) · "),
+        "the readout"
+    );
     let open = "<pre id=\"values\" hidden=\"\">";
     let start = dom.find(open).expect("the values") + open.len();
     let end = start + dom[start..].find("</pre>").unwrap();

@@ -207,7 +207,8 @@
   }
 
   function readout() {
-    let text = `frame ${state.frame + 1} of ${frames} · ${fmt(times[state.frame])} s`;
+    // The frame from 0, as the fragment's `frame` and `diff --per-frame` number it.
+    let text = `frame ${state.frame} (0–${frames - 1}) · ${fmt(times[state.frame])} s`;
     if (errors) text += ` · displacement ${fmt(errors[state.frame])}` + (keyed.has(state.frame) ? " · B keyed" : "");
     $("readout").textContent = text;
     $("slider").value = String(state.frame);
