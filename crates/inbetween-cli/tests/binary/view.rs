@@ -3,7 +3,7 @@
 //! numbers (the root's BVH position channels, B's key times), its size for a 1 900-frame
 //! 22-joint pair, and refusals. The page in a browser: `view_browser.rs`.
 
-use crate::support::{bin, stdout_of};
+use crate::support::{bin, fixtures, stdout_of};
 use base64::Engine;
 use serde_json::Value;
 use std::path::Path;
@@ -397,6 +397,35 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("is not a track of"));
     assert!(!out("two.html").exists());
+    // A world position beyond float32's range: the file, joint, frame and position named (the
+    // position short), nothing written; as B's figure too (posed on A's skeleton).
+    let far = out("far.bvh");
+    let bvh = std::fs::read_to_string(fixtures().join("bvh/mixed_orders.bvh")).unwrap();
+    std::fs::write(
+        &far,
+        bvh.replacen("OFFSET 11.0 0.0 0.0", "OFFSET 1e300 0.0 0.0", 1),
+    )
+    .unwrap();
+    for b in [None, Some("fixtures/bvh/mixed_orders.bvh")] {
+        let o = bin()
+            .arg("view")
+            .arg(&far)
+            .args(b)
+            .arg("-o")
+            .arg(out("far.html"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(
+                "far.bvh: joint \"LeftArm\": its world position at frame 0 is not a finite \
+                 float32 number (1e300, 40.71, 0.0)"
+            ),
+            "{err}"
+        );
+        assert!(!out("far.html").exists());
+    }
     // Standard output by `-`.
     let html = stdout_of(bin().args(["view", CLIP, "-o", "-"]));
     assert!(html.starts_with("<!DOCTYPE html>") && html.ends_with("</html>\n"));

@@ -223,9 +223,10 @@ fn figure(
         for (p, j) in points.iter().zip(&owners) {
             let xyz = [p.x as f32, p.y as f32, p.z as f32];
             if xyz.iter().any(|x| !x.is_finite()) {
+                // Shortest digits, in exponent form when large (`1e39`, not 40 digits).
                 return Err(InputError::new(format!(
                     "{source}: joint \"{}\": its world position at frame {f} is not a finite \
-                     float32 number ({}, {}, {})",
+                     float32 number ({:?}, {:?}, {:?})",
                     inbetween::error::shorten(&skeleton.joints()[*j].name),
                     p.x,
                     p.y,
