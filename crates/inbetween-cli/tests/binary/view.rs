@@ -431,6 +431,25 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
     assert!(html.starts_with("<!DOCTYPE html>") && html.ends_with("</html>\n"));
 }
 
+/// On a touch screen a drag on the figures turns them and one on the curve moves along it: the
+/// browser does not take it to scroll (and a drag it cancels ends).
+#[test]
+fn a_touch_drag_on_the_canvases_is_the_pages() {
+    let html = stdout_of(bin().args(["view", CLIP, "-o", "-"]));
+    for canvas in ["#figures", "#curve"] {
+        let rule = html
+            .lines()
+            .find(|l| l.starts_with(&format!("{canvas} {{")))
+            .expect("the canvas's rule");
+        assert!(rule.contains("touch-action: none"), "{rule}");
+    }
+    assert_eq!(
+        html.matches("\"pointercancel\"").count(),
+        2,
+        "both drags end"
+    );
+}
+
 #[test]
 fn a_title_cannot_close_the_script_that_holds_it() {
     let dir = tempfile::tempdir().unwrap();

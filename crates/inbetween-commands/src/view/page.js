@@ -281,7 +281,9 @@
     state.el = Math.max(-Math.PI / 2 + 1e-6, Math.min(Math.PI / 2 - 1e-6, drag[3] + (e.clientY - drag[1]) * 0.01));
     draw();
   });
-  fig.addEventListener("pointerup", () => { drag = null; });
+  // A drag ends where the pointer is lifted or the browser takes it (pointercancel); touch
+  // drags turn the figures and move along the curve rather than scroll (touch-action: none).
+  for (const end of ["pointerup", "pointercancel"]) fig.addEventListener(end, () => { drag = null; });
   const curve = $("curve");
   const toFrame = (e) => {
     const rect = curve.getBoundingClientRect();
@@ -291,7 +293,7 @@
     seek(best);
   };
   curve.addEventListener("pointerdown", (e) => { toFrame(e); curve.setPointerCapture(e.pointerId); curve.onpointermove = toFrame; });
-  curve.addEventListener("pointerup", () => { curve.onpointermove = null; });
+  for (const end of ["pointerup", "pointercancel"]) curve.addEventListener(end, () => { curve.onpointermove = null; });
   document.addEventListener("keydown", (e) => {
     if (e.target.tagName === "SELECT" || e.target.tagName === "INPUT" && e.target.type !== "range") return;
     if (e.key === " ") { e.preventDefault(); play(!state.playing); }
