@@ -431,6 +431,41 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
     assert!(html.starts_with("<!DOCTYPE html>") && html.ends_with("</html>\n"));
 }
 
+/// B on a skeleton of its own (the same joints, twice the offsets) is drawn and measured on A's,
+/// as diff measures it: the page says so (beside diff's warning), and not for B on A's.
+#[test]
+fn b_on_another_skeleton_is_drawn_on_as_and_the_page_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let bvh = std::fs::read_to_string(fixtures().join("bvh/mixed_orders.bvh")).unwrap();
+    let twice = bvh.replacen("OFFSET 5.5 0.0 0.0", "OFFSET 11.0 0.0 0.0", 1);
+    assert_ne!(twice, bvh);
+    let other = dir.path().join("other.bvh");
+    std::fs::write(&other, twice).unwrap();
+    let page = dir.path().join("page.html");
+    let o = bin()
+        .args(["view", "fixtures/bvh/mixed_orders.bvh"])
+        .arg(&other)
+        .arg("-o")
+        .arg(&page)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("B's skeleton differs from A's"));
+    let html = std::fs::read_to_string(&page).unwrap();
+    let cmp = &page_data(&html)["compared"];
+    assert_eq!(cmp["b_skeleton_differs"], true);
+    assert_eq!(cmp["largest"], 0.0, "the same rotations on A's skeleton");
+    assert!(html.contains("B's own skeleton differs from A's: B is drawn and measured on A's"));
+    let same = stdout_of(bin().args([
+        "view",
+        "fixtures/bvh/mixed_orders.bvh",
+        "fixtures/bvh/mixed_orders.bvh",
+        "-o",
+        "-",
+    ]));
+    assert_eq!(page_data(&same)["compared"]["b_skeleton_differs"], false);
+}
+
 /// On a touch screen a drag on the figures turns them and one on the curve moves along it: the
 /// browser does not take it to scroll (and a drag it cancels ends).
 #[test]

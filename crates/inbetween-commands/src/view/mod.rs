@@ -148,8 +148,16 @@ fn pair(
             _ => Some((t, d)),
         })
         .map(|(t, _)| c.names[t].clone());
+    // B's own skeleton, where it has one that is not A's: both figures are A's all the same
+    // (as diff measures them, with its warning), which the page says.
+    let b_skeleton_differs =
+        c.b.doc
+            .hierarchy
+            .as_deref()
+            .is_some_and(|s| s.joints() != skeleton.joints());
     let compared = page::Compared {
         errors: world.frames.clone(),
+        b_skeleton_differs,
         keyed,
         keys,
         largest: (largest.0, times.get(largest.1).copied().unwrap_or(0.0)),

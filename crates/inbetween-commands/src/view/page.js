@@ -225,6 +225,7 @@
     const p = $("facts");
     p.append(span("a", "A"), `: ${figures[0].source}`);
     if (figures[1]) p.append(" · ", span("b", "B"), `: ${figures[1].source} (${cmp.keys} keys, ${keyed.size} of ${frames} frames keyed)`);
+    if (cmp && cmp.b_skeleton_differs) p.append(" · B's own skeleton differs from A's: B is drawn and measured on A's");
     parts.push(`skeleton: ${data.joints.length} joints, ${points} points, height ${fmt(data.height)}${unit}, box over the clip ${ext}`);
     if (cmp) parts.push(`largest displacement ${fmt(cmp.largest)} at ${fmt(cmp.largest_time)} s` + (cmp.worst_track && cmp.largest > 0 ? ` (track ${cmp.worst_track})` : ""));
     if (data.tolerance) {
