@@ -3,7 +3,7 @@
 //! numbers (the root's BVH position channels, B's key times), its size for a 1 900-frame
 //! 22-joint pair, and refusals. The page in a browser: `view_browser.rs`.
 
-use crate::support::{bin, stdout_of};
+use crate::support::{bin, fixtures, stdout_of};
 use base64::Engine;
 use serde_json::Value;
 use std::path::Path;
@@ -366,6 +366,28 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
         "{err}"
     );
     assert!(!out("keys.html").exists());
+    // A glTF read with all its animations has no skeleton (each animation poses the nodes
+    // apart): the message says to choose one, and with --animation the page is drawn.
+    let gltf = "fixtures/gltf/real/RiggedSimple.gltf";
+    let o = bin()
+        .args(["view", gltf, "-o"])
+        .arg(out("all.html"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("its tracks come from 2 animations") && err.contains("--animation"),
+        "{err}"
+    );
+    assert!(!err.contains("keys have none"), "{err}");
+    assert!(!out("all.html").exists());
+    stdout_of(
+        bin()
+            .args(["view", gltf, "--animation", "0", "-o"])
+            .arg(out("one.html")),
+    );
+    assert!(out("one.html").exists());
     // B with other tracks: diff's own refusal, file and track named.
     let o = bin()
         .args(["view", CLIP, "fixtures/bvh/mixed_orders.bvh", "-o"])
@@ -375,9 +397,92 @@ fn view_refuses_what_it_cannot_draw_and_writes_nothing() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("is not a track of"));
     assert!(!out("two.html").exists());
+    // A world position beyond float32's range: the file, joint, frame and position named (the
+    // position short), nothing written; as B's figure too (posed on A's skeleton).
+    let far = out("far.bvh");
+    let bvh = std::fs::read_to_string(fixtures().join("bvh/mixed_orders.bvh")).unwrap();
+    std::fs::write(
+        &far,
+        bvh.replacen("OFFSET 11.0 0.0 0.0", "OFFSET 1e300 0.0 0.0", 1),
+    )
+    .unwrap();
+    for b in [None, Some("fixtures/bvh/mixed_orders.bvh")] {
+        let o = bin()
+            .arg("view")
+            .arg(&far)
+            .args(b)
+            .arg("-o")
+            .arg(out("far.html"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(
+                "far.bvh: joint \"LeftArm\": its world position at frame 0 is not a finite \
+                 float32 number (1e300, 40.71, 0.0)"
+            ),
+            "{err}"
+        );
+        assert!(!out("far.html").exists());
+    }
     // Standard output by `-`.
     let html = stdout_of(bin().args(["view", CLIP, "-o", "-"]));
     assert!(html.starts_with("<!DOCTYPE html>") && html.ends_with("</html>\n"));
+}
+
+/// B on a skeleton of its own (the same joints, twice the offsets) is drawn and measured on A's,
+/// as diff measures it: the page says so (beside diff's warning), and not for B on A's.
+#[test]
+fn b_on_another_skeleton_is_drawn_on_as_and_the_page_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let bvh = std::fs::read_to_string(fixtures().join("bvh/mixed_orders.bvh")).unwrap();
+    let twice = bvh.replacen("OFFSET 5.5 0.0 0.0", "OFFSET 11.0 0.0 0.0", 1);
+    assert_ne!(twice, bvh);
+    let other = dir.path().join("other.bvh");
+    std::fs::write(&other, twice).unwrap();
+    let page = dir.path().join("page.html");
+    let o = bin()
+        .args(["view", "fixtures/bvh/mixed_orders.bvh"])
+        .arg(&other)
+        .arg("-o")
+        .arg(&page)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("B's skeleton differs from A's"));
+    let html = std::fs::read_to_string(&page).unwrap();
+    let cmp = &page_data(&html)["compared"];
+    assert_eq!(cmp["b_skeleton_differs"], true);
+    assert_eq!(cmp["largest"], 0.0, "the same rotations on A's skeleton");
+    assert!(html.contains("B's own skeleton differs from A's: B is drawn and measured on A's"));
+    let same = stdout_of(bin().args([
+        "view",
+        "fixtures/bvh/mixed_orders.bvh",
+        "fixtures/bvh/mixed_orders.bvh",
+        "-o",
+        "-",
+    ]));
+    assert_eq!(page_data(&same)["compared"]["b_skeleton_differs"], false);
+}
+
+/// On a touch screen a drag on the figures turns them and one on the curve moves along it: the
+/// browser does not take it to scroll (and a drag it cancels ends).
+#[test]
+fn a_touch_drag_on_the_canvases_is_the_pages() {
+    let html = stdout_of(bin().args(["view", CLIP, "-o", "-"]));
+    for canvas in ["#figures", "#curve"] {
+        let rule = html
+            .lines()
+            .find(|l| l.starts_with(&format!("{canvas} {{")))
+            .expect("the canvas's rule");
+        assert!(rule.contains("touch-action: none"), "{rule}");
+    }
+    assert_eq!(
+        html.matches("\"pointercancel\"").count(),
+        2,
+        "both drags end"
+    );
 }
 
 #[test]

@@ -110,6 +110,11 @@ fn the_page_plays_in_headless_chromium() {
         "the script did not finish"
     );
     assert!(dom.contains("data-frame=\"20\""));
+    // The frame shown is numbered from 0, as the fragment and `diff --per-frame` number it.
+    assert!(
+        dom.contains("<span id=\"readout\">frame 20 (0–60) · "),
+        "the readout"
+    );
     let open = "<pre id=\"values\" hidden=\"\">";
     let start = dom.find(open).expect("the values") + open.len();
     let end = start + dom[start..].find("</pre>").unwrap();
@@ -153,6 +158,18 @@ fn the_page_plays_in_headless_chromium() {
         shot("frame=45", "again.png"),
         late,
         "the same frame twice differs"
+    );
+    // `az` and `el` turn the view chosen, whether they come before `view` or after it.
+    let turned = shot("frame=45&view=side&az=30&el=10", "turned.png");
+    assert_ne!(
+        turned,
+        shot("frame=45&view=side", "side.png"),
+        "az, el unused"
+    );
+    assert_eq!(
+        shot("frame=45&az=30&el=10&view=side", "turned_first.png"),
+        turned,
+        "view undid the az and el before it"
     );
     // A alone: one figure, no curve, the same silence.
     let single = dir.path().join("single.html");

@@ -148,8 +148,16 @@ fn pair(
             _ => Some((t, d)),
         })
         .map(|(t, _)| c.names[t].clone());
+    // B's own skeleton, where it has one that is not A's: both figures are A's all the same
+    // (as diff measures them, with its warning), which the page says.
+    let b_skeleton_differs =
+        c.b.doc
+            .hierarchy
+            .as_deref()
+            .is_some_and(|s| s.joints() != skeleton.joints());
     let compared = page::Compared {
         errors: world.frames.clone(),
+        b_skeleton_differs,
         keyed,
         keys,
         largest: (largest.0, times.get(largest.1).copied().unwrap_or(0.0)),
@@ -170,9 +178,19 @@ fn pair(
 /// A's skeleton, which every figure is posed on.
 fn skeleton_of(a: &Curves) -> Result<Skeleton, Error> {
     let Some(s) = a.doc.hierarchy.as_deref() else {
+        // Why there is none: a glTF's tracks from several animations (each poses the nodes
+        // apart) or nodes that are not a forest (docs/spec.md §4.8); else keys, which have none.
+        let why = match a.gltf.as_deref().map(|g| g.animations().len()) {
+            Some(n) if n > 1 => format!(
+                "its tracks come from {n} animations, each posing the nodes apart: choose one \
+                 with --animation NAME or INDEX"
+            ),
+            Some(_) => "its nodes do not form a forest".to_string(),
+            None => "keys have none: draw them as B beside the clip they came from".to_string(),
+        };
         return Err(InputError::new(format!(
             "{}: view draws a skeleton, and this input gives none to compose its joints on \
-             (keys have none: draw them as B beside the clip they came from)",
+             ({why})",
             a.doc.source
         ))
         .into());
@@ -213,9 +231,10 @@ fn figure(
         for (p, j) in points.iter().zip(&owners) {
             let xyz = [p.x as f32, p.y as f32, p.z as f32];
             if xyz.iter().any(|x| !x.is_finite()) {
+                // Shortest digits, in exponent form when large (`1e39`, not 40 digits).
                 return Err(InputError::new(format!(
                     "{source}: joint \"{}\": its world position at frame {f} is not a finite \
-                     float32 number ({}, {}, {})",
+                     float32 number ({:?}, {:?}, {:?})",
                     inbetween::error::shorten(&skeleton.joints()[*j].name),
                     p.x,
                     p.y,

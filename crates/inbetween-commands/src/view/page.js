@@ -30,17 +30,19 @@
   };
   // The initial state from the address's fragment:
   // #frame=N&b=hidden&overlay=1&view=side&up=z&az=30&el=10&play=1
-  for (const part of location.hash.replace(/^#/, "").split("&")) {
-    const [k, v] = part.split("=");
+  // `view` first and `az`, `el` then, in whatever order they come: they turn the view chosen.
+  const fragment = new Map(location.hash.replace(/^#/, "").split("&").map((part) => part.split("=")));
+  for (const [k, v] of fragment) {
     if (k === "frame" && isFinite(+v)) state.frame = Math.max(0, Math.min(frames - 1, Math.floor(+v)));
     if (k === "b") state.showB = v !== "hidden";
     if (k === "overlay") state.overlay = v === "1";
     if (k === "up" && (v === "y" || v === "z")) state.up = v;
-    if (k === "az" && isFinite(+v)) state.az = (+v * Math.PI) / 180;
-    if (k === "el" && isFinite(+v)) state.el = (+v * Math.PI) / 180;
     if (k === "view" && ["front", "side", "top"].includes(v)) { setView(v); $("view").value = v; }
     if (k === "play") state.autoplay = v === "1";
   }
+  const turn = (k) => (fragment.has(k) && isFinite(+fragment.get(k)) ? (+fragment.get(k) * Math.PI) / 180 : null);
+  if (turn("az") !== null) state.az = turn("az");
+  if (turn("el") !== null) state.el = turn("el");
 
   function setView(v) {
     state.az = v === "side" ? Math.PI / 2 : 0;
@@ -205,7 +207,8 @@
   }
 
   function readout() {
-    let text = `frame ${state.frame + 1} of ${frames} · ${fmt(times[state.frame])} s`;
+    // The frame from 0, as the fragment's `frame` and `diff --per-frame` number it.
+    let text = `frame ${state.frame} (0–${frames - 1}) · ${fmt(times[state.frame])} s`;
     if (errors) text += ` · displacement ${fmt(errors[state.frame])}` + (keyed.has(state.frame) ? " · B keyed" : "");
     $("readout").textContent = text;
     $("slider").value = String(state.frame);
@@ -222,6 +225,7 @@
     const p = $("facts");
     p.append(span("a", "A"), `: ${figures[0].source}`);
     if (figures[1]) p.append(" · ", span("b", "B"), `: ${figures[1].source} (${cmp.keys} keys, ${keyed.size} of ${frames} frames keyed)`);
+    if (cmp && cmp.b_skeleton_differs) p.append(" · B's own skeleton differs from A's: B is drawn and measured on A's");
     parts.push(`skeleton: ${data.joints.length} joints, ${points} points, height ${fmt(data.height)}${unit}, box over the clip ${ext}`);
     if (cmp) parts.push(`largest displacement ${fmt(cmp.largest)} at ${fmt(cmp.largest_time)} s` + (cmp.worst_track && cmp.largest > 0 ? ` (track ${cmp.worst_track})` : ""));
     if (data.tolerance) {
@@ -278,7 +282,9 @@
     state.el = Math.max(-Math.PI / 2 + 1e-6, Math.min(Math.PI / 2 - 1e-6, drag[3] + (e.clientY - drag[1]) * 0.01));
     draw();
   });
-  fig.addEventListener("pointerup", () => { drag = null; });
+  // A drag ends where the pointer is lifted or the browser takes it (pointercancel); touch
+  // drags turn the figures and move along the curve rather than scroll (touch-action: none).
+  for (const end of ["pointerup", "pointercancel"]) fig.addEventListener(end, () => { drag = null; });
   const curve = $("curve");
   const toFrame = (e) => {
     const rect = curve.getBoundingClientRect();
@@ -288,7 +294,7 @@
     seek(best);
   };
   curve.addEventListener("pointerdown", (e) => { toFrame(e); curve.setPointerCapture(e.pointerId); curve.onpointermove = toFrame; });
-  curve.addEventListener("pointerup", () => { curve.onpointermove = null; });
+  for (const end of ["pointerup", "pointercancel"]) curve.addEventListener(end, () => { curve.onpointermove = null; });
   document.addEventListener("keydown", (e) => {
     if (e.target.tagName === "SELECT" || e.target.tagName === "INPUT" && e.target.type !== "range") return;
     if (e.key === " ") { e.preventDefault(); play(!state.playing); }

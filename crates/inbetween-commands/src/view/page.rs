@@ -37,6 +37,8 @@ pub(super) struct Compared {
     pub(super) largest: (f64, f64),
     /// The track whose points move the most.
     pub(super) worst_track: Option<String>,
+    /// B has a skeleton of its own that is not A's (B is drawn and measured on A's).
+    pub(super) b_skeleton_differs: bool,
 }
 
 /// A page ready to be written: its data, and the files read (which `-o` may not replace).
@@ -143,6 +145,7 @@ impl Page {
                 "largest": c.largest.0,
                 "largest_time": c.largest.1,
                 "worst_track": c.worst_track,
+                "b_skeleton_differs": c.b_skeleton_differs,
             })
         });
         let data = json!({
