@@ -469,7 +469,8 @@ pub struct ConvertArgs {
 
     /// Write BVH on this BVH file's skeleton (its hierarchy and channel orders): every track a
     /// joint, keys on one grid of consecutive frames; frames with no declared rate (and no
-    /// --fps) are at its Frame Time. Output is BVH unless -o or --output-format says otherwise.
+    /// --fps) are at its Frame Time. Output is BVH unless -o or --output-format says FBX (the
+    /// same motion; each track at its own key times).
     #[cfg_attr(feature = "clap", arg(long, value_name = "BVH"))]
     pub skeleton: Option<PathBuf>,
 }
@@ -508,7 +509,8 @@ pub struct InterpArgs {
 
     /// Write BVH on this BVH file's skeleton (its hierarchy and channel orders; without --fps
     /// its Frame Time is the rate): a track per joint with channels, found by name, as reduce
-    /// and convert write them. Output is BVH unless -o or --output-format says otherwise.
+    /// and convert write them. Output is BVH unless -o or --output-format says FBX (the same
+    /// motion on the same skeleton).
     #[cfg_attr(feature = "clap", arg(long, value_name = "BVH"))]
     pub skeleton: Option<PathBuf>,
 

@@ -119,6 +119,26 @@ pub fn run(args: &ConvertArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
             out.commit()?;
             return Ok(());
         }
+        OutputFormat::Fbx if let Some(t) = &template => {
+            // On --skeleton: the template's joints, each found by its track's name as for BVH.
+            let tracks: Vec<_> = doc
+                .tracks
+                .iter()
+                .map(|t| {
+                    (
+                        t.name.as_deref(),
+                        t.translations.iter().any(Option::is_some),
+                    )
+                })
+                .collect();
+            let named = args.skeleton.as_deref().map(|p| p.display().to_string());
+            let label = named.as_deref().unwrap_or(&doc.source);
+            let order = super::skeleton::joint_order(t, &tracks, &doc.source, label)?;
+            let mut out = crate::output::open_output(args.output.output.as_deref(), &reads)?;
+            inbetween_io::fbx::keys::write_keys_on(&mut out, &doc, t, &order, frame_fps)?;
+            out.commit()?;
+            return Ok(());
+        }
         OutputFormat::Fbx => {
             let mut out = crate::output::open_output(args.output.output.as_deref(), &reads)?;
             inbetween_io::fbx::keys::write_keys(&mut out, &doc, frame_fps)?;

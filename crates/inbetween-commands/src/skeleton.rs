@@ -1,7 +1,7 @@
 //! `--skeleton clip.bvh`: a BVH file whose hierarchy, channel orders and Frame Time keys are
-//! written on (`convert` and `interp` to BVH), and how a document's tracks find its joints.
+//! written on (`convert` and `interp` to BVH or FBX), and how a document's tracks find its joints.
 
-use inbetween::{InputError, Track};
+use inbetween::InputError;
 use inbetween_io::OutputFormat;
 use inbetween_io::clip::Clip;
 use std::collections::HashMap;
@@ -16,29 +16,32 @@ pub fn read(path: &Path) -> Result<Arc<Clip>, InputError> {
     Ok(Arc::new(inbetween_io::bvh::parse(&text, &source)?.0))
 }
 
-/// With `--skeleton`, the output must be BVH (its default there; another format is refused).
+/// With `--skeleton`, the output must be BVH (its default there) or FBX (the same motion on
+/// the same skeleton); another format is refused.
 pub fn check_output(format: OutputFormat) -> Result<(), InputError> {
-    if format == OutputFormat::Bvh {
+    if matches!(format, OutputFormat::Bvh | OutputFormat::Fbx) {
         return Ok(());
     }
     Err(InputError::new(
-        "--skeleton: the output is not BVH; write it with -o out.bvh or --output-format bvh",
+        "--skeleton: the output is neither BVH nor FBX; write it with -o out.bvh or -o out.fbx \
+         (or --output-format bvh or fbx)",
     ))
 }
 
 /// The tracks in the order of `skeleton`'s joints with channels (what BVH frames are written in),
 /// each found by its joint's track name (the first track of that name): every such joint needs a
 /// track, with translations where it has position channels, and every track must be a joint's.
-/// `source` names the keys, `skeleton_source` the skeleton, in messages.
+/// `tracks` are each track's name and whether it has translations; `source` names the keys,
+/// `skeleton_source` the skeleton, in messages.
 pub fn joint_order(
     skeleton: &Clip,
-    tracks: &[Track],
+    tracks: &[(Option<&str>, bool)],
     source: &str,
     skeleton_source: &str,
 ) -> Result<Vec<usize>, InputError> {
     let mut by_name: HashMap<&str, usize> = HashMap::with_capacity(tracks.len());
     for (i, t) in tracks.iter().enumerate() {
-        if let Some(n) = t.name() {
+        if let Some(n) = t.0 {
             by_name.entry(n).or_insert(i);
         }
     }
@@ -49,12 +52,13 @@ pub fn joint_order(
         let name = joint.track_name();
         let Some(&i) = by_name.get(name) else {
             return Err(InputError::new(format!(
-                "{source}: no track for joint \"{}\" of {skeleton_source}: BVH output needs a \
-                 track per joint with channels, named as convert and reduce name them",
+                "{source}: no track for joint \"{}\" of {skeleton_source}: output on a BVH \
+                 skeleton needs a track per joint with channels, named as convert and reduce \
+                 name them",
                 short(name)
             )));
         };
-        if joint.position().is_some() && tracks[i].translations().is_none() {
+        if joint.position().is_some() && !tracks[i].1 {
             return Err(InputError::new(format!(
                 "{source}: track \"{}\" has no translations, which joint \"{}\" of \
                  {skeleton_source} has position channels for",
@@ -67,11 +71,11 @@ pub fn joint_order(
     if order.len() != tracks.len() {
         let extra = (0..tracks.len()).find(|i| !order.contains(i)).unwrap_or(0);
         let name = tracks[extra]
-            .name()
+            .0
             .map_or("(unnamed)".into(), |n| short(n).into_owned());
         return Err(InputError::new(format!(
-            "{source}: track \"{name}\" is not a joint of {skeleton_source} (BVH output writes \
-             the skeleton's joints only)"
+            "{source}: track \"{name}\" is not a joint of {skeleton_source} (output on a BVH \
+             skeleton writes its joints only)"
         )));
     }
     Ok(order)

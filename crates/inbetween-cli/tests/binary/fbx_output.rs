@@ -12,19 +12,19 @@ use std::path::Path;
 
 /// The largest angle (radians) between a frame and its read-back: the keys are float32 degrees,
 /// a step of 2^-17 degrees (7.6e-6°, 1.3e-7 rad) at up to 360°, three of them per rotation.
-const ANGLE_TOL: f64 = 1e-6;
+pub(super) const ANGLE_TOL: f64 = 1e-6;
 
 /// Relative error of a read-back position: float32.
-const POSITION_TOL: f64 = 2e-7;
+pub(super) const POSITION_TOL: f64 = 2e-7;
 
-fn read(path: &Path) -> Document {
+pub(super) fn read(path: &Path) -> Document {
     read_path(path, None, &ReadOptions::default()).unwrap().0
 }
 
 /// Each track of `doc` by name: its times (s), rotations and translations.
-type Frames = (Vec<f64>, Vec<glam::DQuat>, Vec<Option<glam::DVec3>>);
+pub(super) type Frames = (Vec<f64>, Vec<glam::DQuat>, Vec<Option<glam::DVec3>>);
 
-fn frames(doc: &Document, fps: inbetween::Fps) -> HashMap<String, Frames> {
+pub(super) fn frames(doc: &Document, fps: inbetween::Fps) -> HashMap<String, Frames> {
     doc.tracks
         .iter()
         .map(|t| {

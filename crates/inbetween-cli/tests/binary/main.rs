@@ -19,6 +19,7 @@ mod diff;
 mod errors;
 mod fbx;
 mod fbx_output;
+mod fbx_output_skeleton;
 mod fbx_untrusted;
 mod gltf;
 mod gltf_real;

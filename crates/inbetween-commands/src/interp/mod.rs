@@ -173,18 +173,29 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
         }
         _ => None,
     };
+    // FBX output on --skeleton: the template's skeleton, its joints' channel orders.
+    let on_template = template.clone().filter(|_| format == OutputFormat::Fbx);
     let usd = match format {
+        OutputFormat::Fbx if on_template.is_some() => {
+            super::settings::check_carries(args, format)?;
+            None
+        }
         OutputFormat::Usda | OutputFormat::Fbx => {
             Some(super::skeleton::usd_output(args, doc, format)?)
         }
         _ => None,
     };
-    // The order the tracks are written in: the skeleton's joints' for BVH output.
-    let order: Vec<usize> = match &skeleton {
+    // The order the tracks are written in: the skeleton's joints' for BVH output, and for FBX
+    // output on --skeleton.
+    let order: Vec<usize> = match skeleton.as_ref().or(on_template.as_ref()) {
         Some(s) => {
             let named = args.skeleton.as_deref().map(|p| p.display().to_string());
             let label = named.as_deref().unwrap_or(&doc.source);
-            super::skeleton::joint_order(s, tracks, &doc.source, label)?
+            let named: Vec<_> = tracks
+                .iter()
+                .map(|t| (t.name(), t.translations().is_some()))
+                .collect();
+            super::skeleton::joint_order(s, &named, &doc.source, label)?
         }
         None => (0..tracks.len()).collect(),
     };
@@ -245,13 +256,25 @@ pub fn run(args: &InterpArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Re
                 None => w,
             })
         }
-        OutputFormat::Fbx => Box::new(FbxFrames::new(
-            out,
-            usd.expect("checked above"),
-            inbetween_io::fbx::keys::joint_orders(doc),
-            fps,
-            inbetween_io::fbx::keys::stage(doc),
-        )),
+        OutputFormat::Fbx => match on_template {
+            Some(t) => Box::new(
+                FbxFrames::new(
+                    out,
+                    std::sync::Arc::new(t.skeleton()),
+                    inbetween_io::fbx::keys::clip_orders(&t),
+                    fps,
+                    inbetween_io::fbx::keys::BVH_STAGE,
+                )
+                .on_channels(t),
+            ),
+            None => Box::new(FbxFrames::new(
+                out,
+                usd.expect("checked above"),
+                inbetween_io::fbx::keys::joint_orders(doc),
+                fps,
+                inbetween_io::fbx::keys::stage(doc),
+            )),
+        },
         OutputFormat::Usda => Box::new(UsdFrames::new(
             out,
             usd.expect("checked above"),

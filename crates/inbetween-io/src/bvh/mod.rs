@@ -340,3 +340,33 @@ pub(crate) fn on_listed_axes(
     let b = about(DQuat::from_axis_angle(e0, a).inverse() * q, e1);
     [near(a, angles[0]), near(b, angles[1]), 0.0]
 }
+
+/// The pose `joint`'s channels carry of rotation `q` and position `p`: what BVH output writes
+/// of them, read back (to the file's rounding). The rotation on the joint's listed axes
+/// (solved on those axes as BVH output solves it, the unlisted angles 0), unchanged with three
+/// rotation channels, the identity with none; the position on its listed position axes (0 on
+/// the others), `None` without position channels (its `OFFSET` holds) or without `p`. What FBX
+/// output on a skeleton template writes (docs/spec.md §3, *FBX output*), so that it means what
+/// the BVH output means.
+pub fn channel_pose(
+    joint: &Joint,
+    q: glam::DQuat,
+    p: Option<glam::DVec3>,
+) -> (glam::DQuat, Option<glam::DVec3>) {
+    let rot = match joint.rotation() {
+        None => glam::DQuat::IDENTITY,
+        Some((_, cols)) if cols.iter().all(Option::is_some) => q,
+        Some((seq, cols)) => {
+            let angles = on_listed_axes(seq, &cols, q, seq.from_quat(q));
+            let e = std::array::from_fn(|i| if cols[i].is_some() { angles[i] } else { 0.0 });
+            seq.to_quat(e)
+        }
+    };
+    let position = joint.position().zip(p).map(|(cols, p)| {
+        let p = p.to_array();
+        glam::DVec3::from_array(std::array::from_fn(|i| {
+            if cols[i].is_some() { p[i] } else { 0.0 }
+        }))
+    });
+    (rot, position)
+}

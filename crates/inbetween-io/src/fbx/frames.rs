@@ -9,6 +9,7 @@
 //! samples it) would shift every frame a player shows.
 
 use super::write::{Scene, TrackKeys, frame_tick, write_fbx};
+use crate::clip::Clip;
 use crate::usd::write::Stage;
 use glam::{DQuat, DVec3};
 use inbetween::bake::FrameSink;
@@ -27,6 +28,8 @@ pub struct FbxFrames<W: Write> {
     stage: Stage,
     tracks: Vec<TrackKeys>,
     current: Option<TrackKeys>,
+    /// A BVH template's joints, in its tracks' order ([`FbxFrames::on_channels`]).
+    channels: Option<(Arc<Clip>, Vec<usize>)>,
 }
 
 fn internal(msg: String) -> io::Error {
@@ -54,7 +57,16 @@ impl<W: Write> FbxFrames<W> {
             stage,
             tracks: Vec::new(),
             current: None,
+            channels: None,
         }
+    }
+
+    /// Frames of the tracks of a BVH template `clip`'s joints (`skeleton` being
+    /// [`Clip::skeleton`]): each frame written as the pose the joint's channels carry
+    /// ([`crate::bvh::channel_pose`]), as BVH output on the template writes it.
+    pub fn on_channels(mut self, clip: Arc<Clip>) -> FbxFrames<W> {
+        self.channels = Some((clip.clone(), clip.track_joints()));
+        self
     }
 
     /// The output, once finished.
@@ -66,6 +78,15 @@ impl<W: Write> FbxFrames<W> {
 
     fn push(&mut self, k: i64, q: DQuat, p: Option<DVec3>) -> io::Result<()> {
         let fps = self.fps;
+        let (q, p) = match &self.channels {
+            Some((clip, joints)) => {
+                let j = joints.get(self.tracks.len()).ok_or_else(|| {
+                    internal(format!("track {} is not a joint's", self.tracks.len()))
+                })?;
+                crate::bvh::channel_pose(&clip.joints()[*j], q, p)
+            }
+            None => (q, p),
+        };
         let keys = self
             .current
             .as_mut()
