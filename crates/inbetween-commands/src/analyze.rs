@@ -6,12 +6,13 @@ use crate::events::Events;
 use crate::table::text_table;
 use inbetween::metrics::{FIELDS, Metrics, measure_each};
 use inbetween::rotation::AngleUnit;
-use inbetween::{CurveOptions, Error, Scheme};
+use inbetween::{CurveOptions, Error, InputError, Scheme};
 use inbetween_io::num::{NumFormat, NumWriter};
 use std::io::{Read, Write};
 
 /// Runs `analyze`: the figures of every track under every chosen scheme.
 pub fn run(args: &AnalyzeArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> Result<(), Error> {
+    let format = report_format(args.output_format, args.output.as_deref())?;
     let input = read_curves(
         &args.input,
         &args.curve,
@@ -51,7 +52,6 @@ pub fn run(args: &AnalyzeArgs, stdin: &mut dyn Read, warn: &mut dyn Events) -> R
         }
         rows.push(m);
     }
-    let format = report_format(args.output_format, args.output.as_deref());
     let bytes = match format {
         ReportFormat::Text => text_table(&rows, unit).into_bytes(),
         ReportFormat::Csv => csv_report(&rows, unit),
@@ -108,18 +108,29 @@ fn json_report(rows: &[Metrics], unit: AngleUnit) -> Vec<u8> {
 }
 
 /// A report's format: `--output-format`, else by the extension of `-o` (`.csv`, `.json`), else
-/// text (`analyze`, `diff`).
+/// text (`analyze`, `diff`). Without `--output-format`, an `-o` named for a format of motion the
+/// tool reads or writes (`.fbx`, `.bvh`, `.usda`, `.glb`, `.npz`, `.html`, …, any case) is an
+/// input error: the report's text would go into a file whose name says another format.
 pub(super) fn report_format(
     given: Option<ReportFormat>,
     output: Option<&std::path::Path>,
-) -> ReportFormat {
-    let by_extension = || {
-        let ext = output?.extension()?.to_str()?.to_ascii_lowercase();
-        match ext.as_str() {
-            "csv" => Some(ReportFormat::Csv),
-            "json" => Some(ReportFormat::Json),
-            _ => None,
-        }
-    };
-    given.or_else(by_extension).unwrap_or(ReportFormat::Text)
+) -> Result<ReportFormat, InputError> {
+    if let Some(format) = given {
+        return Ok(format);
+    }
+    let ext = output
+        .and_then(|p| p.extension())
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    match ext.as_str() {
+        "csv" => Ok(ReportFormat::Csv),
+        "json" => Ok(ReportFormat::Json),
+        "bvh" | "fbx" | "gltf" | "glb" | "usd" | "usda" | "usdc" | "usdz" | "npy" | "npz"
+        | "html" | "htm" | "svg" => Err(InputError::new(format!(
+            "{}: a report is text, csv or json, not the .{ext} this name says: name it .txt, \
+             .csv or .json, or say what to write under this name with --output-format",
+            output.map(|p| p.display().to_string()).unwrap_or_default()
+        ))),
+        _ => Ok(ReportFormat::Text),
+    }
 }

@@ -54,10 +54,10 @@ pub fn run(
     stdin: &mut dyn Read,
     warn: &mut dyn Events,
 ) -> Result<Option<String>, Error> {
+    let format = super::analyze::report_format(args.output_format, args.output.as_deref())?;
     let c = compare(args, stdin, warn)?;
     let rows = &c.rows;
     let unit = args.input.angles;
-    let format = super::analyze::report_format(args.output_format, args.output.as_deref());
     let bytes = match (args.per_frame, format) {
         (true, _) => per_frame(&c, format)?,
         (false, ReportFormat::Text) => text(rows, unit).into_bytes(),

@@ -313,6 +313,31 @@ impl Document {
         }
     }
 
+    /// The skeleton a skeleton's animation (`format`: "FBX", "USD") is written on, one joint
+    /// per track: an input error naming the inputs that carry one when the document has none,
+    /// an internal error when its tracks are not the skeleton's.
+    pub fn output_skeleton(
+        &self,
+        format: &str,
+    ) -> Result<&inbetween::skeleton::Skeleton, inbetween::Error> {
+        let Some(skeleton) = self.hierarchy.as_deref() else {
+            return Err(inbetween::InputError::new(format!(
+                "{}: {format} output is a skeleton's animation; this input has no skeleton (BVH, \
+                 glTF, FBX or USD input has one)",
+                self.source
+            ))
+            .into());
+        };
+        if self.tracks.len() != skeleton.track_count() {
+            return Err(inbetween::Error::Internal(format!(
+                "internal error: {} tracks on a skeleton of {}",
+                self.tracks.len(),
+                skeleton.track_count()
+            )));
+        }
+        Ok(skeleton)
+    }
+
     /// Key times in seconds for one track, frames read at `frame_fps`; validated by
     /// [`check_times`] (finite, strictly increasing, at least 1e-12 s apart), with at least
     /// `min_keys` keys. Errors name the track, the line or key and the field.

@@ -612,3 +612,61 @@ fn an_output_named_for_a_format_not_written_is_refused() {
         csv.stdout
     );
 }
+
+/// `analyze` and `diff` write a report (text, CSV, JSON): an `-o` named for a format of motion is
+/// refused before anything is read, nothing written; with `--output-format` the report is
+/// written under that name; `.txt` and a name without extension stay text.
+#[test]
+fn a_report_named_for_a_format_of_motion_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let bvh = crate::support::fixtures().join("bvh/cmu_01_01.bvh");
+    for (command, target) in [
+        ("analyze", "report.fbx"),
+        ("analyze", "report.BVH"),
+        ("diff", "d.usdc"),
+        ("diff", "d.html"),
+        ("diff", "d.npz"),
+    ] {
+        let mut cmd = Command::new(BIN);
+        cmd.current_dir(dir.path()).arg(command).arg(&bvh);
+        if command == "diff" {
+            cmd.arg(&bvh);
+        }
+        let out = cmd.args(["-o", target]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{command} -o {target}: {err}");
+        let ext = target.rsplit('.').next().unwrap().to_ascii_lowercase();
+        assert!(
+            err.contains(&format!(
+                "{target}: a report is text, csv or json, not the .{ext} this name says"
+            )) && err.contains("--output-format"),
+            "{err}"
+        );
+        assert!(names(dir.path()).is_empty(), "{command} -o {target} wrote");
+    }
+    for (args, target, starts) in [
+        (
+            &["--output-format", "csv"][..],
+            "d.fbx",
+            &b"kind,track,"[..],
+        ),
+        (&[][..], "d.txt", &b"track "[..]),
+        (&[][..], "d", &b"track "[..]),
+    ] {
+        let out = Command::new(BIN)
+            .current_dir(dir.path())
+            .arg("diff")
+            .args([&bvh, &bvh])
+            .args(args)
+            .args(["-o", target])
+            .output()
+            .unwrap();
+        assert_ok(&out);
+        let written = std::fs::read(dir.path().join(target)).unwrap();
+        assert!(
+            written.starts_with(starts),
+            "{target}: {}",
+            String::from_utf8_lossy(&written[..written.len().min(80)])
+        );
+    }
+}

@@ -116,21 +116,7 @@ pub fn write_keys_on<W: Write>(
 /// time's tick ([`time_tick`]: a frame's exact tick where the key is on a frame). Errors: no
 /// skeleton, and the writer's.
 pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Error> {
-    let Some(skeleton) = doc.hierarchy.as_deref() else {
-        return Err(InputError::new(format!(
-            "{}: FBX output is a skeleton's animation; this input has no skeleton (BVH, glTF, \
-             FBX or USD input has one)",
-            doc.source
-        ))
-        .into());
-    };
-    if doc.tracks.len() != skeleton.track_count() {
-        return Err(Error::Internal(format!(
-            "internal error: {} tracks on a skeleton of {}",
-            doc.tracks.len(),
-            skeleton.track_count()
-        )));
-    }
+    let skeleton = doc.output_skeleton("FBX")?;
     let joints = skeleton.track_joints();
     let mut tracks = Vec::with_capacity(doc.tracks.len());
     for (i, track) in doc.tracks.iter().enumerate() {

@@ -14,21 +14,7 @@ use std::io::Write;
 /// fractional where a key is between frames). Errors: no skeleton, tracks with different key
 /// times, and the writer's.
 pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Error> {
-    let Some(skeleton) = doc.hierarchy.as_deref() else {
-        return Err(InputError::new(format!(
-            "{}: USD output is a skeleton's animation; this input has no skeleton (BVH, glTF, \
-             FBX or USD input has one)",
-            doc.source
-        ))
-        .into());
-    };
-    if doc.tracks.len() != skeleton.track_count() {
-        return Err(Error::Internal(format!(
-            "internal error: {} tracks on a skeleton of {}",
-            doc.tracks.len(),
-            skeleton.track_count()
-        )));
-    }
+    let skeleton = doc.output_skeleton("USD")?;
     let mut codes: Option<Vec<f64>> = None;
     let mut tracks = Vec::with_capacity(doc.tracks.len());
     for (i, track) in doc.tracks.iter().enumerate() {
