@@ -206,6 +206,23 @@ impl DocTrack {
         push_sparse(&mut self.translations, self.keys.len(), p);
     }
 
+    /// Each key's position for a skeleton's output (USD, FBX), where the track has any: a key
+    /// without one holds `rest`, its joint's rest translation.
+    pub fn positions_or(&self, rest: Option<DVec3>) -> Option<Vec<DVec3>> {
+        self.translations.iter().any(Option::is_some).then(|| {
+            (0..self.keys.len())
+                .map(|k| {
+                    self.translations
+                        .get(k)
+                        .copied()
+                        .flatten()
+                        .or(rest)
+                        .unwrap_or_default()
+                })
+                .collect()
+        })
+    }
+
     /// Where key `i` was read.
     pub fn loc(&self, i: usize) -> Loc {
         match &self.origin {

@@ -121,21 +121,7 @@ pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Erro
     let mut tracks = Vec::with_capacity(doc.tracks.len());
     for (i, track) in doc.tracks.iter().enumerate() {
         let times = doc.track_times(track, fps, 1)?;
-        let positions = track.translations.iter().any(Option::is_some).then(|| {
-            // A key without a position holds the joint's rest translation.
-            let rest = joints[i].map(|j| skeleton.joints()[j].translation);
-            (0..track.keys.len())
-                .map(|k| {
-                    track
-                        .translations
-                        .get(k)
-                        .copied()
-                        .flatten()
-                        .or(rest)
-                        .unwrap_or_default()
-                })
-                .collect()
-        });
+        let positions = track.positions_or(joints[i].map(|j| skeleton.joints()[j].translation));
         tracks.push(TrackKeys {
             ticks: times.iter().map(|&t| time_tick(t, fps)).collect(),
             rotations: track.keys.iter().map(|k| k.rot).collect(),

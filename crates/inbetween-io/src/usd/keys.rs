@@ -15,6 +15,8 @@ use std::io::Write;
 /// times, and the writer's.
 pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Error> {
     let skeleton = doc.output_skeleton("USD")?;
+    // Once, not per track: each call walks every joint.
+    let joints = skeleton.track_joints();
     let mut codes: Option<Vec<f64>> = None;
     let mut tracks = Vec::with_capacity(doc.tracks.len());
     for (i, track) in doc.tracks.iter().enumerate() {
@@ -43,21 +45,7 @@ pub fn write_keys<W: Write>(out: W, doc: &Document, fps: Fps) -> Result<(), Erro
             }
             Some(_) => {}
         }
-        let positions = track.translations.iter().any(Option::is_some).then(|| {
-            // A key without a position holds the joint's rest translation.
-            let rest = skeleton.track_joints()[i].map(|j| skeleton.joints()[j].translation);
-            (0..track.keys.len())
-                .map(|k| {
-                    track
-                        .translations
-                        .get(k)
-                        .copied()
-                        .flatten()
-                        .or(rest)
-                        .unwrap_or_default()
-                })
-                .collect()
-        });
+        let positions = track.positions_or(joints[i].map(|j| skeleton.joints()[j].translation));
         tracks.push(TrackSamples {
             rotations: track.keys.iter().map(|k| k.rot).collect(),
             positions,
