@@ -40,12 +40,15 @@ use crate::curve::nlerp::Nlerp;
 use crate::curve::piecewise::{Side, segment_omega, step_in};
 use crate::curve::slerp::Slerp;
 use crate::curve::squad::Squad;
-use crate::curve::{Curve, Scheme, Segment, antipode_gap};
-use crate::error::{Message, Setting};
-use crate::message;
+use crate::curve::{Curve, Scheme, Segment};
+use crate::error::Message;
 use crate::rotation::quat::geodesic;
 use glam::{DQuat, DVec3};
 use std::io;
+
+mod queue;
+
+use queue::{Out, Queue, check_segment};
 
 /// Receives a curve's frames, track by track: [`bake()`] calls `begin_track`, `frame` for every
 /// frame in order, then `end_track`; the caller calls `finish` after the last track. Only
@@ -253,75 +256,16 @@ fn grid_frames(
 /// One generated frame: number, time, rotation, angular velocity.
 type Frame = (i64, f64, DQuat, Option<DVec3>);
 
-/// Where frames go on their way to `emit`: frames of segments holding fewer than four wait here
-/// until four of them fill a block of lanes ([`Segment::gather`]), and the frames after them
-/// wait behind them, so that `emit` sees every frame in order. [`Queue::flush`] at the end.
-struct Queue<S: Segment> {
-    /// Frames in order; a pending one's rotation is filled in when its block is done.
-    frames: Vec<Frame>,
-    /// The pending frames: their place in `frames` and their lanes.
-    pending: Vec<(usize, S::Pending)>,
-}
-
-impl<S: Segment> Queue<S> {
-    fn new() -> Self {
-        Queue {
-            frames: Vec::new(),
-            pending: Vec::with_capacity(4),
-        }
-    }
-
-    /// A finished frame: to `emit` now, or behind the pending frames before it.
-    fn ready(&mut self, f: Frame, emit: &mut dyn FnMut(Frame) -> io::Result<()>) -> io::Result<()> {
-        if self.pending.is_empty() {
-            emit(f)
-        } else {
-            self.frames.push(f);
-            Ok(())
-        }
-    }
-
-    /// A frame up to its last blends; the block is done when it holds four.
-    fn pending(
-        &mut self,
-        f: Frame,
-        lane: S::Pending,
-        emit: &mut dyn FnMut(Frame) -> io::Result<()>,
-    ) -> io::Result<()> {
-        self.pending.push((self.frames.len(), lane));
-        self.frames.push(f);
-        if self.pending.len() == 4 {
-            self.flush(emit)
-        } else {
-            Ok(())
-        }
-    }
-
-    /// Every waiting frame to `emit` (a block not full is filled with copies of its first lane).
-    fn flush(&mut self, emit: &mut dyn FnMut(Frame) -> io::Result<()>) -> io::Result<()> {
-        if let Some(&(_, first)) = self.pending.first() {
-            let lanes = std::array::from_fn(|i| self.pending.get(i).map_or(first, |p| p.1));
-            let q = S::finish4(&lanes);
-            for (i, &(at, _)) in self.pending.iter().enumerate() {
-                self.frames[at].2 = q[i];
-            }
-            self.pending.clear();
-        }
-        self.frames.drain(..).try_for_each(emit)
-    }
-}
-
-/// Generates the frames of one segment into `emit` (through `queue`); warnings about it go to
-/// `warn`.
+/// Generates the frames of one segment into `out` (through `queue`); warnings about it go to
+/// `out.warn`.
 fn segment_frames<S: Segment>(
-    curve: &Curve,
     fps: Fps,
     velocity: bool,
     p: PieceFrames,
-    warn: &mut dyn FnMut(&Message),
     queue: &mut Queue<S>,
-    emit: &mut dyn FnMut(Frame) -> io::Result<()>,
+    out: &mut Out,
 ) -> io::Result<()> {
+    let curve = out.curve;
     let keys = curve.knots();
     let times = &keys.times;
     let n = times.len();
@@ -329,77 +273,74 @@ fn segment_frames<S: Segment>(
     let (t0, t1) = (times[s], times[s + 1]);
     let period = fps.den() as f64 / fps.num() as f64;
     let stop = if p.snap_end { p.to - 1 } else { p.to };
-    if !velocity && stop <= p.from + i64::from(p.snap_start) {
+    let first = p.from + i64::from(p.snap_start);
+    if !velocity && stop <= first {
         // Only keys, exact (120 → 30 fps: every frame is a key): the segment's curve is not
         // needed, nor its checks, which are about frames inside it.
         if p.snap_start {
-            queue.ready((p.from, fps.time_of(p.from), keys.quats[s], None), emit)?;
+            queue.ready((p.from, fps.time_of(p.from), keys.quats[s], None), out)?;
         }
         if p.snap_end {
             queue.ready(
                 (p.to - 1, fps.time_of(p.to - 1), keys.quats[n - 1], None),
-                emit,
+                out,
             )?;
         }
         return Ok(());
     }
-    let seg = S::new(keys, s, curve.blend());
-    let name = || {
-        curve.name().map_or(String::new(), |n| {
-            format!("track \"{}\", ", crate::error::shorten(n))
-        })
-    };
-    if let Some(note) = seg.limitation() {
-        warn(&message![format!("{}segment {s} ({t0} s to {t1} s): ", name())].append(note));
-    }
-    if let Some((gap, u)) = antipode_gap(&seg)
-        && gap < ANTIPODE_TOL
-    {
-        warn(&message![
-            format!(
-                "{}segment {s} ({t0} s to {t1} s): a blend of the {} curve comes within \
-                 {gap:.1e} of an antipode at u = {u:.4}, where the curve may jump; add keys or \
-                 use ",
-                name(),
-                curve.scheme().name()
-            ),
-            Setting::Scheme,
-            " minaccel"
-        ]);
-    }
     let delta = t1 - t0;
+    let (u0, du) = ((fps.time_of(first) - t0) / delta, period / delta);
+    if !velocity && stop - first < 4 && S::direct(keys) {
+        // A short segment of a scheme that evaluates directly: its frames wait for a block of
+        // four, where the segments are built and checked (`Queue::flush`).
+        if p.snap_start {
+            queue.ready((p.from, fps.time_of(p.from), keys.quats[s], None), out)?;
+        }
+        for (j, k) in (first..stop).enumerate() {
+            let u = u0 + (0.0 + j as f64) * du;
+            queue.direct((k, fps.time_of(k), DQuat::IDENTITY, None), s, u, out)?;
+        }
+        if p.snap_end {
+            queue.ready((stop, fps.time_of(stop), keys.quats[n - 1], None), out)?;
+        }
+        return Ok(());
+    }
+    // This segment's warnings come after those of the direct frames before it.
+    if !queue.direct.is_empty() {
+        queue.flush(out)?;
+    }
+    let seg = S::new(keys, s, curve.blend());
+    check_segment(curve, &seg, s, out.warn);
     let h = if velocity { step_in(keys, s) } else { 0.0 };
     let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta, h));
     let mut k = p.from;
     if p.snap_start {
-        queue.ready((k, fps.time_of(k), keys.quats[s], omega(0.0)), emit)?;
+        queue.ready((k, fps.time_of(k), keys.quats[s], omega(0.0)), out)?;
         k += 1;
     }
     if stop > k {
-        let u0 = (fps.time_of(k) - t0) / delta;
-        let du = period / delta;
         let count = (stop - k) as usize;
         match (count < 4).then(|| seg.gather(u0, du, count)).flatten() {
             Some(lanes) => {
                 for (j, &lane) in lanes[..count].iter().enumerate() {
                     let kj = k + j as i64;
                     let w = omega((fps.time_of(kj) - t0) / delta);
-                    queue.pending((kj, fps.time_of(kj), DQuat::IDENTITY, w), lane, emit)?;
+                    queue.pending((kj, fps.time_of(kj), DQuat::IDENTITY, w), lane, out)?;
                 }
             }
             None => {
-                queue.flush(emit)?;
+                queue.flush(out)?;
                 for (j, q) in seg.frames(u0, du).take(count).enumerate() {
                     let kj = k + j as i64;
                     let w = omega((fps.time_of(kj) - t0) / delta);
-                    emit((kj, fps.time_of(kj), q, w))?;
+                    (out.emit)((kj, fps.time_of(kj), q, w))?;
                 }
             }
         }
         k = stop;
     }
     if p.snap_end {
-        queue.ready((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)), emit)?;
+        queue.ready((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)), out)?;
     }
     Ok(())
 }
@@ -430,10 +371,15 @@ fn track_frames<S: Segment>(
         && std::thread::available_parallelism().is_ok_and(|n| n.get() >= 2);
     if !parallel {
         let mut queue = Queue::<S>::new();
+        let mut out = Out {
+            curve,
+            warn,
+            emit: &mut to_sink,
+        };
         for &p in &plans {
-            segment_frames::<S>(curve, fps, velocity, p, warn, &mut queue, &mut to_sink)?;
+            segment_frames::<S>(fps, velocity, p, &mut queue, &mut out)?;
         }
-        return queue.flush(&mut to_sink);
+        return queue.flush(&mut out);
     }
     // Chunks of consecutive segments of about CHUNK_FRAMES frames.
     let mut chunks = Vec::new();
@@ -457,18 +403,16 @@ fn track_frames<S: Segment>(
                     frames.push(f);
                     Ok(())
                 };
+                let mut note = |m: &Message| notes.push(m.clone());
+                let mut out = Out {
+                    curve,
+                    warn: &mut note,
+                    emit: &mut push,
+                };
                 for &p in &plans[c.clone()] {
-                    let _ = segment_frames::<S>(
-                        curve,
-                        fps,
-                        velocity,
-                        p,
-                        &mut |m| notes.push(m.clone()),
-                        &mut queue,
-                        &mut push,
-                    );
+                    let _ = segment_frames::<S>(fps, velocity, p, &mut queue, &mut out);
                 }
-                let _ = queue.flush(&mut push);
+                let _ = queue.flush(&mut out);
                 if tx.send((frames, notes)).is_err() {
                     return;
                 }
@@ -477,10 +421,15 @@ fn track_frames<S: Segment>(
         for (i, c) in chunks.iter().enumerate() {
             if i % 2 == 0 {
                 let mut queue = Queue::<S>::new();
+                let mut out = Out {
+                    curve,
+                    warn: &mut *warn,
+                    emit: &mut to_sink,
+                };
                 for &p in &plans[c.clone()] {
-                    segment_frames::<S>(curve, fps, velocity, p, warn, &mut queue, &mut to_sink)?;
+                    segment_frames::<S>(fps, velocity, p, &mut queue, &mut out)?;
                 }
-                queue.flush(&mut to_sink)?;
+                queue.flush(&mut out)?;
             } else {
                 let (frames, notes) = rx
                     .recv()

@@ -27,6 +27,10 @@ use crate::tangent::Knots;
 use glam::DQuat;
 use wide::f64x4;
 
+mod lanes;
+
+pub(crate) use lanes::Bezier4;
+
 /// One Bézier segment.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Bezier {
@@ -121,21 +125,30 @@ impl Segment for Bezier {
         ))
     }
 
+    fn direct(keys: &Knots) -> bool {
+        !keys.spins()
+    }
+
+    fn direct4(keys: &Knots, _blend: Blend, s: [usize; 4], u: [f64; 4]) -> ([DQuat; 4], [f64; 4]) {
+        let four = Bezier4::new(keys, s);
+        (four.eval(f64x4::new(u)), four.blend_bounds())
+    }
+
     fn finish4(lanes: &[Pending<3>; 4]) -> [DQuat; 4] {
         let point = |k| point4(lanes, k);
         casteljau4(point(0), point(1), point(2), weight4(lanes)).to_quats()
     }
 
     fn new(keys: &Knots, s: usize, _blend: Blend) -> Self {
+        if !keys.spins() {
+            // Built as every segment of a track is, in lanes (`lanes.rs`): the same bits.
+            return Bezier4::new(keys, [s; 4]).lane(0);
+        }
         let r0 = Arc::leaving(keys.quats[s], keys.tangent(s, s) / 3.0);
         let r2 = Arc::arriving(keys.quats[s + 1], keys.tangent(s + 1, s) / 3.0);
-        let r1 = if keys.spins() {
-            // The middle leg stands in for the chord less the two outer legs.
-            let target = keys.chord(s) - (keys.w[s] + keys.w_in[s + 1]) * (keys.delta(s) / 3.0);
-            Arc::near(r0.eval(1.0), r2.eval(0.0), target)
-        } else {
-            Arc::between(r0.eval(1.0), r2.eval(0.0))
-        };
+        // The middle leg stands in for the chord less the two outer legs.
+        let target = keys.chord(s) - (keys.w[s] + keys.w_in[s + 1]) * (keys.delta(s) / 3.0);
+        let r1 = Arc::near(r0.eval(1.0), r2.eval(0.0), target);
         Bezier { r0, r1, r2 }
     }
 

@@ -62,6 +62,26 @@ pub(crate) trait Segment: Sized {
     /// The frames of four pending lanes ([`Segment::gather`]).
     fn finish4(lanes: &[Self::Pending; 4]) -> [DQuat; 4];
 
+    /// Whether the frames of `keys`' short segments (fewer than four frames) are evaluated
+    /// directly, four segments at a time as lanes ([`Segment::direct4`]), instead of gathered:
+    /// a segment with one frame is then never built on its own.
+    fn direct(_keys: &Knots) -> bool {
+        false
+    }
+
+    /// Segment `s[i]` at `u[i]` for the four lanes, and each lane's segment's
+    /// [`Segment::blend_bound`]: the segments built and evaluated as lanes where the scheme has
+    /// them (bezier), here one by one. A scheme that evaluates directly
+    /// ([`Segment::direct`]) has no [`Segment::limitation`]: only a lane's blend bound tells
+    /// whether its segment is checked further.
+    fn direct4(keys: &Knots, blend: Blend, s: [usize; 4], u: [f64; 4]) -> ([DQuat; 4], [f64; 4]) {
+        let segs = s.map(|s| Self::new(keys, s, blend));
+        (
+            std::array::from_fn(|i| segs[i].eval(u[i])),
+            segs.map(|s| s.blend_bound()),
+        )
+    }
+
     /// An upper bound of the S³ angle between the two points of any blend of the segment; below
     /// π their geodesic is well defined everywhere. Zero for a scheme without blends.
     fn blend_bound(&self) -> f64;

@@ -31,7 +31,7 @@ pub(crate) struct Arc {
 }
 
 /// Below this 4D norm a tangent counts as zero (the arc is a point).
-const TINY: f64 = 1e-300;
+pub(crate) const TINY: f64 = 1e-300;
 
 impl Arc {
     /// The constant "arc" at `p`.
@@ -108,6 +108,17 @@ impl Arc {
             alpha: -theta,
             beta: theta,
         }
+    }
+
+    /// The arc `cos(α + βu)·p + sin(α + βu)·e` from its parts (`p`, `e` orthonormal), as the
+    /// lanes build four at once (`curve/bezier/lanes.rs`).
+    pub(crate) fn from_parts(p: DQuat, e: DQuat, alpha: f64, beta: f64) -> Arc {
+        Arc { p, e, alpha, beta }
+    }
+
+    /// The parts `(p, e, α, β)` ([`Arc::from_parts`]).
+    pub(crate) fn parts(&self) -> (DQuat, DQuat, f64, f64) {
+        (self.p, self.e, self.alpha, self.beta)
     }
 
     /// Total angle swept on S³ for u in [0, 1].

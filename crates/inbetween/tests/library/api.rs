@@ -188,3 +188,45 @@ fn fast_given_spins_report_their_velocity() {
         );
     }
 }
+
+#[test]
+fn short_segments_are_checked_and_evaluated_as_long_ones() {
+    // Identical keys half a second apart spinning at 100 turns/s at the ends (as given): the
+    // Bézier's legs come near an antipode. At 4 and 6 fps a segment holds one or two frames
+    // (evaluated four at a time, segments built in lanes), at 60 fps thirty (forward
+    // differences): the same warnings, once per segment, in order, and frames on the curve.
+    let q = DQuat::IDENTITY;
+    let track = Track::new(vec![0.0, 0.5, 1.0, 1.5], vec![q; 4]).unwrap();
+    let omega = DVec3::new(0.0, 0.0, 200.0 * std::f64::consts::PI);
+    let mut opts = options(Scheme::Bezier, Fps::new(60, 1).unwrap());
+    opts.path = inbetween::PathMode::AsGiven;
+    opts.ends = EndConditions {
+        ends: Ends::Chord,
+        start: Some(omega),
+        end: Some(omega),
+    };
+    let curve = Curve::new(&track, &opts).unwrap();
+    let bake = |fps: Fps| {
+        let (mut sink, mut warnings) = (Collect::default(), Vec::new());
+        let opts = BakeOptions::default();
+        inbetween::bake(&curve, fps, opts, &mut sink, &mut |w| {
+            warnings.push(w.to_string())
+        })
+        .unwrap();
+        (sink.frames, warnings)
+    };
+    let (_, dense) = bake(Fps::new(60, 1).unwrap());
+    assert!(!dense.is_empty() && dense.iter().all(|w| w.contains("antipode")));
+    for rate in [4, 6] {
+        let (frames, warnings) = bake(Fps::new(rate, 1).unwrap());
+        assert_eq!(warnings, dense, "{rate} fps");
+        assert_eq!(frames.len(), 1 + 3 * rate as usize / 2);
+        for (k, t, q, _) in &frames {
+            let off = (*q - curve.rotation(*t)).length();
+            assert!(
+                off < 1e-12 && q.is_finite(),
+                "{rate} fps, frame {k}: {off:e}"
+            );
+        }
+    }
+}
