@@ -305,9 +305,12 @@ pub fn check_quats(py: Python<'_>, q: Flat<'_>, name: &str, scalar_first: bool) 
 
 /// Joint `j`'s quaternions of `q` (checked by [`check_quats`]), normalised as [`quats`] does.
 pub fn joint_quats(q: Flat<'_>, j: usize, scalar_first: bool) -> Result<Vec<DQuat>, String> {
-    (0..q.layout.rows)
-        .map(|k| read_quat(q.row(k, j), scalar_first).map(|(q, _)| q))
-        .collect()
+    // Allocated once (a `collect` through `Result` cannot size its vector: it grew by copies).
+    let mut out = Vec::with_capacity(q.layout.rows);
+    for k in 0..q.layout.rows {
+        out.push(read_quat(q.row(k, j), scalar_first)?.0);
+    }
+    Ok(out)
 }
 
 /// [`vectors`]' shape check and [`finite`]'s check on vectors read in place.

@@ -290,18 +290,25 @@ fn segment_frames<S: Segment>(
     }
     let delta = t1 - t0;
     let (u0, du) = ((fps.time_of(first) - t0) / delta, period / delta);
-    if !velocity && stop - first < 4 && S::direct(keys) {
+    if stop - first < 4 && S::direct(keys) {
         // A short segment of a scheme that evaluates directly: its frames wait for a block of
-        // four, where the segments are built and checked (`Queue::flush`).
+        // four, where the segments are built and checked (`Queue::flush`); with velocities the
+        // segment is built here for them alone, so the rotations are the same either way.
+        let seg = velocity.then(|| S::new(keys, s, curve.blend()));
+        let h = if velocity { step_in(keys, s) } else { 0.0 };
+        let omega = |u: f64| seg.as_ref().map(|seg| segment_omega(seg, u, delta, h));
         if p.snap_start {
-            queue.ready((p.from, fps.time_of(p.from), keys.quats[s], None), out)?;
+            let f = (p.from, fps.time_of(p.from), keys.quats[s], omega(0.0));
+            queue.ready(f, out)?;
         }
         for (j, k) in (first..stop).enumerate() {
-            let u = u0 + (0.0 + j as f64) * du;
-            queue.direct((k, fps.time_of(k), DQuat::IDENTITY, None), s, u, out)?;
+            let (u, t) = (u0 + (0.0 + j as f64) * du, fps.time_of(k));
+            let f = (k, t, DQuat::IDENTITY, omega((t - t0) / delta));
+            queue.direct(f, s, u, out)?;
         }
         if p.snap_end {
-            queue.ready((stop, fps.time_of(stop), keys.quats[n - 1], None), out)?;
+            let f = (stop, fps.time_of(stop), keys.quats[n - 1], omega(1.0));
+            queue.ready(f, out)?;
         }
         return Ok(());
     }

@@ -206,19 +206,22 @@ fn short_segments_are_checked_and_evaluated_as_long_ones() {
         end: Some(omega),
     };
     let curve = Curve::new(&track, &opts).unwrap();
-    let bake = |fps: Fps| {
+    let bake = |fps: Fps, velocity: bool| {
         let (mut sink, mut warnings) = (Collect::default(), Vec::new());
-        let opts = BakeOptions::default();
+        let opts = BakeOptions {
+            velocity,
+            parallel: false,
+        };
         inbetween::bake(&curve, fps, opts, &mut sink, &mut |w| {
             warnings.push(w.to_string())
         })
         .unwrap();
         (sink.frames, warnings)
     };
-    let (_, dense) = bake(Fps::new(60, 1).unwrap());
+    let (_, dense) = bake(Fps::new(60, 1).unwrap(), false);
     assert!(!dense.is_empty() && dense.iter().all(|w| w.contains("antipode")));
     for rate in [4, 6] {
-        let (frames, warnings) = bake(Fps::new(rate, 1).unwrap());
+        let (frames, warnings) = bake(Fps::new(rate, 1).unwrap(), false);
         assert_eq!(warnings, dense, "{rate} fps");
         assert_eq!(frames.len(), 1 + 3 * rate as usize / 2);
         for (k, t, q, _) in &frames {
@@ -226,6 +229,22 @@ fn short_segments_are_checked_and_evaluated_as_long_ones() {
             assert!(
                 off < 1e-12 && q.is_finite(),
                 "{rate} fps, frame {k}: {off:e}"
+            );
+        }
+        // With velocities: the same rotations, to the bit, and the curve's velocities.
+        let (with, _) = bake(Fps::new(rate, 1).unwrap(), true);
+        assert_eq!(with.len(), frames.len());
+        for (a, b) in frames.iter().zip(&with) {
+            assert_eq!(
+                a.2.to_array().map(f64::to_bits),
+                b.2.to_array().map(f64::to_bits)
+            );
+            let w = b.3.expect("a velocity");
+            let off = (w - curve.angular_velocity(b.1)).length();
+            assert!(
+                off <= 1e-6 * w.length().max(1.0),
+                "{rate} fps at {}: {off:e}",
+                b.1
             );
         }
     }
