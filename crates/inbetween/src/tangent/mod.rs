@@ -14,6 +14,7 @@
 //! - Ends: `chord` `w_1 = log(q_2 q_1⁻¹)/Δ_1`, `w_n = log(q_n q_{n−1}⁻¹)/Δ_{n−1}`; `rest` `w = 0`;
 //!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
 
+mod logs;
 mod spline;
 
 use crate::rotation::quat::log;
@@ -272,9 +273,10 @@ impl Knots {
         };
         let t = track.times();
         let n = quats.len();
+        let keys = logs::Keys::of(&quats);
         let all: Vec<DVec3> = match &chords {
             Some(c) => c.clone(),
-            None => quats.windows(2).map(|q| step(q[0], q[1])).collect(),
+            None => logs::chords(&keys),
         };
         if n == 1 {
             // A constant: no motion, whatever the ends say.
@@ -300,29 +302,41 @@ impl Knots {
         let estimated = |i: usize| velocity(i).is_none() && key_tcb(i).is_zero();
         let needed = (1..n - 1).any(estimated) || (cyclic && estimated(0) && estimated(n - 1));
         let windows = (rule == TangentRule::Spline && needed)
-            .then(|| spline::Windows::new(t, &quats, &all, cyclic));
-        let mut in_order = windows.as_ref().map(spline::InOrder::new);
-        for i in 1..n - 1 {
-            let (lm, lp) = (all[i - 1], all[i]);
-            let span = t[i + 1] - t[i - 1];
-            let (wi, wo) = match (velocity(i), key_tcb(i)) {
-                (Some(omega), _) => (omega * 0.5, omega * 0.5),
-                (None, k) if k.is_zero() && in_order.is_some() => {
-                    let x = in_order.as_mut().map_or(DVec3::ZERO, |w| w.get(i));
-                    (x, x)
-                }
-                (None, k) if k.is_zero() => {
-                    let x = if lm.length() + lp.length() > std::f64::consts::PI {
-                        (lm + lp) / span
-                    } else {
-                        step(quats[i - 1], quats[i + 1]) / span
+            .then(|| spline::Windows::new(t, &quats, &keys, &all, cyclic));
+        // Every interior key takes its spline tangent (no key's own velocity or TCB values):
+        // four at a time, without the per-key tests.
+        let all_estimated =
+            track.key_velocities().is_none() && track.key_tcb().is_none() && tcb.is_zero();
+        match &windows {
+            Some(windows) if all_estimated => {
+                windows.fill(1, &mut w[1..n - 1]);
+                w_in[1..n - 1].copy_from_slice(&w[1..n - 1]);
+            }
+            _ => {
+                let mut in_order = windows.as_ref().map(spline::InOrder::new);
+                for i in 1..n - 1 {
+                    let (lm, lp) = (all[i - 1], all[i]);
+                    let span = t[i + 1] - t[i - 1];
+                    let (wi, wo) = match (velocity(i), key_tcb(i)) {
+                        (Some(omega), _) => (omega * 0.5, omega * 0.5),
+                        (None, k) if k.is_zero() && in_order.is_some() => {
+                            let x = in_order.as_mut().map_or(DVec3::ZERO, |w| w.get(i));
+                            (x, x)
+                        }
+                        (None, k) if k.is_zero() => {
+                            let x = if lm.length() + lp.length() > std::f64::consts::PI {
+                                (lm + lp) / span
+                            } else {
+                                step(quats[i - 1], quats[i + 1]) / span
+                            };
+                            (x, x)
+                        }
+                        (None, k) => kb_tangents(lm, lp, span, k),
                     };
-                    (x, x)
+                    (w_in[i], w[i]) = (wi, wo);
+                    shaped[i] = velocity(i).is_some() || !key_tcb(i).is_zero();
                 }
-                (None, k) => kb_tangents(lm, lp, span, k),
-            };
-            (w_in[i], w[i]) = (wi, wo);
-            shaped[i] = velocity(i).is_some() || !key_tcb(i).is_zero();
+            }
         }
         let (start, end) = if cyclic {
             let (lm, lp) = (all[n - 2], all[0]);

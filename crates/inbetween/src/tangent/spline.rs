@@ -30,6 +30,7 @@
 //! 0‥4); with three keys the spline is the parabola through them, with four the cubic. A loop
 //! (`Ends::Cyclic`) wraps the window around its seam.
 
+use super::logs::{Columns, Keys};
 use crate::rotation::quat::log;
 use glam::{DQuat, DVec3};
 
@@ -53,36 +54,28 @@ pub(super) struct Windows<'a> {
     lengths: Vec<f64>,
     /// The last key is the first key's rotation and the window wraps around the seam.
     cyclic: bool,
-    /// `far[s] = [log(q_{s+2} q_s⁻¹), log(q_{s+3} q_s⁻¹)]` (where those keys exist), each log
-    /// shared by the two keys it joins; empty for a loop, whose windows take their own.
-    far: Vec<[DVec3; 2]>,
+    /// `far[k − 2]` at `s` is `log(q_{s+k} q_s⁻¹)`, `k` = 2, 3 (where that key exists; by
+    /// [`super::logs::far`]), each log shared by the two keys it joins; empty for a loop, whose
+    /// windows take their own.
+    far: [Columns; 2],
+    /// The chords again as columns, for the lanes (empty for a loop).
+    chord_columns: Columns,
 }
 
 impl<'a> Windows<'a> {
-    /// The windows of a track (`chords[s]` of segment `s`).
+    /// The windows of a track (`chords[s]` of segment `s`; `keys` its `quats` as columns).
     pub(super) fn new(
         times: &'a [f64],
         quats: &'a [DQuat],
+        keys: &Keys,
         chords: &'a [DVec3],
         cyclic: bool,
     ) -> Windows<'a> {
         let lengths = chords.iter().map(|c| c.length()).collect();
-        let n = quats.len();
-        let far = if cyclic {
-            Vec::new()
+        let (far, chord_columns) = if cyclic {
+            Default::default()
         } else {
-            (0..n)
-                .map(|s| {
-                    let ahead = |k: usize| {
-                        if s + k < n {
-                            log(quats[s + k] * quats[s].conjugate())
-                        } else {
-                            DVec3::ZERO
-                        }
-                    };
-                    [ahead(2), ahead(3)]
-                })
-                .collect()
+            (super::logs::far(keys), Columns::of(chords))
         };
         Windows {
             times,
@@ -91,15 +84,21 @@ impl<'a> Windows<'a> {
             lengths,
             cyclic,
             far,
+            chord_columns,
         }
+    }
+
+    /// Whether the far logs were taken (not a loop).
+    fn has_far(&self) -> bool {
+        !self.far[0].is_empty()
     }
 
     /// `log(q_j q_i⁻¹)` for key `j = i ± k` (`k` = 2 or 3; unrolled around a loop).
     fn log_to(&self, i: usize, k: usize, forward: bool) -> DVec3 {
-        match (self.far.is_empty(), forward) {
-            (false, true) => self.far[i][k - 2],
-            (false, false) => -self.far[i - k][k - 2],
-            (true, _) => {
+        match (self.has_far(), forward) {
+            (true, true) => self.far[k - 2].get(i),
+            (true, false) => -self.far[k - 2].get(i - k),
+            (false, _) => {
                 let j = if forward {
                     i as isize + k as isize
                 } else {
@@ -184,9 +183,9 @@ impl<'a> Windows<'a> {
         // The alias rule from π − TIE: at π the chords compose to a half-turn without an axis.
         if self.lengths[before] + self.lengths[after] >= std::f64::consts::PI - TIE {
             (self.chords[before] + self.chords[after]) / span
-        } else if !self.far.is_empty() {
+        } else if self.has_far() {
             // log(q_{i+1} q_{i−1}⁻¹), already taken for the window of key i − 1.
-            self.far[i - 1][0] / span
+            self.far[0].get(i - 1) / span
         } else {
             let i = i as isize;
             log(self.unrolled(i + 1) * self.unrolled(i - 1).conjugate()) / span

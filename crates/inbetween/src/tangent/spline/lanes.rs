@@ -9,82 +9,19 @@
 //! is the scalar tangent's bits (tested). Any other key is done by [`Windows::tangent`].
 
 use super::{REACH, TIE, Windows};
+use crate::tangent::logs::{V4, load};
 use glam::DVec3;
 use std::f64::consts::PI;
 use wide::f64x4;
 
-/// Four 3-vectors as lanes.
-#[derive(Clone, Copy)]
-struct V4 {
-    x: f64x4,
-    y: f64x4,
-    z: f64x4,
-}
-
-impl V4 {
-    const ZERO: V4 = V4 {
-        x: f64x4::ZERO,
-        y: f64x4::ZERO,
-        z: f64x4::ZERO,
-    };
-
-    fn of(v: [DVec3; 4]) -> V4 {
-        V4 {
-            x: f64x4::new(v.map(|v| v.x)),
-            y: f64x4::new(v.map(|v| v.y)),
-            z: f64x4::new(v.map(|v| v.z)),
-        }
-    }
-
-    fn lanes(self) -> [DVec3; 4] {
-        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
-        std::array::from_fn(|l| DVec3::new(x[l], y[l], z[l]))
-    }
-
-    fn add(self, o: V4) -> V4 {
-        V4 {
-            x: self.x + o.x,
-            y: self.y + o.y,
-            z: self.z + o.z,
-        }
-    }
-
-    fn sub(self, o: V4) -> V4 {
-        V4 {
-            x: self.x - o.x,
-            y: self.y - o.y,
-            z: self.z - o.z,
-        }
-    }
-
-    fn mul(self, k: f64x4) -> V4 {
-        V4 {
-            x: self.x * k,
-            y: self.y * k,
-            z: self.z * k,
-        }
-    }
-
-    fn div(self, k: f64x4) -> V4 {
-        V4 {
-            x: self.x / k,
-            y: self.y / k,
-            z: self.z / k,
-        }
-    }
-
-    /// glam's `length`: `√((x·x + y·y) + z·z)`.
-    fn length(self) -> f64x4 {
-        (self.x * self.x + self.y * self.y + self.z * self.z).sqrt()
-    }
-}
-
 impl Windows<'_> {
     /// Whether key `i` has the plain window (module documentation): the same tests, in the same
-    /// arithmetic, by which [`Windows::tangent`] would leave that path.
+    /// arithmetic, by which [`Windows::tangent`] would leave that path ([`Windows::plain4`]'s
+    /// reference).
+    #[cfg(test)]
     fn plain(&self, i: usize) -> bool {
         let n = self.quats.len();
-        if self.far.is_empty() || i < REACH || i + REACH >= n {
+        if !self.has_far() || i < REACH || i + REACH >= n {
             return false;
         }
         let l = &self.lengths;
@@ -99,40 +36,74 @@ impl Windows<'_> {
         within(i - 1, i - 2, i - 3) && within(i, i + 1, i + 2)
     }
 
+    /// Whether keys `i‥i+3` all have the plain window: [`Windows::plain`]'s tests, one key
+    /// per lane, in the same arithmetic (the same answer, tested).
+    fn plain4(&self, i: usize) -> bool {
+        let n = self.quats.len();
+        if !self.has_far() || i < REACH || i + 3 + REACH >= n {
+            return false;
+        }
+        // Lengths of segments i − 3 + k, lane l at key i + l (all within the track: i + 6 < n).
+        let l: [f64x4; 2 * REACH] = std::array::from_fn(|k| load(&self.lengths, i + k - 3));
+        let bound = f64x4::splat(PI - TIE);
+        // The scalar test leaves when `l[i−1] + l[i] >= π − TIE`.
+        if (l[2] + l[3]).simd_ge(bound).any() {
+            return false;
+        }
+        let zero = f64x4::ZERO;
+        let (back, ahead) = (zero + l[2] + l[1], zero + l[3] + l[4]);
+        (back.simd_le(bound)
+            & (back + l[0]).simd_le(bound)
+            & ahead.simd_le(bound)
+            & (ahead + l[5]).simd_le(bound))
+        .all()
+    }
+
+    /// The `spline` tangents of keys `from‥from + out.len()` into `out`: four at a time where
+    /// the four have the plain window, else one by [`Windows::tangent`] (its bits either way).
+    pub(in crate::tangent) fn fill(&self, from: usize, out: &mut [DVec3]) {
+        let mut k = 0;
+        while k < out.len() {
+            let i = from + k;
+            if let Some(four) = (k + 4 <= out.len()).then(|| self.tangent4(i)).flatten() {
+                out[k..k + 4].copy_from_slice(&four);
+                k += 4;
+            } else {
+                out[k] = self.tangent(i);
+                k += 1;
+            }
+        }
+    }
+
     /// The tangents of keys `i‥i+3` when all four have the plain window, else `None`.
     pub(super) fn tangent4(&self, i: usize) -> Option<[DVec3; 4]> {
-        if !(0..4).all(|l| self.plain(i + l)) {
+        if !self.plain4(i) {
             return None;
         }
-        let (t, far, chords) = (self.times, &self.far, self.chords);
+        // Every load below is of keys or segments `i − 3‥i + 6`, which the plain windows of
+        // keys `i‥i+3` hold.
+        let (far, chords) = (&self.far, &self.chord_columns);
         let y = [
-            lane(i, |i| -far[i - 3][1]),
-            lane(i, |i| -far[i - 2][0]),
-            lane(i, |i| -chords[i - 1]),
+            far[1].lanes(i - 3).neg(),
+            far[0].lanes(i - 2).neg(),
+            chords.lanes(i - 1).neg(),
             V4::ZERO,
-            lane(i, |i| chords[i]),
-            lane(i, |i| far[i][0]),
-            lane(i, |i| far[i][1]),
+            chords.lanes(i),
+            far[0].lanes(i),
+            far[1].lanes(i),
         ];
-        // h[p] = t[i − 3 + p + 1] − t[i − 3 + p].
-        let h: [f64x4; 2 * REACH] = std::array::from_fn(|p| {
-            f64x4::new(std::array::from_fn(|l| t[i + l + p - 2] - t[i + l + p - 3]))
-        });
+        // h[p] = t[i − 3 + p + 1] − t[i − 3 + p], lane l at key i + l.
+        let t: [f64x4; 2 * REACH + 1] = std::array::from_fn(|p| load(self.times, i + p - 3));
+        let h: [f64x4; 2 * REACH] = std::array::from_fn(|p| t[p + 1] - t[p]);
         let w = slope7(&h, &y);
-        // The limit, as `Windows::tangent` takes it.
-        let span = f64x4::new(std::array::from_fn(|l| {
-            let i = i + l;
-            (t[i] - t[i - 1]) + (t[i + 1] - t[i])
-        }));
-        let nk = lane(i, |i| far[i - 1][0]).div(span);
+        // The limit, as `Windows::tangent` takes it: the span is (t[i] − t[i−1]) + (t[i+1] − t[i]).
+        let span = h[2] + h[3];
+        let nk = far[0].lanes(i - 1).div(span);
         let c = w.sub(nk);
         let room = f64x4::splat(0.5) * nk.length();
         let off = c.length();
-        let (w, limited) = (w.lanes(), nk.add(c.mul(room / off)).lanes());
-        let (off, room) = (off.to_array(), room.to_array());
-        Some(std::array::from_fn(|l| {
-            if off[l] > room[l] { limited[l] } else { w[l] }
-        }))
+        let limited = nk.add(c.mul(room / off));
+        Some(w.or_where(off.simd_gt(room), limited).lanes())
     }
 }
 
@@ -172,12 +143,6 @@ impl<'w, 'a> InOrder<'w, 'a> {
             }
         }
     }
-}
-
-/// `f(i + l)` in lane `l`.
-#[inline]
-fn lane(i: usize, f: impl Fn(usize) -> DVec3) -> V4 {
-    V4::of(std::array::from_fn(|l| f(i + l)))
 }
 
 /// [`super::slope`] for seven points and the middle one, in lanes, with its operations
@@ -262,7 +227,8 @@ mod tests {
             .windows(2)
             .map(|q| crate::rotation::quat::log(q[1] * q[0].conjugate()))
             .collect();
-        let w = Windows::new(&times, &quats, &chords, false);
+        let keys = crate::tangent::logs::Keys::of(&quats);
+        let w = Windows::new(&times, &quats, &keys, &chords, false);
         let (mut lanes, mut limited) = (0, 0);
         for i in 1..n - 4 {
             if let Some(four) = w.tangent4(i) {
@@ -271,9 +237,11 @@ mod tests {
                     assert_eq!(bits(got), bits(w.tangent(i + l)), "key {}", i + l);
                 }
             }
+            assert_eq!(w.plain4(i), (0..4).all(|l| w.plain(i + l)), "key {i}");
             if w.plain(i) {
                 // The limit acted: the tangent is at half Nam & Kim's length from it.
-                let nk = w.far[i - 1][0] / ((times[i] - times[i - 1]) + (times[i + 1] - times[i]));
+                let nk =
+                    w.far[0].get(i - 1) / ((times[i] - times[i - 1]) + (times[i + 1] - times[i]));
                 let off = (w.tangent(i) - nk).length();
                 if nk.length() > 0.0 && (off - 0.5 * nk.length()).abs() <= 1e-12 * nk.length() {
                     limited += 1;

@@ -1,0 +1,396 @@
+//! The logarithms a track's tangents are built from, four at a time as SIMD lanes.
+//!
+//! Every chord `L_s = log(q_{s+1} q_s⁻¹)` of a track ([`chords`]) and, for the `spline` windows,
+//! every `log(q_{s+2} q_s⁻¹)` and `log(q_{s+3} q_s⁻¹)` ([`far`]) is taken by [`log4`]: the
+//! formula of [`crate::rotation::quat::log`], `v·(atan2(|v|, w)/|v|)`, with `wide::f64x4`'s
+//! `atan2` (Agner Fog's vector-class-library polynomial, about 1 ulp from libm's) in place of
+//! the scalar one. The quaternion products feeding them are glam's, operation for operation
+//! (the same bits). Keys go four to a block; the last block is filled by repeating the last key,
+//! and no lane reads another's, so a log's bits depend only on its two keys — never on where
+//! they fall in a block or on how long the track is.
+
+use crate::curve::blend4::Quat4;
+use glam::{DQuat, DVec3};
+use wide::f64x4;
+
+/// Four 3-vectors as lanes.
+#[derive(Clone, Copy)]
+pub(in crate::tangent) struct V4 {
+    pub(in crate::tangent) x: f64x4,
+    pub(in crate::tangent) y: f64x4,
+    pub(in crate::tangent) z: f64x4,
+}
+
+impl V4 {
+    /// Zero in every lane.
+    pub(in crate::tangent) const ZERO: V4 = V4 {
+        x: f64x4::ZERO,
+        y: f64x4::ZERO,
+        z: f64x4::ZERO,
+    };
+
+    /// The lanes as vectors.
+    pub(in crate::tangent) fn lanes(self) -> [DVec3; 4] {
+        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
+        std::array::from_fn(|l| DVec3::new(x[l], y[l], z[l]))
+    }
+
+    /// Lane-wise sum.
+    pub(in crate::tangent) fn add(self, o: V4) -> V4 {
+        V4 {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+
+    /// Lane-wise difference.
+    pub(in crate::tangent) fn sub(self, o: V4) -> V4 {
+        V4 {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+
+    /// Each lane's vector times its lane of `k`.
+    pub(in crate::tangent) fn mul(self, k: f64x4) -> V4 {
+        V4 {
+            x: self.x * k,
+            y: self.y * k,
+            z: self.z * k,
+        }
+    }
+
+    /// Each lane's vector over its lane of `k`.
+    pub(in crate::tangent) fn div(self, k: f64x4) -> V4 {
+        V4 {
+            x: self.x / k,
+            y: self.y / k,
+            z: self.z / k,
+        }
+    }
+
+    /// The vectors negated (a sign flip, as glam's `-v`).
+    pub(in crate::tangent) fn neg(self) -> V4 {
+        V4 {
+            x: -self.x,
+            y: -self.y,
+            z: -self.z,
+        }
+    }
+
+    /// glam's `length`: `√((x·x + y·y) + z·z)`.
+    pub(in crate::tangent) fn length(self) -> f64x4 {
+        (self.x * self.x + self.y * self.y + self.z * self.z).sqrt()
+    }
+
+    /// `if_true`'s lane where `mask` is set, else this one's.
+    pub(in crate::tangent) fn or_where(self, mask: f64x4, if_true: V4) -> V4 {
+        V4 {
+            x: mask.select(if_true.x, self.x),
+            y: mask.select(if_true.y, self.y),
+            z: mask.select(if_true.z, self.z),
+        }
+    }
+}
+
+/// Vectors in structure-of-arrays form, so that four consecutive ones load as lanes.
+#[derive(Debug, Clone, Default)]
+pub(in crate::tangent) struct Columns {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl Columns {
+    /// The columns of `v`.
+    pub(in crate::tangent) fn of(v: &[DVec3]) -> Columns {
+        Columns {
+            x: v.iter().map(|v| v.x).collect(),
+            y: v.iter().map(|v| v.y).collect(),
+            z: v.iter().map(|v| v.z).collect(),
+        }
+    }
+
+    /// Whether there is no vector.
+    pub(in crate::tangent) fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+
+    /// Vector `i`.
+    #[inline]
+    pub(in crate::tangent) fn get(&self, i: usize) -> DVec3 {
+        DVec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// Vectors `i‥i+3` as lanes.
+    #[inline]
+    pub(in crate::tangent) fn lanes(&self, i: usize) -> V4 {
+        V4 {
+            x: load(&self.x, i),
+            y: load(&self.y, i),
+            z: load(&self.z, i),
+        }
+    }
+}
+
+/// `v[i‥i+3]` as lanes.
+#[inline]
+pub(in crate::tangent) fn load(v: &[f64], i: usize) -> f64x4 {
+    let four: [f64; 4] = v[i..i + 4].try_into().expect("four values");
+    f64x4::new(four)
+}
+
+/// `log(q)` of four unit quaternions: [`crate::rotation::quat::log`]'s formula with the lanes'
+/// `atan2` — `v·(atan2(s, w)/s)`, `s = |v|` (glam's length); where `s == 0`, zero, or `(π, 0, 0)`
+/// when `w < 0`, as the scalar log.
+#[inline]
+pub(in crate::tangent) fn log4(q: Quat4) -> V4 {
+    let s = (q.x * q.x + q.y * q.y + q.z * q.z).sqrt();
+    let k = s.atan2(q.w) / s;
+    let out = V4 {
+        x: q.x * k,
+        y: q.y * k,
+        z: q.z * k,
+    };
+    let axisless = s.simd_eq(f64x4::ZERO);
+    if !axisless.any() {
+        return out;
+    }
+    let half_turn = q.w.simd_lt(f64x4::ZERO).select(f64x4::PI, f64x4::ZERO);
+    out.or_where(
+        axisless,
+        V4 {
+            x: half_turn,
+            ..V4::ZERO
+        },
+    )
+}
+
+/// `b·a⁻¹` for unit quaternions in lanes: glam's `b * a.conjugate()`, operation for operation.
+#[inline]
+fn ratio(b: Quat4, a: Quat4) -> Quat4 {
+    let (x0, y0, z0, w0) = (b.x, b.y, b.z, b.w);
+    let (x1, y1, z1, w1) = (-a.x, -a.y, -a.z, a.w);
+    Quat4 {
+        x: w0 * x1 + x0 * w1 + y0 * z1 - z0 * y1,
+        y: w0 * y1 - x0 * z1 + y0 * w1 + z0 * x1,
+        z: w0 * z1 + x0 * y1 - y0 * x1 + z0 * w1,
+        w: w0 * w1 - x0 * x1 - y0 * y1 - z0 * z1,
+    }
+}
+
+/// A track's keys as columns, so that four consecutive ones load as lanes; past the last key
+/// the last key again, so that every block of four from a key of the track is there.
+pub(in crate::tangent) struct Keys {
+    w: Vec<f64>,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    /// The number of keys.
+    n: usize,
+}
+
+impl Keys {
+    /// The columns of `quats` (at least one key), padded past `n.div_ceil(4)·4 + 3`.
+    pub(in crate::tangent) fn of(quats: &[DQuat]) -> Keys {
+        let n = quats.len();
+        let last = quats[n - 1];
+        let padded = n.div_ceil(4) * 4 + 4;
+        let column = |f: fn(DQuat) -> f64| -> Vec<f64> {
+            let mut c: Vec<f64> = quats.iter().map(|&q| f(q)).collect();
+            c.resize(padded, f(last));
+            c
+        };
+        Keys {
+            w: column(|q| q.w),
+            x: column(|q| q.x),
+            y: column(|q| q.y),
+            z: column(|q| q.z),
+            n,
+        }
+    }
+
+    /// Keys `from‥from+3` as lanes (`from ≤ n.div_ceil(4)·4`).
+    #[inline]
+    fn four(&self, from: usize) -> Quat4 {
+        Quat4 {
+            w: load(&self.w, from),
+            x: load(&self.x, from),
+            y: load(&self.y, from),
+            z: load(&self.z, from),
+        }
+    }
+}
+
+/// The chords `log(q_{s+1} q_s⁻¹)` of every segment `s` of `keys` (by [`log4`]).
+pub(in crate::tangent) fn chords(keys: &Keys) -> Vec<DVec3> {
+    let segments = keys.n - 1;
+    let mut out = Vec::with_capacity(segments + 3);
+    for s in (0..segments).step_by(4) {
+        let l = log4(ratio(keys.four(s + 1), keys.four(s)));
+        out.extend_from_slice(&l.lanes());
+    }
+    out.truncate(segments);
+    out
+}
+
+/// `[log(q_{s+2} q_s⁻¹), log(q_{s+3} q_s⁻¹)]` for every key `s` of `keys` (by [`log4`]), as
+/// columns padded to a multiple of four; zero where key `s + 2` or `s + 3` does not exist.
+pub(in crate::tangent) fn far(keys: &Keys) -> [Columns; 2] {
+    let n = keys.n;
+    let padded = n.div_ceil(4) * 4;
+    let column = || Columns {
+        x: Vec::with_capacity(padded),
+        y: Vec::with_capacity(padded),
+        z: Vec::with_capacity(padded),
+    };
+    let mut out = [column(), column()];
+    for s in (0..n).step_by(4) {
+        let from = keys.four(s);
+        for (k, c) in out.iter_mut().enumerate() {
+            let l = log4(ratio(keys.four(s + k + 2), from));
+            c.x.extend_from_slice(&l.x.to_array());
+            c.y.extend_from_slice(&l.y.to_array());
+            c.z.extend_from_slice(&l.z.to_array());
+        }
+    }
+    for (k, c) in out.iter_mut().enumerate() {
+        for s in n.saturating_sub(k + 2)..n {
+            (c.x[s], c.y[s], c.z[s]) = (0.0, 0.0, 0.0);
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rotation::quat::log;
+
+    /// A deterministic stream of numbers in [0, 1).
+    fn uniform(state: &mut u64) -> f64 {
+        *state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (*state >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Quaternions of every kind the lanes must take: random unit ones, near `1` and `−1`, `±1`
+    /// exactly, tiny vector parts, `w = 0`.
+    fn cases() -> Vec<DQuat> {
+        let mut state = 7;
+        let mut q = vec![
+            DQuat::IDENTITY,
+            -DQuat::IDENTITY,
+            DQuat::from_xyzw(1.0, 0.0, 0.0, 0.0),
+            DQuat::from_xyzw(0.0, -1.0, 0.0, 0.0),
+            DQuat::from_xyzw(0.0, 0.0, 1e-300, -1.0),
+            DQuat::from_xyzw(-5e-324, 0.0, 0.0, 1.0),
+        ];
+        for _ in 0..4000 {
+            let mut r = || 2.0 * uniform(&mut state) - 1.0;
+            let v = DVec3::new(r(), r(), r());
+            let w = r();
+            let scale = [1.0, 1e-3, 1e-8, 1e-12, 1e-17][(((r() + 1.0) * 2.5) as usize).min(4)];
+            let v = v * scale;
+            let w = if w < 0.0 { -1.0 } else { 1.0 } * (1.0 - v.length_squared()).max(0.0).sqrt();
+            let w = if scale == 1.0 { r() } else { w };
+            q.push(DQuat::from_xyzw(v.x, v.y, v.z, w).normalize());
+        }
+        q
+    }
+
+    /// The lanes' log is the scalar log within 4e-16 relative (1e-15 absolute), and equal to it
+    /// where the vector part is zero; a lane's value does not depend on its neighbours.
+    #[test]
+    fn the_lanes_log_is_the_scalar_log() {
+        let q = cases();
+        let mut worst: f64 = 0.0;
+        for (b, block) in q.chunks(4).enumerate() {
+            let four: [DQuat; 4] = std::array::from_fn(|l| block[l.min(block.len() - 1)]);
+            let got = log4(Quat4::from_quats(&four)).lanes();
+            for (l, &q) in four.iter().enumerate() {
+                let want = log(q);
+                let err = (got[l] - want).length();
+                worst = worst.max(err / want.length().max(1e-300));
+                assert!(
+                    err <= 4e-16 * want.length() || err <= 1e-15,
+                    "block {b} lane {l}: {q} {} vs {}",
+                    got[l],
+                    want
+                );
+                if q.xyz() == DVec3::ZERO {
+                    assert_eq!(got[l], want, "{q}");
+                }
+                // The same quaternion alone in a block of identities: the same bits.
+                let mut alone = [DQuat::IDENTITY; 4];
+                alone[3 - l] = q;
+                let one = log4(Quat4::from_quats(&alone)).lanes()[3 - l];
+                assert_eq!(
+                    one.to_array().map(f64::to_bits),
+                    got[l].to_array().map(f64::to_bits)
+                );
+            }
+        }
+        println!("worst relative error {worst:e}");
+    }
+
+    /// `wide`'s `atan2` on the edges the log meets: `w < 0`, `w = ±0`, `s = 0`, as libm's.
+    #[test]
+    fn the_lanes_atan2_takes_the_edges_as_libm() {
+        let pairs = [
+            (0.0, 1.0),
+            (0.0, -1.0),
+            (1e-300, -1.0),
+            (1e-300, 1.0),
+            (1.0, 0.0),
+            (1.0, -0.0),
+            (0.5, -0.5),
+            (5e-324, -1.0),
+            (1.0, -1e-300),
+        ];
+        for (s, w) in pairs {
+            let got = f64x4::splat(s).atan2(f64x4::splat(w)).to_array()[0];
+            let want = s.atan2(w);
+            assert!(
+                (got - want).abs() <= 2.0 * f64::EPSILON * want.abs(),
+                "atan2({s}, {w}): {got} vs {want}"
+            );
+        }
+    }
+
+    /// Chords and far logs of a track and of its prefixes agree bit for bit on the keys they
+    /// share, whatever the prefix's length modulo four.
+    #[test]
+    fn logs_do_not_depend_on_what_follows() {
+        let mut state = 11;
+        let quats: Vec<DQuat> = (0..23)
+            .map(|_| {
+                let mut r = || 2.0 * uniform(&mut state) - 1.0;
+                DQuat::from_xyzw(r(), r(), r(), r()).normalize()
+            })
+            .collect();
+        let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+        let keys = Keys::of(&quats);
+        let (all, far_all) = (chords(&keys), far(&keys));
+        for n in 1..quats.len() {
+            let prefix = Keys::of(&quats[..n]);
+            let (c, f) = (chords(&prefix), far(&prefix));
+            assert_eq!(c.len(), n - 1);
+            for s in 0..n - 1 {
+                assert_eq!(bits(c[s]), bits(all[s]), "prefix {n} chord {s}");
+            }
+            for s in 0..n {
+                for k in 0..2 {
+                    if s + k + 2 < n {
+                        assert_eq!(bits(f[k].get(s)), bits(far_all[k].get(s)), "{n} {s} {k}");
+                    } else {
+                        assert_eq!(f[k].get(s), DVec3::ZERO);
+                    }
+                }
+            }
+        }
+    }
+}
