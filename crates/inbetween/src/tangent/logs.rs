@@ -196,12 +196,15 @@ impl Keys {
     /// The columns of `quats` (at least one key), padded past `n.div_ceil(4)·4 + 3`.
     pub(in crate::tangent) fn of(quats: &[DQuat]) -> Keys {
         let n = quats.len();
-        let last = quats[n - 1];
         let padded = n.div_ceil(4) * 4 + 4;
-        let column = |f: fn(DQuat) -> f64| -> Vec<f64> {
-            let mut c: Vec<f64> = quats.iter().map(|&q| f(q)).collect();
-            c.resize(padded, f(last));
-            c
+        let last = quats[n - 1];
+        // Exact-size iterators: `collect` writes without a test per value (nor a memset first).
+        let column = |f: fn(&DQuat) -> f64| -> Vec<f64> {
+            quats
+                .iter()
+                .map(f)
+                .chain(std::iter::repeat_n(f(&last), padded - n))
+                .collect()
         };
         Keys {
             w: column(|q| q.w),

@@ -16,8 +16,7 @@ use wide::f64x4;
 
 impl Windows<'_> {
     /// Whether key `i` has the plain window (module documentation): the same tests, in the same
-    /// arithmetic, by which [`Windows::tangent`] would leave that path ([`Windows::plain4`]'s
-    /// reference).
+    /// arithmetic, by which [`Windows::tangent`] would leave that path (`plain4`'s reference).
     #[cfg(test)]
     fn plain(&self, i: usize) -> bool {
         let n = self.quats.len();
@@ -36,8 +35,8 @@ impl Windows<'_> {
         within(i - 1, i - 2, i - 3) && within(i, i + 1, i + 2)
     }
 
-    /// Whether keys `i‥i+3` all have the plain window: [`Windows::plain`]'s tests, one key
-    /// per lane, in the same arithmetic (the same answer, tested).
+    /// Whether keys `i‥i+3` all have the plain window: the tests of `plain` (the scalar reference,
+    /// kept for the tests), one key per lane, in the same arithmetic (the same answer, tested).
     fn plain4(&self, i: usize) -> bool {
         let n = self.quats.len();
         if !self.has_far() || i < REACH || i + 3 + REACH >= n {
@@ -66,7 +65,7 @@ impl Windows<'_> {
         while k < out.len() {
             let i = from + k;
             if let Some(four) = (k + 4 <= out.len()).then(|| self.tangent4(i)).flatten() {
-                out[k..k + 4].copy_from_slice(&four);
+                out[k..k + 4].copy_from_slice(&four.lanes());
                 k += 4;
             } else {
                 out[k] = self.tangent(i);
@@ -75,8 +74,9 @@ impl Windows<'_> {
         }
     }
 
-    /// The tangents of keys `i‥i+3` when all four have the plain window, else `None`.
-    pub(super) fn tangent4(&self, i: usize) -> Option<[DVec3; 4]> {
+    /// The tangents of keys `i‥i+3` (lane `l` key `i + l`) when all four have the plain window,
+    /// else `None`.
+    pub(super) fn tangent4(&self, i: usize) -> Option<V4> {
         if !self.plain4(i) {
             return None;
         }
@@ -103,7 +103,7 @@ impl Windows<'_> {
         let room = f64x4::splat(0.5) * nk.length();
         let off = c.length();
         let limited = nk.add(c.mul(room / off));
-        Some(w.or_where(off.simd_gt(room), limited).lanes())
+        Some(w.or_where(off.simd_gt(room), limited))
     }
 }
 
@@ -134,6 +134,7 @@ impl<'w, 'a> InOrder<'w, 'a> {
         }
         match self.windows.tangent4(i) {
             Some(block) => {
+                let block = block.lanes();
                 (self.from, self.len, self.block) = (i, 4, block);
                 block[0]
             }
@@ -233,7 +234,7 @@ mod tests {
         for i in 1..n - 4 {
             if let Some(four) = w.tangent4(i) {
                 lanes += 1;
-                for (l, &got) in four.iter().enumerate() {
+                for (l, &got) in four.lanes().iter().enumerate() {
                     assert_eq!(bits(got), bits(w.tangent(i + l)), "key {}", i + l);
                 }
             }
