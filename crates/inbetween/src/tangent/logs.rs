@@ -124,13 +124,34 @@ impl Columns {
         DVec3::new(self.x[i], self.y[i], self.z[i])
     }
 
-    /// Vectors `i‥i+3` as lanes.
+    /// Vectors `from‥from+len`, as columns borrowed.
     #[inline]
-    pub(in crate::tangent) fn lanes(&self, i: usize) -> V4 {
+    pub(in crate::tangent) fn window(&self, from: usize, len: usize) -> Window<'_> {
+        let to = from + len;
+        Window {
+            x: &self.x[from..to],
+            y: &self.y[from..to],
+            z: &self.z[from..to],
+        }
+    }
+}
+
+/// Part of [`Columns`], borrowed.
+#[derive(Clone, Copy)]
+pub(in crate::tangent) struct Window<'c> {
+    x: &'c [f64],
+    y: &'c [f64],
+    z: &'c [f64],
+}
+
+impl Window<'_> {
+    /// Vectors `i‥i+3` of the window as lanes.
+    #[inline]
+    pub(in crate::tangent) fn lanes(self, i: usize) -> V4 {
         V4 {
-            x: load(&self.x, i),
-            y: load(&self.y, i),
-            z: load(&self.z, i),
+            x: load(self.x, i),
+            y: load(self.y, i),
+            z: load(self.z, i),
         }
     }
 }
@@ -215,15 +236,28 @@ impl Keys {
         }
     }
 
-    /// Keys `from‥from+3` as lanes (`from ≤ n.div_ceil(4)·4`).
+    /// The block of keys `from‥from+6` (`from ≤ n.div_ceil(4)·4 − 4`): each column cut once,
+    /// so that loads from it need no bounds test of their own.
     #[inline]
-    fn four(&self, from: usize) -> Quat4 {
-        Quat4 {
-            w: load(&self.w, from),
-            x: load(&self.x, from),
-            y: load(&self.y, from),
-            z: load(&self.z, from),
-        }
+    fn block(&self, from: usize) -> [&[f64]; 4] {
+        let to = from + 7;
+        [
+            &self.w[from..to],
+            &self.x[from..to],
+            &self.y[from..to],
+            &self.z[from..to],
+        ]
+    }
+}
+
+/// Keys `k‥k+3` of a block ([`Keys::block`]) as lanes (`k ≤ 3`).
+#[inline]
+fn four([w, x, y, z]: [&[f64]; 4], k: usize) -> Quat4 {
+    Quat4 {
+        w: load(w, k),
+        x: load(x, k),
+        y: load(y, k),
+        z: load(z, k),
     }
 }
 
@@ -232,7 +266,8 @@ pub(in crate::tangent) fn chords(keys: &Keys) -> Vec<DVec3> {
     let segments = keys.n - 1;
     let mut out = Vec::with_capacity(segments + 3);
     for s in (0..segments).step_by(4) {
-        let l = log4(ratio(keys.four(s + 1), keys.four(s)));
+        let block = keys.block(s);
+        let l = log4(ratio(four(block, 1), four(block, 0)));
         out.extend_from_slice(&l.lanes());
     }
     out.truncate(segments);
@@ -251,9 +286,10 @@ pub(in crate::tangent) fn far(keys: &Keys) -> [Columns; 2] {
     };
     let mut out = [column(), column()];
     for s in (0..n).step_by(4) {
-        let from = keys.four(s);
+        let block = keys.block(s);
+        let from = four(block, 0);
         for (k, c) in out.iter_mut().enumerate() {
-            let l = log4(ratio(keys.four(s + k + 2), from));
+            let l = log4(ratio(four(block, k + 2), from));
             c.x.extend_from_slice(&l.x.to_array());
             c.y.extend_from_slice(&l.y.to_array());
             c.z.extend_from_slice(&l.z.to_array());

@@ -43,7 +43,8 @@ impl Windows<'_> {
             return false;
         }
         // Lengths of segments i − 3 + k, lane l at key i + l (all within the track: i + 6 < n).
-        let l: [f64x4; 2 * REACH] = std::array::from_fn(|k| load(&self.lengths, i + k - 3));
+        let lengths = &self.lengths[i - 3..i + 6];
+        let l: [f64x4; 2 * REACH] = std::array::from_fn(|k| load(lengths, k));
         let bound = f64x4::splat(PI - TIE);
         // The scalar test leaves when `l[i−1] + l[i] >= π − TIE`.
         if (l[2] + l[3]).simd_ge(bound).any() {
@@ -82,23 +83,27 @@ impl Windows<'_> {
         }
         // Every load below is of keys or segments `i − 3‥i + 6`, which the plain windows of
         // keys `i‥i+3` hold.
-        let (far, chords) = (&self.far, &self.chord_columns);
+        // Each column cut once to the part read (one bounds test, not one per load).
+        let far2 = self.far[0].window(i - 2, 6);
+        let far3 = self.far[1].window(i - 3, 7);
+        let chords = self.chord_columns.window(i - 1, 5);
         let y = [
-            far[1].lanes(i - 3).neg(),
-            far[0].lanes(i - 2).neg(),
-            chords.lanes(i - 1).neg(),
+            far3.lanes(0).neg(),
+            far2.lanes(0).neg(),
+            chords.lanes(0).neg(),
             V4::ZERO,
-            chords.lanes(i),
-            far[0].lanes(i),
-            far[1].lanes(i),
+            chords.lanes(1),
+            far2.lanes(2),
+            far3.lanes(3),
         ];
         // h[p] = t[i − 3 + p + 1] − t[i − 3 + p], lane l at key i + l.
-        let t: [f64x4; 2 * REACH + 1] = std::array::from_fn(|p| load(self.times, i + p - 3));
+        let times = &self.times[i - 3..i + 7];
+        let t: [f64x4; 2 * REACH + 1] = std::array::from_fn(|p| load(times, p));
         let h: [f64x4; 2 * REACH] = std::array::from_fn(|p| t[p + 1] - t[p]);
         let w = slope7(&h, &y);
         // The limit, as `Windows::tangent` takes it: the span is (t[i] − t[i−1]) + (t[i+1] − t[i]).
         let span = h[2] + h[3];
-        let nk = far[0].lanes(i - 1).div(span);
+        let nk = far2.lanes(1).div(span);
         let c = w.sub(nk);
         let room = f64x4::splat(0.5) * nk.length();
         let off = c.length();
