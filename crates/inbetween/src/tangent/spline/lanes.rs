@@ -153,6 +153,7 @@ impl<'w, 'a> InOrder<'w, 'a> {
 
 /// [`super::slope`] for seven points and the middle one, in lanes, with its operations
 /// in its order.
+#[inline(always)]
 fn slope7(h: &[f64x4; 6], y: &[V4; 7]) -> V4 {
     let one = f64x4::ONE;
     let d: [V4; 6] = std::array::from_fn(|k| y[k + 1].sub(y[k]).mul(one / h[k]));
