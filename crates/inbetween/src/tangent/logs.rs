@@ -432,4 +432,39 @@ mod tests {
             }
         }
     }
+
+    /// The spline tangents of a track and of its prefixes agree bit for bit at every key whose
+    /// window (three keys each side) the prefix holds, and so does the first key's chord tangent:
+    /// no value depends on where its keys fall in a block of four.
+    #[test]
+    fn tangents_do_not_depend_on_what_follows() {
+        use crate::tangent::{EndConditions, Knots, PathMode, TangentRule};
+        use crate::track::{Tcb, Track};
+        let times: Vec<f64> = (0..41)
+            .map(|k| k as f64 / 30.0 + 1e-3 * (k % 3) as f64)
+            .collect();
+        let quats: Vec<DQuat> = times
+            .iter()
+            .map(|&t| DQuat::from_rotation_z(2.0 * t) * DQuat::from_rotation_x((3.0 * t).sin()))
+            .collect();
+        let knots = |n: usize| {
+            let track = Track::new(times[..n].to_vec(), quats[..n].to_vec()).expect("a track");
+            let ends = EndConditions::default();
+            Knots::shaped(
+                &track,
+                PathMode::Shortest,
+                ends,
+                Tcb::ZERO,
+                TangentRule::Spline,
+            )
+        };
+        let bits = |v: DVec3| v.to_array().map(f64::to_bits);
+        let all = knots(times.len());
+        for n in 8..times.len() {
+            let prefix = knots(n);
+            for i in 0..n - 3 {
+                assert_eq!(bits(prefix.w()[i]), bits(all.w()[i]), "prefix {n} key {i}");
+            }
+        }
+    }
 }
