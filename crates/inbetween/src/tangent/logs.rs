@@ -9,159 +9,10 @@
 //! and no lane reads another's, so a log's bits depend only on its two keys — never on where
 //! they fall in a block or on how long the track is.
 
+use super::columns::{Columns, V4, load};
 use crate::curve::blend4::Quat4;
 use glam::{DQuat, DVec3};
 use wide::f64x4;
-
-/// Four 3-vectors as lanes.
-#[derive(Clone, Copy)]
-pub(in crate::tangent) struct V4 {
-    pub(in crate::tangent) x: f64x4,
-    pub(in crate::tangent) y: f64x4,
-    pub(in crate::tangent) z: f64x4,
-}
-
-impl V4 {
-    /// Zero in every lane.
-    pub(in crate::tangent) const ZERO: V4 = V4 {
-        x: f64x4::ZERO,
-        y: f64x4::ZERO,
-        z: f64x4::ZERO,
-    };
-
-    /// The lanes as vectors.
-    pub(in crate::tangent) fn lanes(self) -> [DVec3; 4] {
-        let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
-        std::array::from_fn(|l| DVec3::new(x[l], y[l], z[l]))
-    }
-
-    /// Lane-wise sum.
-    pub(in crate::tangent) fn add(self, o: V4) -> V4 {
-        V4 {
-            x: self.x + o.x,
-            y: self.y + o.y,
-            z: self.z + o.z,
-        }
-    }
-
-    /// Lane-wise difference.
-    pub(in crate::tangent) fn sub(self, o: V4) -> V4 {
-        V4 {
-            x: self.x - o.x,
-            y: self.y - o.y,
-            z: self.z - o.z,
-        }
-    }
-
-    /// Each lane's vector times its lane of `k`.
-    pub(in crate::tangent) fn mul(self, k: f64x4) -> V4 {
-        V4 {
-            x: self.x * k,
-            y: self.y * k,
-            z: self.z * k,
-        }
-    }
-
-    /// Each lane's vector over its lane of `k`.
-    pub(in crate::tangent) fn div(self, k: f64x4) -> V4 {
-        V4 {
-            x: self.x / k,
-            y: self.y / k,
-            z: self.z / k,
-        }
-    }
-
-    /// The vectors negated (a sign flip, as glam's `-v`).
-    pub(in crate::tangent) fn neg(self) -> V4 {
-        V4 {
-            x: -self.x,
-            y: -self.y,
-            z: -self.z,
-        }
-    }
-
-    /// glam's `length`: `√((x·x + y·y) + z·z)`.
-    pub(in crate::tangent) fn length(self) -> f64x4 {
-        (self.x * self.x + self.y * self.y + self.z * self.z).sqrt()
-    }
-
-    /// `if_true`'s lane where `mask` is set, else this one's.
-    pub(in crate::tangent) fn or_where(self, mask: f64x4, if_true: V4) -> V4 {
-        V4 {
-            x: mask.select(if_true.x, self.x),
-            y: mask.select(if_true.y, self.y),
-            z: mask.select(if_true.z, self.z),
-        }
-    }
-}
-
-/// Vectors in structure-of-arrays form, so that four consecutive ones load as lanes.
-#[derive(Debug, Clone, Default)]
-pub(in crate::tangent) struct Columns {
-    x: Vec<f64>,
-    y: Vec<f64>,
-    z: Vec<f64>,
-}
-
-impl Columns {
-    /// The columns of `v`.
-    pub(in crate::tangent) fn of(v: &[DVec3]) -> Columns {
-        Columns {
-            x: v.iter().map(|v| v.x).collect(),
-            y: v.iter().map(|v| v.y).collect(),
-            z: v.iter().map(|v| v.z).collect(),
-        }
-    }
-
-    /// Whether there is no vector.
-    pub(in crate::tangent) fn is_empty(&self) -> bool {
-        self.x.is_empty()
-    }
-
-    /// Vector `i`.
-    #[inline]
-    pub(in crate::tangent) fn get(&self, i: usize) -> DVec3 {
-        DVec3::new(self.x[i], self.y[i], self.z[i])
-    }
-
-    /// Vectors `from‥from+len`, as columns borrowed.
-    #[inline]
-    pub(in crate::tangent) fn window(&self, from: usize, len: usize) -> Window<'_> {
-        let to = from + len;
-        Window {
-            x: &self.x[from..to],
-            y: &self.y[from..to],
-            z: &self.z[from..to],
-        }
-    }
-}
-
-/// Part of [`Columns`], borrowed.
-#[derive(Clone, Copy)]
-pub(in crate::tangent) struct Window<'c> {
-    x: &'c [f64],
-    y: &'c [f64],
-    z: &'c [f64],
-}
-
-impl Window<'_> {
-    /// Vectors `i‥i+3` of the window as lanes.
-    #[inline]
-    pub(in crate::tangent) fn lanes(self, i: usize) -> V4 {
-        V4 {
-            x: load(self.x, i),
-            y: load(self.y, i),
-            z: load(self.z, i),
-        }
-    }
-}
-
-/// `v[i‥i+3]` as lanes.
-#[inline]
-pub(in crate::tangent) fn load(v: &[f64], i: usize) -> f64x4 {
-    let four: [f64; 4] = v[i..i + 4].try_into().expect("four values");
-    f64x4::new(four)
-}
 
 /// `log(q)` of four unit quaternions: [`crate::rotation::quat::log`]'s formula with the lanes'
 /// `atan2` — `v·(atan2(s, w)/s)`, `s = |v|` (glam's length); where `s == 0`, zero, or `(π, 0, 0)`
@@ -279,25 +130,20 @@ pub(in crate::tangent) fn chords(keys: &Keys) -> Vec<DVec3> {
 pub(in crate::tangent) fn far(keys: &Keys) -> [Columns; 2] {
     let n = keys.n;
     let padded = n.div_ceil(4) * 4;
-    let column = || Columns {
-        x: Vec::with_capacity(padded),
-        y: Vec::with_capacity(padded),
-        z: Vec::with_capacity(padded),
-    };
-    let mut out = [column(), column()];
+    let mut out = [
+        Columns::with_capacity(padded),
+        Columns::with_capacity(padded),
+    ];
     for s in (0..n).step_by(4) {
         let block = keys.block(s);
         let from = four(block, 0);
         for (k, c) in out.iter_mut().enumerate() {
-            let l = log4(ratio(four(block, k + 2), from));
-            c.x.extend_from_slice(&l.x.to_array());
-            c.y.extend_from_slice(&l.y.to_array());
-            c.z.extend_from_slice(&l.z.to_array());
+            c.push4(log4(ratio(four(block, k + 2), from)));
         }
     }
     for (k, c) in out.iter_mut().enumerate() {
         for s in n.saturating_sub(k + 2)..n {
-            (c.x[s], c.y[s], c.z[s]) = (0.0, 0.0, 0.0);
+            c.set_zero(s);
         }
     }
     out

@@ -14,6 +14,7 @@
 //! - Ends: `chord` `w_1 = log(q_2 q_1⁻¹)/Δ_1`, `w_n = log(q_n q_{n−1}⁻¹)/Δ_{n−1}`; `rest` `w = 0`;
 //!   a given angular velocity ω (rad/s) gives `w = ω/2` and overrides either.
 
+mod columns;
 mod logs;
 mod spline;
 

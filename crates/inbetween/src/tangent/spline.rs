@@ -30,7 +30,8 @@
 //! 0‥4); with three keys the spline is the parabola through them, with four the cubic. A loop
 //! (`Ends::Cyclic`) wraps the window around its seam.
 
-use super::logs::{Columns, Keys};
+use super::columns::Columns;
+use super::logs::Keys;
 use crate::rotation::quat::log;
 use glam::{DQuat, DVec3};
 

@@ -9,7 +9,7 @@
 //! is the scalar tangent's bits (tested). Any other key is done by [`Windows::tangent`].
 
 use super::{REACH, TIE, Windows};
-use crate::tangent::logs::{V4, load};
+use crate::tangent::columns::{V4, load};
 use glam::DVec3;
 use std::f64::consts::PI;
 use wide::f64x4;
