@@ -9,6 +9,7 @@ mod euler;
 pub mod magnitude;
 mod matrix;
 pub mod quat;
+pub(crate) mod quat4;
 pub mod spin;
 mod unit;
 pub mod unwrap;

@@ -7,28 +7,28 @@ use wide::f64x4;
 
 /// Four 3-vectors as lanes.
 #[derive(Clone, Copy)]
-pub(in crate::tangent) struct V4 {
-    pub(in crate::tangent) x: f64x4,
-    pub(in crate::tangent) y: f64x4,
-    pub(in crate::tangent) z: f64x4,
+pub(super) struct V4 {
+    pub(super) x: f64x4,
+    pub(super) y: f64x4,
+    pub(super) z: f64x4,
 }
 
 impl V4 {
     /// Zero in every lane.
-    pub(in crate::tangent) const ZERO: V4 = V4 {
+    pub(super) const ZERO: V4 = V4 {
         x: f64x4::ZERO,
         y: f64x4::ZERO,
         z: f64x4::ZERO,
     };
 
     /// The lanes as vectors.
-    pub(in crate::tangent) fn lanes(self) -> [DVec3; 4] {
+    pub(super) fn lanes(self) -> [DVec3; 4] {
         let (x, y, z) = (self.x.to_array(), self.y.to_array(), self.z.to_array());
         std::array::from_fn(|l| DVec3::new(x[l], y[l], z[l]))
     }
 
     /// Lane-wise sum.
-    pub(in crate::tangent) fn add(self, o: V4) -> V4 {
+    pub(super) fn add(self, o: V4) -> V4 {
         V4 {
             x: self.x + o.x,
             y: self.y + o.y,
@@ -37,7 +37,7 @@ impl V4 {
     }
 
     /// Lane-wise difference.
-    pub(in crate::tangent) fn sub(self, o: V4) -> V4 {
+    pub(super) fn sub(self, o: V4) -> V4 {
         V4 {
             x: self.x - o.x,
             y: self.y - o.y,
@@ -46,7 +46,7 @@ impl V4 {
     }
 
     /// Each lane's vector times its lane of `k`.
-    pub(in crate::tangent) fn mul(self, k: f64x4) -> V4 {
+    pub(super) fn mul(self, k: f64x4) -> V4 {
         V4 {
             x: self.x * k,
             y: self.y * k,
@@ -55,7 +55,7 @@ impl V4 {
     }
 
     /// Each lane's vector over its lane of `k`.
-    pub(in crate::tangent) fn div(self, k: f64x4) -> V4 {
+    pub(super) fn div(self, k: f64x4) -> V4 {
         V4 {
             x: self.x / k,
             y: self.y / k,
@@ -64,7 +64,7 @@ impl V4 {
     }
 
     /// The vectors negated (a sign flip, as glam's `-v`).
-    pub(in crate::tangent) fn neg(self) -> V4 {
+    pub(super) fn neg(self) -> V4 {
         V4 {
             x: -self.x,
             y: -self.y,
@@ -73,12 +73,12 @@ impl V4 {
     }
 
     /// glam's `length`: `√((x·x + y·y) + z·z)`.
-    pub(in crate::tangent) fn length(self) -> f64x4 {
+    pub(super) fn length(self) -> f64x4 {
         (self.x * self.x + self.y * self.y + self.z * self.z).sqrt()
     }
 
     /// `if_true`'s lane where `mask` is set, else this one's.
-    pub(in crate::tangent) fn or_where(self, mask: f64x4, if_true: V4) -> V4 {
+    pub(super) fn or_where(self, mask: f64x4, if_true: V4) -> V4 {
         V4 {
             x: mask.select(if_true.x, self.x),
             y: mask.select(if_true.y, self.y),
@@ -89,7 +89,7 @@ impl V4 {
 
 /// Vectors in structure-of-arrays form, so that four consecutive ones load as lanes.
 #[derive(Debug, Clone, Default)]
-pub(in crate::tangent) struct Columns {
+pub(super) struct Columns {
     x: Vec<f64>,
     y: Vec<f64>,
     z: Vec<f64>,
@@ -97,7 +97,7 @@ pub(in crate::tangent) struct Columns {
 
 impl Columns {
     /// No vector yet, room for `n`.
-    pub(in crate::tangent) fn with_capacity(n: usize) -> Columns {
+    pub(super) fn with_capacity(n: usize) -> Columns {
         Columns {
             x: Vec::with_capacity(n),
             y: Vec::with_capacity(n),
@@ -107,19 +107,19 @@ impl Columns {
 
     /// Appends the four lanes of `v`.
     #[inline]
-    pub(in crate::tangent) fn push4(&mut self, v: V4) {
+    pub(super) fn push4(&mut self, v: V4) {
         self.x.extend_from_slice(&v.x.to_array());
         self.y.extend_from_slice(&v.y.to_array());
         self.z.extend_from_slice(&v.z.to_array());
     }
 
     /// Sets vector `i` to zero.
-    pub(in crate::tangent) fn set_zero(&mut self, i: usize) {
+    pub(super) fn set_zero(&mut self, i: usize) {
         (self.x[i], self.y[i], self.z[i]) = (0.0, 0.0, 0.0);
     }
 
     /// The columns of `v`.
-    pub(in crate::tangent) fn of(v: &[DVec3]) -> Columns {
+    pub(super) fn of(v: &[DVec3]) -> Columns {
         Columns {
             x: v.iter().map(|v| v.x).collect(),
             y: v.iter().map(|v| v.y).collect(),
@@ -128,19 +128,19 @@ impl Columns {
     }
 
     /// Whether there is no vector.
-    pub(in crate::tangent) fn is_empty(&self) -> bool {
+    pub(super) fn is_empty(&self) -> bool {
         self.x.is_empty()
     }
 
     /// Vector `i`.
     #[inline]
-    pub(in crate::tangent) fn get(&self, i: usize) -> DVec3 {
+    pub(super) fn get(&self, i: usize) -> DVec3 {
         DVec3::new(self.x[i], self.y[i], self.z[i])
     }
 
     /// Vectors `from‥from+len`, as columns borrowed.
     #[inline]
-    pub(in crate::tangent) fn window(&self, from: usize, len: usize) -> Window<'_> {
+    pub(super) fn window(&self, from: usize, len: usize) -> Window<'_> {
         let to = from + len;
         Window {
             x: &self.x[from..to],
@@ -152,7 +152,7 @@ impl Columns {
 
 /// Part of [`Columns`], borrowed.
 #[derive(Clone, Copy)]
-pub(in crate::tangent) struct Window<'c> {
+pub(super) struct Window<'c> {
     x: &'c [f64],
     y: &'c [f64],
     z: &'c [f64],
@@ -161,7 +161,7 @@ pub(in crate::tangent) struct Window<'c> {
 impl Window<'_> {
     /// Vectors `i‥i+3` of the window as lanes.
     #[inline]
-    pub(in crate::tangent) fn lanes(self, i: usize) -> V4 {
+    pub(super) fn lanes(self, i: usize) -> V4 {
         V4 {
             x: load(self.x, i),
             y: load(self.y, i),
@@ -172,7 +172,7 @@ impl Window<'_> {
 
 /// `v[i‥i+3]` as lanes.
 #[inline]
-pub(in crate::tangent) fn load(v: &[f64], i: usize) -> f64x4 {
+pub(super) fn load(v: &[f64], i: usize) -> f64x4 {
     let four: [f64; 4] = v[i..i + 4].try_into().expect("four values");
     f64x4::new(four)
 }

@@ -10,7 +10,7 @@
 //! they fall in a block or on how long the track is.
 
 use super::columns::{Columns, V4, load};
-use crate::curve::blend4::Quat4;
+use crate::rotation::quat4::Quat4;
 use glam::{DQuat, DVec3};
 use wide::f64x4;
 
@@ -18,7 +18,7 @@ use wide::f64x4;
 /// `atan2` — `v·(atan2(s, w)/s)`, `s = |v|` (glam's length); where `s == 0`, zero, or `(π, 0, 0)`
 /// when `w < 0`, as the scalar log.
 #[inline]
-pub(in crate::tangent) fn log4(q: Quat4) -> V4 {
+pub(super) fn log4(q: Quat4) -> V4 {
     let s = (q.x * q.x + q.y * q.y + q.z * q.z).sqrt();
     let k = s.atan2(q.w) / s;
     let out = V4 {
@@ -55,7 +55,7 @@ fn ratio(b: Quat4, a: Quat4) -> Quat4 {
 
 /// A track's keys as columns, so that four consecutive ones load as lanes; past the last key
 /// the last key again, so that every block of four from a key of the track is there.
-pub(in crate::tangent) struct Keys {
+pub(super) struct Keys {
     w: Vec<f64>,
     x: Vec<f64>,
     y: Vec<f64>,
@@ -66,7 +66,7 @@ pub(in crate::tangent) struct Keys {
 
 impl Keys {
     /// The columns of `quats` (at least one key), padded past `n.div_ceil(4)·4 + 3`.
-    pub(in crate::tangent) fn of(quats: &[DQuat]) -> Keys {
+    pub(super) fn of(quats: &[DQuat]) -> Keys {
         let n = quats.len();
         let padded = n.div_ceil(4) * 4 + 4;
         let last = quats[n - 1];
@@ -113,7 +113,7 @@ fn four([w, x, y, z]: [&[f64]; 4], k: usize) -> Quat4 {
 }
 
 /// The chords `log(q_{s+1} q_s⁻¹)` of every segment `s` of `keys` (by [`log4`]).
-pub(in crate::tangent) fn chords(keys: &Keys) -> Vec<DVec3> {
+pub(super) fn chords(keys: &Keys) -> Vec<DVec3> {
     let segments = keys.n - 1;
     let mut out = Vec::with_capacity(segments + 3);
     for s in (0..segments).step_by(4) {
@@ -127,7 +127,7 @@ pub(in crate::tangent) fn chords(keys: &Keys) -> Vec<DVec3> {
 
 /// `[log(q_{s+2} q_s⁻¹), log(q_{s+3} q_s⁻¹)]` for every key `s` of `keys` (by [`log4`]), as
 /// columns padded to a multiple of four; zero where key `s + 2` or `s + 3` does not exist.
-pub(in crate::tangent) fn far(keys: &Keys) -> [Columns; 2] {
+pub(super) fn far(keys: &Keys) -> [Columns; 2] {
     let n = keys.n;
     let padded = n.div_ceil(4) * 4;
     let mut out = [
