@@ -131,10 +131,11 @@ pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
         y: a.y * cs + py * k,
         z: a.z * cs + pz * k,
     };
-    let degenerate = s.to_array().map(|v| v.is_nan() || v < 1e-300);
-    if !degenerate.contains(&true) {
+    // The test in lanes (one comparison, no branch per lane): degenerate lanes are rare.
+    if !(s.simd_lt(f64x4::splat(1e-300)) | s.is_nan()).any() {
         return out;
     }
+    let degenerate = s.to_array().map(|v| v.is_nan() || v < 1e-300);
     // Each degenerate lane by the scalar blend; the others keep their own lane's result, so a
     // lane never depends on what shares its block.
     let (qa, qb, fs, mut q) = (a.to_quats(), b.to_quats(), f.to_array(), out.to_quats());

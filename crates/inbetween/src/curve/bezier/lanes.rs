@@ -124,37 +124,45 @@ impl Bezier4 {
         let (e0, e2) = (over(v0, t0), over(v3, t3));
         let (s0, c0) = t0.sin_cos();
         let (s3, c3) = (-t3).sin_cos();
-        let mut p1 = combine(q0, c0, e0, s0).to_quats();
-        let mut p2 = combine(q3, c3, e2, s3).to_quats();
-        // A leg shorter than TINY is the point itself (`Arc::point`).
-        let (still0, still3) = (lanes_where(t0, |t| t < TINY), lanes_where(t3, |t| t < TINY));
-        let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
-        let (q0s, q3s) = (q0.to_quats(), q3.to_quats());
-        let (mut e0s, mut e2s) = (e0.to_quats(), e2.to_quats());
-        let (mut b0, mut b2) = (t0.to_array(), t3.to_array());
-        let mut a2 = (-t3).to_array();
-        for l in 0..4 {
-            if still0[l] {
-                (p1[l], e0s[l], b0[l]) = (q0s[l], zero, 0.0);
-            }
-            if still3[l] {
-                (p2[l], e2s[l], b2[l], a2[l]) = (q3s[l], zero, 0.0, 0.0);
-            }
-        }
-        let r0 = Arc4 {
+        let mut p1 = combine(q0, c0, e0, s0);
+        let mut p2 = combine(q3, c3, e2, s3);
+        let mut r0 = Arc4 {
             p: q0,
-            e: Quat4::from_quats(&e0s),
+            e: e0,
             alpha: f64x4::ZERO,
-            beta: f64x4::new(b0),
+            beta: t0,
         };
-        let r2 = Arc4 {
+        let mut r2 = Arc4 {
             p: q3,
-            e: Quat4::from_quats(&e2s),
-            alpha: f64x4::new(a2),
-            beta: f64x4::new(b2),
+            e: e2,
+            alpha: -t3,
+            beta: t3,
         };
+        // A leg shorter than TINY is the point itself (`Arc::point`): lane by lane, where the
+        // test in lanes finds one.
+        let tiny = f64x4::splat(TINY);
+        if (t0.simd_lt(tiny) | t3.simd_lt(tiny)).any() {
+            let (still0, still3) = (lanes_where(t0, |t| t < TINY), lanes_where(t3, |t| t < TINY));
+            let zero = DQuat::from_xyzw(0.0, 0.0, 0.0, 0.0);
+            let (q0s, q3s) = (q0.to_quats(), q3.to_quats());
+            let (mut p1s, mut p2s) = (p1.to_quats(), p2.to_quats());
+            let (mut e0s, mut e2s) = (e0.to_quats(), e2.to_quats());
+            let (mut b0, mut b2) = (t0.to_array(), t3.to_array());
+            let mut a2 = (-t3).to_array();
+            for l in 0..4 {
+                if still0[l] {
+                    (p1s[l], e0s[l], b0[l]) = (q0s[l], zero, 0.0);
+                }
+                if still3[l] {
+                    (p2s[l], e2s[l], b2[l], a2[l]) = (q3s[l], zero, 0.0, 0.0);
+                }
+            }
+            (p1, p2) = (Quat4::from_quats(&p1s), Quat4::from_quats(&p2s));
+            (r0.e, r0.beta) = (Quat4::from_quats(&e0s), f64x4::new(b0));
+            (r2.e, r2.alpha, r2.beta) = (Quat4::from_quats(&e2s), f64x4::new(a2), f64x4::new(b2));
+        }
         // The middle leg: the geodesic from p₁ to p₂ (`Arc::between`).
-        let (a, b) = (Quat4::from_quats(&p1), Quat4::from_quats(&p2));
+        let (a, b) = (p1, p2);
         let d = dot(a, b);
         let perp = Quat4 {
             w: b.w - a.w * d,
@@ -169,9 +177,10 @@ impl Bezier4 {
             alpha: f64x4::ZERO,
             beta: len.atan2(d),
         };
-        let flat = lanes_where(len, |v| v.is_nan() || v < TINY);
-        if flat.contains(&true) {
+        if (len.simd_lt(tiny) | len.is_nan()).any() {
             // Identical or antipodal legs' ends: the scalar `Arc::between`, lane by lane.
+            let flat = lanes_where(len, |v| v.is_nan() || v < TINY);
+            let (p1, p2) = (p1.to_quats(), p2.to_quats());
             let (mut e1, mut b1) = (r1.e.to_quats(), r1.beta.to_array());
             for l in (0..4).filter(|&l| flat[l]) {
                 let arc = Arc::between(p1[l], p2[l]);
