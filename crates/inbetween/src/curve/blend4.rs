@@ -193,7 +193,7 @@ impl ArcLanes {
     #[inline]
     pub(crate) fn eval4(&self, u: f64x4) -> Quat4 {
         let phase = f64x4::splat(self.alpha) + f64x4::splat(self.beta) * u;
-        let (s, c) = phase.sin_cos();
+        let (s, c) = crate::rotation::quat4::sin_cos4(phase);
         let (p, e) = (self.p, self.e);
         let at = |a: f64, b: f64| f64x4::splat(a) * c + f64x4::splat(b) * s;
         Quat4 {

@@ -12,6 +12,7 @@
 use super::super::blend4::Quat4;
 use super::{Bezier, casteljau4};
 use crate::rotation::arc::{Arc, TINY};
+use crate::rotation::quat4::sin_cos4;
 use crate::tangent::Knots;
 use glam::DQuat;
 use wide::f64x4;
@@ -29,7 +30,7 @@ impl Arc4 {
     /// `C(u[i])` for the four lanes: [`Arc::eval`]'s expression, its `sin_cos` in lanes.
     #[inline]
     fn eval(&self, u: f64x4) -> Quat4 {
-        let (s, c) = (self.alpha + self.beta * u).sin_cos();
+        let (s, c) = sin_cos4(self.alpha + self.beta * u);
         let (p, e) = (self.p, self.e);
         Quat4 {
             w: p.w * c + e.w * s,
@@ -122,8 +123,8 @@ impl Bezier4 {
         let v3 = third_of_tangent(&keys.w_in, s.map(|s| s + 1), delta, q3);
         let (t0, t3) = (dot(v0, v0).sqrt(), dot(v3, v3).sqrt());
         let (e0, e2) = (over(v0, t0), over(v3, t3));
-        let (s0, c0) = t0.sin_cos();
-        let (s3, c3) = (-t3).sin_cos();
+        let (s0, c0) = sin_cos4(t0);
+        let (s3, c3) = sin_cos4(-t3);
         let mut p1 = combine(q0, c0, e0, s0);
         let mut p2 = combine(q3, c3, e2, s3);
         let mut r0 = Arc4 {
@@ -273,7 +274,16 @@ mod tests {
     #[test]
     fn a_lane_is_its_segment_whatever_shares_its_block() {
         let (mut points, mut flat) = (0, 0);
-        for k in [sample_keys(), varied_keys()] {
+        // Ends turning 3·10¹⁰ rad/s: legs of about 5·10⁹ rad, beyond the lanes' sin_cos range.
+        let spin = Track::new(vec![0.0, 1.0], vec![DQuat::IDENTITY; 2]).expect("a track");
+        let ends = EndConditions {
+            start: Some(DVec3::new(3e10, 1.0, 0.0)),
+            end: Some(DVec3::new(0.0, 3e10, 2.0)),
+            ..EndConditions::default()
+        };
+        let fast = Knots::new(&spin, PathMode::AsGiven, ends);
+        assert!(Bezier::new(&fast, 0, Blend::Cubic).r0.span() > 1e9);
+        for k in [sample_keys(), varied_keys(), fast] {
             let n = k.segments();
             for s in 0..n {
                 let seg = Bezier::new(&k, s, Blend::Cubic);
