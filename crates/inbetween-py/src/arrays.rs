@@ -197,17 +197,40 @@ pub fn quat_row(q: DQuat, scalar_first: bool) -> [f64; 4] {
 /// warning, or the error's message).
 #[inline]
 fn read_quat(r: &[f64], scalar_first: bool) -> Result<(DQuat, Option<String>), String> {
+    if let Some(q) = unit_quat(r, scalar_first) {
+        return Ok((q, None));
+    }
     let wxyz = match scalar_first {
         true => [r[0], r[1], r[2], r[3]],
         false => [r[3], r[0], r[1], r[2]],
     };
-    let given = DQuat::from_xyzw(wxyz[1], wxyz[2], wxyz[3], wxyz[0]);
-    if (given.length() - 1.0).abs() <= 1e-12 {
-        return Ok((given, None));
-    }
     Repr::Quat
         .to_quat(&wxyz, AngleUnit::Rad)
         .map_err(|e| e.message().to_string())
+}
+
+/// [`read_quat`]'s quaternion where the row is unit to f64's working precision as given (no
+/// message, nothing to build), else `None` (NaN included): the rows of real data, read without
+/// the general path's result.
+#[inline]
+fn unit_quat(r: &[f64], scalar_first: bool) -> Option<DQuat> {
+    let given = match scalar_first {
+        true => DQuat::from_xyzw(r[1], r[2], r[3], r[0]),
+        false => DQuat::from_xyzw(r[0], r[1], r[2], r[3]),
+    };
+    ((given.length() - 1.0).abs() <= 1e-12).then_some(given)
+}
+
+/// A row's place, `(j, k)`: joint, then row.
+type At = (usize, usize);
+
+/// What [`Flat::scan`] finds a row to be.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Row {
+    Fine,
+    /// Read with a warning (normalised).
+    Warned,
+    Refused,
 }
 
 /// Rows of `width` numbers (K, C) or (K, J, C) read in place: C-contiguous `data`, row `(k, j)`
@@ -238,6 +261,42 @@ impl Flat<'_> {
             None => format!("{name}[{k}]"),
             Some(_) => format!("{name}[{k}, {j}]"),
         }
+    }
+
+    /// The first refused and the first warned row (in joint order, then row order, as `(j, k)`)
+    /// by `class`, and the number of warned rows, scanning the rows in memory order on the cores.
+    fn scan(&self, class: impl Fn(&[f64]) -> Row + Sync) -> (Option<At>, Option<At>, usize) {
+        let joints = self.joints();
+        let chunk = (1 << 16) * self.width;
+        let chunks: Vec<(usize, &[f64])> = self.data.chunks(chunk).enumerate().collect();
+        let found = inbetween::parallel::map(&chunks, |&(c, data)| {
+            let (mut refused, mut warned, mut count) = (None::<At>, None, 0);
+            for (i, r) in data.chunks_exact(self.width).enumerate() {
+                let row = class(r);
+                if row == Row::Fine {
+                    continue;
+                }
+                let i = c * (chunk / self.width) + i;
+                let at = (i % joints, i / joints);
+                let first = if row == Row::Refused {
+                    &mut refused
+                } else {
+                    count += 1;
+                    &mut warned
+                };
+                *first = Some(first.map_or(at, |f: At| f.min(at)));
+            }
+            (refused, warned, count)
+        });
+        found
+            .into_iter()
+            .fold((None, None, 0), |(r, w, n), (r2, w2, n2)| {
+                let min = |a: Option<At>, b: Option<At>| match (a, b) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    _ => a.or(b),
+                };
+                (min(r, r2), min(w, w2), n + n2)
+            })
     }
 
     /// The first (in joint order, then row order) row for which `bad` is true, as `(j, k)`,
@@ -273,19 +332,21 @@ pub fn standard<'a>(a: &'a ArrayViewD<'a, f64>) -> std::borrow::Cow<'a, [f64]> {
 /// the first row refused (in joint order) is the error, else the first row normalised is the
 /// warning, with the count of the others.
 pub fn check_quats(py: Python<'_>, q: Flat<'_>, name: &str, scalar_first: bool) -> PyResult<()> {
+    // One pass in memory order on the cores: the first refused row, the first normalised one
+    // and how many are (only rows not unit as given take the general path).
     let (refused, normalised) = py.detach(|| {
-        let refused = q.first(|r| read_quat(r, scalar_first).is_err());
-        let normalised = match refused {
-            Some(_) => None,
-            None => {
-                let warned = |r: &[f64]| matches!(read_quat(r, scalar_first), Ok((_, Some(_))));
-                q.first(warned).map(|first| {
-                    let count = q.data.chunks_exact(q.width).filter(|r| warned(r)).count();
-                    (first, count)
-                })
-            }
-        };
-        (refused, normalised)
+        let (refused, warned, count) = q.scan(|r| match unit_quat(r, scalar_first) {
+            Some(_) => Row::Fine,
+            None => match read_quat(r, scalar_first) {
+                Err(_) => Row::Refused,
+                Ok((_, Some(_))) => Row::Warned,
+                Ok((_, None)) => Row::Fine,
+            },
+        });
+        (
+            refused,
+            warned.filter(|_| refused.is_none()).map(|w| (w, count)),
+        )
     });
     if let Some((j, k)) = refused {
         let e = read_quat(q.row(k, j), scalar_first)
@@ -308,7 +369,11 @@ pub fn joint_quats(q: Flat<'_>, j: usize, scalar_first: bool) -> Result<Vec<DQua
     // Allocated once (a `collect` through `Result` cannot size its vector: it grew by copies).
     let mut out = Vec::with_capacity(q.layout.rows);
     for k in 0..q.layout.rows {
-        out.push(read_quat(q.row(k, j), scalar_first)?.0);
+        let r = q.row(k, j);
+        out.push(match unit_quat(r, scalar_first) {
+            Some(q) => q,
+            None => read_quat(r, scalar_first)?.0,
+        });
     }
     Ok(out)
 }

@@ -95,3 +95,23 @@ def test_errors_name_the_argument(call, says):
     with pytest.raises(inbetween.InputError) as e:
         call()
     assert says in str(e.value)
+
+
+def test_rows_are_checked_in_joint_order_with_one_warning():
+    # 20 000 frames of 4 joints: the rows are scanned in memory order in chunks of 65 536, and
+    # the first row in joint order (then frame order) is the one named, whichever chunk holds it.
+    q = motion(20000, 4, 120).copy()
+    q[10, 3] *= 1.5      # chunk 0, joint 3
+    q[19000, 0] *= 1.02  # chunk 1, joint 0: the first in joint order
+    q[19500, 2] *= 1.01
+    with pytest.warns(UserWarning) as told:
+        inbetween.resample(q, 120, 30)
+    assert len(told) == 1
+    message = str(told[0].message)
+    assert message.startswith("rotations[19000, 0]: quaternion norm 1.02"), message
+    assert message.endswith("(and 2 other rows)"), message
+    q[12, 3] = 0.0
+    q[19999, 1] = 0.0
+    with pytest.raises(inbetween.InputError,
+                       match=r"rotations\[19999, 1\]: expected a quaternion of non-zero length"):
+        inbetween.resample(q, 120, 30)
