@@ -119,18 +119,17 @@ pub(crate) fn finish_one(lanes: &[Pending<2>; 4]) -> [DQuat; 4] {
 /// `geodesic(a[i], b[i], f[i])` for the four lanes.
 #[inline]
 pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
-    let d = a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z;
-    let (pw, px, py, pz) = (b.w - d * a.w, b.x - d * a.x, b.y - d * a.y, b.z - d * a.z);
-    let s = (pw * pw + px * px + py * py + pz * pz).sqrt();
+    let d = a.dot(b);
+    let perp = Quat4 {
+        w: b.w - d * a.w,
+        x: b.x - d * a.x,
+        y: b.y - d * a.y,
+        z: b.z - d * a.z,
+    };
+    let s = perp.dot(perp).sqrt();
     let omega = s.atan2(d);
     let (sn, cs) = (f * omega).sin_cos();
-    let k = sn / s;
-    let out = Quat4 {
-        w: a.w * cs + pw * k,
-        x: a.x * cs + px * k,
-        y: a.y * cs + py * k,
-        z: a.z * cs + pz * k,
-    };
+    let out = a.combine(cs, perp, sn / s);
     // The test in lanes (one comparison, no branch per lane): degenerate lanes are rare.
     if !(s.simd_lt(f64x4::splat(1e-300)) | s.is_nan()).any() {
         return out;
@@ -194,14 +193,7 @@ impl ArcLanes {
     pub(crate) fn eval4(&self, u: f64x4) -> Quat4 {
         let phase = f64x4::splat(self.alpha) + f64x4::splat(self.beta) * u;
         let (s, c) = crate::rotation::quat4::sin_cos4(phase);
-        let (p, e) = (self.p, self.e);
-        let at = |a: f64, b: f64| f64x4::splat(a) * c + f64x4::splat(b) * s;
-        Quat4 {
-            w: at(p.w, e.w),
-            x: at(p.x, e.x),
-            y: at(p.y, e.y),
-            z: at(p.z, e.z),
-        }
+        Quat4::splat(self.p).combine(c, Quat4::splat(self.e), s)
     }
 }
 

@@ -15,6 +15,59 @@ pub(crate) struct Quat4 {
 }
 
 impl Quat4 {
+    /// The 4D dot product `((w·w′ + x·x′) + y·y′) + z·z′` in each lane.
+    #[inline]
+    pub(crate) fn dot(self, b: Quat4) -> f64x4 {
+        self.w * b.w + self.x * b.x + self.y * b.y + self.z * b.z
+    }
+
+    /// `self·ca + b·cb` in every component.
+    #[inline]
+    pub(crate) fn combine(self, ca: f64x4, b: Quat4, cb: f64x4) -> Quat4 {
+        Quat4 {
+            w: self.w * ca + b.w * cb,
+            x: self.x * ca + b.x * cb,
+            y: self.y * ca + b.y * cb,
+            z: self.z * ca + b.z * cb,
+        }
+    }
+
+    /// `self/k` in every component.
+    #[inline]
+    pub(crate) fn over(self, k: f64x4) -> Quat4 {
+        Quat4 {
+            w: self.w / k,
+            x: self.x / k,
+            y: self.y / k,
+            z: self.z / k,
+        }
+    }
+
+    /// The quaternion product `self·rhs` in each lane: glam's `DQuat * DQuat`, operation for
+    /// operation, so a lane is the scalar product's bits.
+    #[inline]
+    pub(crate) fn mul(self, rhs: Quat4) -> Quat4 {
+        let (x0, y0, z0, w0) = (self.x, self.y, self.z, self.w);
+        let (x1, y1, z1, w1) = (rhs.x, rhs.y, rhs.z, rhs.w);
+        Quat4 {
+            x: w0 * x1 + x0 * w1 + y0 * z1 - z0 * y1,
+            y: w0 * y1 - x0 * z1 + y0 * w1 + z0 * x1,
+            z: w0 * z1 + x0 * y1 - y0 * x1 + z0 * w1,
+            w: w0 * w1 - x0 * x1 - y0 * y1 - z0 * z1,
+        }
+    }
+
+    /// The conjugate `(w, −x, −y, −z)` in each lane.
+    #[inline]
+    pub(crate) fn conjugate(self) -> Quat4 {
+        Quat4 {
+            w: self.w,
+            x: -self.x,
+            y: -self.y,
+            z: -self.z,
+        }
+    }
+
     /// The same quaternion in every lane.
     #[inline]
     pub(crate) fn splat(q: DQuat) -> Quat4 {

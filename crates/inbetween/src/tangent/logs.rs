@@ -43,14 +43,7 @@ pub(super) fn log4(q: Quat4) -> V4 {
 /// `b·a⁻¹` for unit quaternions in lanes: glam's `b * a.conjugate()`, operation for operation.
 #[inline]
 fn ratio(b: Quat4, a: Quat4) -> Quat4 {
-    let (x0, y0, z0, w0) = (b.x, b.y, b.z, b.w);
-    let (x1, y1, z1, w1) = (-a.x, -a.y, -a.z, a.w);
-    Quat4 {
-        x: w0 * x1 + x0 * w1 + y0 * z1 - z0 * y1,
-        y: w0 * y1 - x0 * z1 + y0 * w1 + z0 * x1,
-        z: w0 * z1 + x0 * y1 - y0 * x1 + z0 * w1,
-        w: w0 * w1 - x0 * x1 - y0 * y1 - z0 * z1,
-    }
+    b.mul(a.conjugate())
 }
 
 /// A track's keys as columns, so that four consecutive ones load as lanes; past the last key

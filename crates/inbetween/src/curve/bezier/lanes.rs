@@ -31,13 +31,7 @@ impl Arc4 {
     #[inline]
     fn eval(&self, u: f64x4) -> Quat4 {
         let (s, c) = sin_cos4(self.alpha + self.beta * u);
-        let (p, e) = (self.p, self.e);
-        Quat4 {
-            w: p.w * c + e.w * s,
-            x: p.x * c + e.x * s,
-            y: p.y * c + e.y * s,
-            z: p.z * c + e.z * s,
-        }
+        self.p.combine(c, self.e, s)
     }
 
     /// Lane `i` as an [`Arc`].
@@ -57,34 +51,6 @@ pub(crate) struct Bezier4 {
     r: [Arc4; 3],
 }
 
-/// `q/k` in every component.
-#[inline]
-fn over(q: Quat4, k: f64x4) -> Quat4 {
-    Quat4 {
-        w: q.w / k,
-        x: q.x / k,
-        y: q.y / k,
-        z: q.z / k,
-    }
-}
-
-/// `a·ca + b·cb` in every component.
-#[inline]
-fn combine(a: Quat4, ca: f64x4, b: Quat4, cb: f64x4) -> Quat4 {
-    Quat4 {
-        w: a.w * ca + b.w * cb,
-        x: a.x * ca + b.x * cb,
-        y: a.y * ca + b.y * cb,
-        z: a.z * ca + b.z * cb,
-    }
-}
-
-/// The 4D dot product `((w·w′ + x·x′) + y·y′) + z·z′`.
-#[inline]
-fn dot(a: Quat4, b: Quat4) -> f64x4 {
-    a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z
-}
-
 /// `V/3` for the keys `i[l]` with tangents `w[i[l]]` over segments of `delta[l]` seconds, at
 /// the keys' rotations `q`: [`Knots::tangent`]`/3` in lanes, operation for operation (glam's
 /// product of `(0, w·Δ)` by `q`, then a division by 3), so the same bits.
@@ -95,13 +61,19 @@ fn third_of_tangent(w: &[glam::DVec3], i: [usize; 4], delta: f64x4, q: Quat4) ->
         f64x4::new(i.map(|i| w[i].y)) * delta,
         f64x4::new(i.map(|i| w[i].z)) * delta,
     );
-    let (w0, three) = (f64x4::ZERO, f64x4::splat(3.0));
-    let (x1, y1, z1, w1) = (q.x, q.y, q.z, q.w);
+    let v = Quat4 {
+        w: f64x4::ZERO,
+        x: x0,
+        y: y0,
+        z: z0,
+    };
+    let three = f64x4::splat(3.0);
+    let p = v.mul(q);
     Quat4 {
-        x: (w0 * x1 + x0 * w1 + y0 * z1 - z0 * y1) / three,
-        y: (w0 * y1 - x0 * z1 + y0 * w1 + z0 * x1) / three,
-        z: (w0 * z1 + x0 * y1 - y0 * x1 + z0 * w1) / three,
-        w: (w0 * w1 - x0 * x1 - y0 * y1 - z0 * z1) / three,
+        x: p.x / three,
+        y: p.y / three,
+        z: p.z / three,
+        w: p.w / three,
     }
 }
 
@@ -121,12 +93,12 @@ impl Bezier4 {
         let delta = f64x4::new(s.map(|s| keys.delta(s)));
         let v0 = third_of_tangent(&keys.w, s, delta, q0);
         let v3 = third_of_tangent(&keys.w_in, s.map(|s| s + 1), delta, q3);
-        let (t0, t3) = (dot(v0, v0).sqrt(), dot(v3, v3).sqrt());
-        let (e0, e2) = (over(v0, t0), over(v3, t3));
+        let (t0, t3) = (v0.dot(v0).sqrt(), v3.dot(v3).sqrt());
+        let (e0, e2) = (v0.over(t0), v3.over(t3));
         let (s0, c0) = sin_cos4(t0);
         let (s3, c3) = sin_cos4(-t3);
-        let mut p1 = combine(q0, c0, e0, s0);
-        let mut p2 = combine(q3, c3, e2, s3);
+        let mut p1 = q0.combine(c0, e0, s0);
+        let mut p2 = q3.combine(c3, e2, s3);
         let mut r0 = Arc4 {
             p: q0,
             e: e0,
@@ -164,17 +136,17 @@ impl Bezier4 {
         }
         // The middle leg: the geodesic from p₁ to p₂ (`Arc::between`).
         let (a, b) = (p1, p2);
-        let d = dot(a, b);
+        let d = a.dot(b);
         let perp = Quat4 {
             w: b.w - a.w * d,
             x: b.x - a.x * d,
             y: b.y - a.y * d,
             z: b.z - a.z * d,
         };
-        let len = dot(perp, perp).sqrt();
+        let len = perp.dot(perp).sqrt();
         let mut r1 = Arc4 {
             p: a,
-            e: over(perp, len),
+            e: perp.over(len),
             alpha: f64x4::ZERO,
             beta: len.atan2(d),
         };
