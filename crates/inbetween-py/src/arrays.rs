@@ -300,23 +300,10 @@ impl Flat<'_> {
     }
 
     /// The first (in joint order, then row order) row for which `bad` is true, as `(j, k)`,
-    /// scanning the rows in memory order on the cores.
-    fn first(&self, bad: impl Fn(&[f64]) -> bool + Sync) -> Option<(usize, usize)> {
-        let joints = self.joints();
-        let chunk = (1 << 16) * self.width;
-        let chunks: Vec<(usize, &[f64])> = self.data.chunks(chunk).enumerate().collect();
-        let found = inbetween::parallel::map(&chunks, |&(c, data)| {
-            let mut first: Option<(usize, usize)> = None;
-            for (i, r) in data.chunks_exact(self.width).enumerate() {
-                if bad(r) {
-                    let i = c * (chunk / self.width) + i;
-                    let at = (i % joints, i / joints);
-                    first = Some(first.map_or(at, |f| f.min(at)));
-                }
-            }
-            first
-        });
-        found.into_iter().flatten().min()
+    /// scanning the rows in memory order on the cores ([`Flat::scan`]).
+    fn first(&self, bad: impl Fn(&[f64]) -> bool + Sync) -> Option<At> {
+        self.scan(|r| if bad(r) { Row::Refused } else { Row::Fine })
+            .0
     }
 }
 
