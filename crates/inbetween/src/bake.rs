@@ -290,64 +290,65 @@ fn segment_frames<S: Segment>(
     }
     let delta = t1 - t0;
     let (u0, du) = ((fps.time_of(first) - t0) / delta, period / delta);
-    if stop - first < 4 && S::direct(keys) {
-        // A short segment of a scheme that evaluates directly: its frames wait for a block of
-        // four, where the segments are built and checked (`Queue::flush`); with velocities the
-        // segment is built here for them alone, so the rotations are the same either way.
-        let seg = velocity.then(|| S::new(keys, s, curve.blend()));
-        let h = if velocity { step_in(keys, s) } else { 0.0 };
-        let omega = |u: f64| seg.as_ref().map(|seg| segment_omega(seg, u, delta, h));
-        if p.snap_start {
-            let f = (p.from, fps.time_of(p.from), keys.quats[s], omega(0.0));
-            queue.ready(f, out)?;
-        }
-        for (j, k) in (first..stop).enumerate() {
-            let (u, t) = (u0 + (0.0 + j as f64) * du, fps.time_of(k));
-            let f = (k, t, DQuat::IDENTITY, omega((t - t0) / delta));
-            queue.direct(f, s, u, out)?;
-        }
-        if p.snap_end {
-            let f = (stop, fps.time_of(stop), keys.quats[n - 1], omega(1.0));
-            queue.ready(f, out)?;
-        }
-        return Ok(());
-    }
-    // This segment's warnings come after those of the direct frames before it.
-    if !queue.direct.is_empty() {
+    // A short segment of a scheme that evaluates directly: its frames wait for a block of
+    // four, where the segments are built and checked (`Queue::flush`); the segment is built
+    // here only for its velocities, so the rotations are the same either way. Any other segment
+    // is built and checked here, after the direct frames before it (its warnings after theirs).
+    let direct = stop - first < 4 && S::direct(keys);
+    if !direct && !queue.direct.is_empty() {
         queue.flush(out)?;
     }
-    let seg = S::new(keys, s, curve.blend());
-    check_segment(curve, &seg, s, out.warn);
-    let h = if velocity { step_in(keys, s) } else { 0.0 };
-    let omega = |u: f64| velocity.then(|| segment_omega(&seg, u, delta, h));
-    let mut k = p.from;
-    if p.snap_start {
-        queue.ready((k, fps.time_of(k), keys.quats[s], omega(0.0)), out)?;
-        k += 1;
+    let seg = (velocity || !direct).then(|| S::new(keys, s, curve.blend()));
+    if let (false, Some(seg)) = (direct, &seg) {
+        check_segment(curve, seg, s, out.warn);
     }
-    if stop > k {
-        let count = (stop - k) as usize;
-        match (count < 4).then(|| seg.gather(u0, du, count)).flatten() {
-            Some(lanes) => {
-                for (j, &lane) in lanes[..count].iter().enumerate() {
-                    let kj = k + j as i64;
-                    let w = omega((fps.time_of(kj) - t0) / delta);
-                    queue.pending((kj, fps.time_of(kj), DQuat::IDENTITY, w), lane, out)?;
-                }
+    let h = if velocity { step_in(keys, s) } else { 0.0 };
+    let omega = |u: f64| {
+        seg.as_ref()
+            .filter(|_| velocity)
+            .map(|seg| segment_omega(seg, u, delta, h))
+    };
+    if p.snap_start {
+        queue.ready(
+            (p.from, fps.time_of(p.from), keys.quats[s], omega(0.0)),
+            out,
+        )?;
+    }
+    match (direct, &seg) {
+        (true, _) => {
+            for (j, k) in (first..stop).enumerate() {
+                let (u, t) = (u0 + (0.0 + j as f64) * du, fps.time_of(k));
+                let f = (k, t, DQuat::IDENTITY, omega((t - t0) / delta));
+                queue.direct(f, s, u, out)?;
             }
-            None => {
-                queue.flush(out)?;
-                for (j, q) in seg.frames(u0, du).take(count).enumerate() {
-                    let kj = k + j as i64;
-                    let w = omega((fps.time_of(kj) - t0) / delta);
-                    (out.emit)((kj, fps.time_of(kj), q, w))?;
+        }
+        (false, Some(seg)) if stop > first => {
+            let count = (stop - first) as usize;
+            match (count < 4).then(|| seg.gather(u0, du, count)).flatten() {
+                Some(lanes) => {
+                    for (j, &lane) in lanes[..count].iter().enumerate() {
+                        let kj = first + j as i64;
+                        let w = omega((fps.time_of(kj) - t0) / delta);
+                        queue.pending((kj, fps.time_of(kj), DQuat::IDENTITY, w), lane, out)?;
+                    }
+                }
+                None => {
+                    queue.flush(out)?;
+                    for (j, q) in seg.frames(u0, du).take(count).enumerate() {
+                        let kj = first + j as i64;
+                        let w = omega((fps.time_of(kj) - t0) / delta);
+                        (out.emit)((kj, fps.time_of(kj), q, w))?;
+                    }
                 }
             }
         }
-        k = stop;
+        _ => {}
     }
     if p.snap_end {
-        queue.ready((k, fps.time_of(k), keys.quats[n - 1], omega(1.0)), out)?;
+        queue.ready(
+            (stop, fps.time_of(stop), keys.quats[n - 1], omega(1.0)),
+            out,
+        )?;
     }
     Ok(())
 }
