@@ -18,7 +18,8 @@
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
 use super::blend4::{
-    self, ArcLanes, Block4, Lanes4, Pending, Quat4, geodesic4, params4, point4, steps4, weight4,
+    self, ArcLanes, Block4, Lanes4, Pending, Quat4, geodesic4, geodesics4, params4, point4, steps4,
+    weight4,
 };
 use super::{Blend, Segment};
 use crate::rotation::arc::{Arc, ArcSteps};
@@ -56,7 +57,8 @@ pub(crate) struct BezierFrames {
 /// the first-level arcs' points `a`, `b`, `c` at `u`.
 #[inline]
 fn casteljau4(a: Quat4, b: Quat4, c: Quat4, u: f64x4) -> Quat4 {
-    geodesic4(geodesic4(a, b, u), geodesic4(b, c, u), u)
+    let [s0, s1] = geodesics4([(a, b, u), (b, c, u)]);
+    geodesic4(s0, s1, u)
 }
 
 #[inline]

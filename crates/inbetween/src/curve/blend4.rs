@@ -15,6 +15,7 @@ use glam::DQuat;
 use wide::f64x4;
 
 pub(crate) use crate::rotation::quat4::Quat4;
+use crate::rotation::quat4::atan2_upper4;
 
 /// Hands out frames computed four at a time: `next` refills the block when it is used up.
 #[derive(Debug, Clone)]
@@ -119,31 +120,48 @@ pub(crate) fn finish_one(lanes: &[Pending<2>; 4]) -> [DQuat; 4] {
 /// `geodesic(a[i], b[i], f[i])` for the four lanes.
 #[inline]
 pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
-    let d = a.dot(b);
-    let perp = Quat4 {
-        w: b.w - d * a.w,
-        x: b.x - d * a.x,
-        y: b.y - d * a.y,
-        z: b.z - d * a.z,
-    };
-    let s = perp.dot(perp).sqrt();
-    let omega = s.atan2(d);
-    let (sn, cs) = (f * omega).sin_cos();
-    let out = a.combine(cs, perp, sn / s);
-    // The test in lanes (one comparison, no branch per lane): degenerate lanes are rare.
-    if !(s.simd_lt(f64x4::splat(1e-300)) | s.is_nan()).any() {
-        return out;
-    }
-    let degenerate = s.to_array().map(|v| v.is_nan() || v < 1e-300);
-    // Each degenerate lane by the scalar blend; the others keep their own lane's result, so a
-    // lane never depends on what shares its block.
-    let (qa, qb, fs, mut q) = (a.to_quats(), b.to_quats(), f.to_array(), out.to_quats());
-    for i in 0..4 {
-        if degenerate[i] {
-            q[i] = geodesic(qa[i], qb[i], fs[i]);
+    let [q] = geodesics4([(a, b, f)]);
+    q
+}
+
+/// `N` independent [`geodesic4`]s, step by step side by side: a blend is one long chain of
+/// dependent operations (a square root, two divisions, `atan2`'s and `sin_cos`'s polynomials),
+/// and two chains written together give the processor two operations to overlap at every
+/// step. Each blend's bits are [`geodesic4`]'s.
+#[inline]
+pub(crate) fn geodesics4<const N: usize>(pairs: [(Quat4, Quat4, f64x4); N]) -> [Quat4; N] {
+    let d = pairs.map(|(a, b, _)| a.dot(b));
+    let perp: [Quat4; N] = std::array::from_fn(|i| {
+        let (a, b, _) = pairs[i];
+        Quat4 {
+            w: b.w - d[i] * a.w,
+            x: b.x - d[i] * a.x,
+            y: b.y - d[i] * a.y,
+            z: b.z - d[i] * a.z,
         }
-    }
-    Quat4::from_quats(&q)
+    });
+    let s = perp.map(|p| p.dot(p).sqrt());
+    let omega: [f64x4; N] = std::array::from_fn(|i| atan2_upper4(s[i], d[i]));
+    let sc: [(f64x4, f64x4); N] = std::array::from_fn(|i| (pairs[i].2 * omega[i]).sin_cos());
+    std::array::from_fn(|i| {
+        let (a, b, f) = pairs[i];
+        let (sn, cs) = sc[i];
+        let out = a.combine(cs, perp[i], sn / s[i]);
+        // The test in lanes (one comparison, no branch per lane): degenerate lanes are rare.
+        if !(s[i].simd_lt(f64x4::splat(1e-300)) | s[i].is_nan()).any() {
+            return out;
+        }
+        let degenerate = s[i].to_array().map(|v| v.is_nan() || v < 1e-300);
+        // Each degenerate lane by the scalar blend; the others keep their own lane's result,
+        // so a lane never depends on what shares its block.
+        let (qa, qb, fs, mut q) = (a.to_quats(), b.to_quats(), f.to_array(), out.to_quats());
+        for l in 0..4 {
+            if degenerate[l] {
+                q[l] = geodesic(qa[l], qb[l], fs[l]);
+            }
+        }
+        Quat4::from_quats(&q)
+    })
 }
 
 /// A great arc `C(u) = cos(α + βu)·p + sin(α + βu)·e` ([`Arc`]) evaluated at four `u` at once,

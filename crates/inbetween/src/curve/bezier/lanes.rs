@@ -12,7 +12,7 @@
 use super::super::blend4::Quat4;
 use super::{Bezier, casteljau4};
 use crate::rotation::arc::{Arc, TINY};
-use crate::rotation::quat4::sin_cos4;
+use crate::rotation::quat4::{atan2_upper4, sin_cos4};
 use crate::tangent::Knots;
 use glam::DQuat;
 use wide::f64x4;
@@ -148,7 +148,7 @@ impl Bezier4 {
             p: a,
             e: perp.over(len),
             alpha: f64x4::ZERO,
-            beta: len.atan2(d),
+            beta: atan2_upper4(len, d),
         };
         if (len.simd_lt(tiny) | len.is_nan()).any() {
             // Identical or antipodal legs' ends: the scalar `Arc::between`, lane by lane.

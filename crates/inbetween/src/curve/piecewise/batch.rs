@@ -118,9 +118,11 @@ fn walk<L: Lanes4>(
         };
         let (b0, b1) = (b[i], b[i + 1]);
         for (times, q) in t[run.clone()].chunks(4).zip(out[run].chunks_mut(4)) {
-            // `piece`'s parameter, as `Curve::rotation` computes it.
-            let u = std::array::from_fn(|j| (times[j.min(times.len() - 1)] - b0) / (b1 - b0));
-            let got = piece.eval4(f64x4::new(u)).to_quats();
+            // `piece`'s parameter, as `Curve::rotation` computes it (the last time repeated
+            // past the end of the run).
+            let at = f64x4::new(std::array::from_fn(|j| times[j.min(times.len() - 1)]));
+            let u = (at - f64x4::splat(b0)) / f64x4::splat(b1 - b0);
+            let got = piece.eval4(u).to_quats();
             q.copy_from_slice(&got[..q.len()]);
         }
         k = end;
