@@ -18,8 +18,7 @@
 //! - Cost per frame: three forward-difference steps and three geodesic blends.
 
 use super::blend4::{
-    self, ArcLanes, Block4, Lanes4, Pending, Quat4, geodesic4, geodesics4, params4, point4, steps4,
-    weight4,
+    self, ArcLanes, Block4, Lanes4, Pending, Quat4, geodesic4, params4, point4, steps4, weight4,
 };
 use super::{Blend, Segment};
 use crate::rotation::arc::{Arc, ArcSteps};
@@ -57,8 +56,16 @@ pub(crate) struct BezierFrames {
 /// the first-level arcs' points `a`, `b`, `c` at `u`.
 #[inline]
 fn casteljau4(a: Quat4, b: Quat4, c: Quat4, u: f64x4) -> Quat4 {
-    let [s0, s1] = geodesics4([(a, b, u), (b, c, u)]);
-    geodesic4(s0, s1, u)
+    // With AVX a lane group is one register, and the two middle blends side by side
+    // (`geodesics4`) give the processor two chains to overlap; with SSE2 alone it is two, and
+    // side by side they spill: one after the other there. The same bits either way.
+    #[cfg(target_feature = "avx")]
+    {
+        let [s0, s1] = super::blend4::geodesics4([(a, b, u), (b, c, u)]);
+        geodesic4(s0, s1, u)
+    }
+    #[cfg(not(target_feature = "avx"))]
+    geodesic4(geodesic4(a, b, u), geodesic4(b, c, u), u)
 }
 
 #[inline]

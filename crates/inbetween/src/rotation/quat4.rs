@@ -237,7 +237,7 @@ mod tests {
         for i in 0..200_000 {
             // Angles over [0, π], bunched at the ends and at the reduction's seams.
             let a = std::f64::consts::PI * (i as f64 / 200_000.0).powi(1 + i % 3);
-            let r = 10f64.powi((i % 13) as i32 - 6);
+            let r = 10f64.powi(i % 13 - 6);
             check(r * a.sin(), r * a.cos());
             check(r * a.sin(), -r * a.cos());
             let (s, c) = ((i as f64 * 0.618).fract(), (i as f64 * 0.377).fract() - 0.5);
