@@ -37,17 +37,32 @@ def side_by_side(name, ours, theirs, repeat):
           f"(medians of {repeat})")
 
 
+def curve_case():
+    """Case 1's input: 1001 keys (times, scalar-first quaternions) and 10^6 sorted times."""
+    rng = np.random.default_rng(1)
+    times = np.cumsum(rng.uniform(0.02, 0.05, 1001))
+    q = Rotation.random(1001, random_state=2).as_quat(scalar_first=True)
+    t = np.linspace(times[0], times[-1], 1_000_000)
+    return times, q, t
+
+
+def resample_case(frames=7200):
+    """Case 2's input: 60 joints x `frames` frames at 120 fps, (frames, 60, 4) scalar first."""
+    tt = np.arange(frames)[:, None] / 120.0
+    j = np.arange(60)[None, :]
+    rv = np.stack([0.6 * np.sin(1.3 * tt + 0.1 * j), 0.4 * np.cos(0.7 * tt - 0.2 * j),
+                   0.3 * np.sin(2.1 * tt + 0.05 * j)], axis=-1)
+    return Rotation.from_rotvec(rv.reshape(-1, 3)).as_quat(scalar_first=True).reshape(frames, 60, 4)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=5)
     repeat = ap.parse_args().repeat
     print(describe())
-    rng = np.random.default_rng(1)
 
     # 1. A curve through 1001 keys, built and evaluated at 10^6 sorted times.
-    times = np.cumsum(rng.uniform(0.02, 0.05, 1001))
-    q = Rotation.random(1001, random_state=2).as_quat(scalar_first=True)
-    t = np.linspace(times[0], times[-1], 1_000_000)
+    times, q, t = curve_case()
     side_by_side(
         "Curve(1001 keys)(1e6 sorted times), build + evaluate",
         lambda: inbetween.Curve(times, q)(t),
@@ -57,11 +72,7 @@ def main():
 
     # 2. 60 joints x 7200 frames resampled 120 -> 100 fps (scipy: one spline per joint).
     frames = 7200
-    tt = np.arange(frames)[:, None] / 120.0
-    j = np.arange(60)[None, :]
-    rv = np.stack([0.6 * np.sin(1.3 * tt + 0.1 * j), 0.4 * np.cos(0.7 * tt - 0.2 * j),
-                   0.3 * np.sin(2.1 * tt + 0.05 * j)], axis=-1)
-    clip = Rotation.from_rotvec(rv.reshape(-1, 3)).as_quat(scalar_first=True).reshape(frames, 60, 4)
+    clip = resample_case(frames)
     grid = inbetween.frame_times(frames, 120, 100)
     key_t = np.arange(frames) / 120.0
 
