@@ -3,11 +3,12 @@
 //! Each frame of hermite, squad and bezier ends in one or three blends
 //! `geodesic(a, b, f) = cos(fΩ)·a + sin(fΩ)/sin Ω·(b − (a·b)·a)`, `Ω = atan2(|b − (a·b)a|, a·b)`
 //! ([`crate::rotation::quat::geodesic`]), and their `atan2` and `sin_cos` are most of a frame's
-//! cost. Here four blends run as SIMD lanes (`wide::f64x4`, whose `atan2` and `sin_cos` are Agner
-//! Fog's vector-class-library polynomials, about 1 ulp), in structure-of-arrays form. A lane
-//! whose pair is degenerate (`|b − (a·b)a| < 1e-300`: identical or antipodal points) is done by
-//! the scalar function, which handles those cases; the two agree to a few ulp (test below). No
-//! lane's result depends on the other lanes of its block.
+//! cost. Here four blends run as SIMD lanes (`wide::f64x4`; `atan2` and `sin_cos` are Agner
+//! Fog's vector-class-library polynomials, within 2 ulp: [`atan2_upper4`] and `wide`'s
+//! `sin_cos`), in structure-of-arrays form. A lane whose pair is degenerate
+//! (`|b − (a·b)a| < 1e-300`: identical or antipodal points) is done by the scalar function,
+//! which handles those cases; the two agree to a few ulp (test below). No lane's result depends
+//! on the other lanes of its block.
 
 use crate::rotation::arc::Arc;
 use crate::rotation::quat::geodesic;

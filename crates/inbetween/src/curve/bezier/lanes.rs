@@ -1,13 +1,13 @@
 //! Four Bézier segments at once, as SIMD lanes: their first-level arcs built from the keys
 //! (`p₁ = exp(w_i/3)·q_i`, `p₂ = exp(−w_{i+1}/3)·q_{i+1}`, the middle leg between them) and their
-//! frames evaluated directly, one segment per lane (`wide::f64x4`, whose `sin_cos` and `atan2`
-//! are Agner Fog's vector-class-library polynomials, about 1 ulp).
+//! frames evaluated directly, one segment per lane (`wide::f64x4`; `sin_cos` and `atan2` are
+//! Agner Fog's vector-class-library polynomials, within 2 ulp: [`sin_cos4`], [`atan2_upper4`]).
 //!
 //! Every Bézier segment is built here — [`Bezier::new`](super::Bezier) is lane 0 of four copies
 //! of itself — so a segment's arcs are the same bits whichever segments share its block (a
 //! lane's operations never read another lane). A resample to a lower rate, where most segments
 //! hold one frame, builds and evaluates its segments four at a time without a scalar `sin`,
-//! `cos` or `atan2` ([`crate::bake`]).
+//! `cos` or `atan2` ([`crate::bake`](mod@crate::bake)).
 
 use super::super::blend4::Quat4;
 use super::{Bezier, casteljau4};
