@@ -132,7 +132,10 @@ pub(crate) fn sin_cos4(x: f64x4) -> (f64x4, f64x4) {
 /// runs, and `z` comes from one division of the two numbers rather than two (`t`, then
 /// `(t − 1)/(t + 1)`). The result is `n·π/4 ± atan z` with `n` a whole number, added as
 /// `n·hi + (n·lo ± atan z)` (`π/4 = hi + lo`), so the one large rounding is the last.
-/// Within 2 ulp of libm's (measured below; `wide`'s within 2). Not for `y < 0`.
+/// Within 2 ulp of libm's (measured below; `wide`'s within 2). Not for `y < 0` or `y = −0`
+/// (the sign of a zero `y` is not carried to the result), nor for both magnitudes above about
+/// 9e307, where `x + y` overflows and a ratio near 1 reads as exactly 1: the curves pass
+/// lengths and cosines of unit quaternions (at most about 1), and `y` from a square root.
 #[inline]
 pub(crate) fn atan2_upper4(y: f64x4, x: f64x4) -> f64x4 {
     // π/4 = PI4_HI + PI4_LO; `n·PI4_HI` is exact for n = 0..4.
