@@ -132,15 +132,7 @@ pub(crate) fn geodesic4(a: Quat4, b: Quat4, f: f64x4) -> Quat4 {
 #[inline]
 pub(crate) fn geodesics4<const N: usize>(pairs: [(Quat4, Quat4, f64x4); N]) -> [Quat4; N] {
     let d = pairs.map(|(a, b, _)| a.dot(b));
-    let perp: [Quat4; N] = std::array::from_fn(|i| {
-        let (a, b, _) = pairs[i];
-        Quat4 {
-            w: b.w - d[i] * a.w,
-            x: b.x - d[i] * a.x,
-            y: b.y - d[i] * a.y,
-            z: b.z - d[i] * a.z,
-        }
-    });
+    let perp: [Quat4; N] = std::array::from_fn(|i| pairs[i].1.less(d[i], pairs[i].0));
     let s = perp.map(|p| p.dot(p).sqrt());
     let omega: [f64x4; N] = std::array::from_fn(|i| atan2_upper4(s[i], d[i]));
     let sc: [(f64x4, f64x4); N] = std::array::from_fn(|i| (pairs[i].2 * omega[i]).sin_cos());

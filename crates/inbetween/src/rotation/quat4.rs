@@ -32,6 +32,17 @@ impl Quat4 {
         }
     }
 
+    /// `self − k·a` in every component: `b − (a·b)·a`, the part of `b` across `a`.
+    #[inline]
+    pub(crate) fn less(self, k: f64x4, a: Quat4) -> Quat4 {
+        Quat4 {
+            w: self.w - k * a.w,
+            x: self.x - k * a.x,
+            y: self.y - k * a.y,
+            z: self.z - k * a.z,
+        }
+    }
+
     /// `self/k` in every component.
     #[inline]
     pub(crate) fn over(self, k: f64x4) -> Quat4 {

@@ -67,14 +67,7 @@ fn third_of_tangent(w: &[glam::DVec3], i: [usize; 4], delta: f64x4, q: Quat4) ->
         y: y0,
         z: z0,
     };
-    let three = f64x4::splat(3.0);
-    let p = v.mul(q);
-    Quat4 {
-        x: p.x / three,
-        y: p.y / three,
-        z: p.z / three,
-        w: p.w / three,
-    }
+    v.mul(q).over(f64x4::splat(3.0))
 }
 
 /// `f(lane)` for each lane of an `f64x4`'s mask test, as booleans.
@@ -137,12 +130,7 @@ impl Bezier4 {
         // The middle leg: the geodesic from p₁ to p₂ (`Arc::between`).
         let (a, b) = (p1, p2);
         let d = a.dot(b);
-        let perp = Quat4 {
-            w: b.w - a.w * d,
-            x: b.x - a.x * d,
-            y: b.y - a.y * d,
-            z: b.z - a.z * d,
-        };
+        let perp = b.less(d, a);
         let len = perp.dot(perp).sqrt();
         let mut r1 = Arc4 {
             p: a,
